@@ -1,0 +1,124 @@
+// shadowcts: conformance tests with reference oracles for shadow and light-assignment algorithms.
+#include <unistd.h>
+
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "list_command.h"
+#include "shadowcts/case_manifest.h"
+#include "shadowcts/errors.h"
+#include "shadowcts/fixtures.h"
+#include "shadowcts/gbuffer_exr.h"
+#include "shadowcts/registry.h"
+#include "shadowcts/runner.h"
+
+namespace {
+
+using namespace shadowcts;
+
+AlgorithmSelection parse_selection(const std::string& text) {
+  const auto colon = text.find(':');
+  AlgorithmSelection s{text.substr(0, colon),
+                       colon == std::string::npos ? "" : text.substr(colon + 1)};
+  if (s.id.empty() || (colon != std::string::npos && s.variant.empty()))
+    throw UsageError("--algorithm '" + text + "': expected ID or ID:VARIANT");
+  return s;
+}
+
+int write_gbuffer(const std::string& case_file, const std::string& fixture,
+                  const std::string& out) {
+  if (case_file.empty() == fixture.empty())
+    throw UsageError("gbuffer: give exactly one of --case FILE or --fixture NAME");
+  const Case c = case_file.empty() ? make_fixture(fixture) : load_case_manifest(case_file);
+  validate(c);
+  const ViewSamples samples = generate_view_samples(c);
+  write_gbuffer_exr(out, samples);
+  std::cout << "wrote " << out << ": " << samples.width << "x" << samples.height << ", "
+            << samples.count(SampleClass::regular) + samples.count(SampleClass::back_facing)
+            << " surface samples, " << samples.count(SampleClass::sky) << " sky\n";
+  return exit_pass;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "shadowcts: conformance tests with exact reference oracles for pixel-accurate shadow and "
+      "light-assignment algorithms"};
+  app.require_subcommand(1);
+
+  bool list_json = false;
+  CLI::App* list = app.add_subcommand("list", "List fixtures, algorithms, variants and backends");
+  list->add_flag("--json", list_json, "Machine-readable output");
+
+  RunOptions options;
+  std::vector<std::string> algorithm_texts;
+  double eps_rel = 0;
+  std::uint32_t repeats = 0, threads = 0;
+  std::string oracle = "auto";
+  CLI::App* run = app.add_subcommand(
+      "run", "Run algorithms on cases, diff them against the oracles, write results");
+  run->add_option("--fixture", options.fixtures, "Built-in fixture (repeatable); see `list`");
+  run->add_option("--case", options.case_files, "JSON case manifest (repeatable)")
+      ->check(CLI::ExistingFile);
+  run->add_option("--algorithm", algorithm_texts, "ID or ID:VARIANT (repeatable); default all");
+  run->add_option("--backend", options.backend, "Only this backend (reference, embree, cuda, ...)");
+  run->add_option("--out", options.out_dir, "Output folder")->capture_default_str();
+  auto* eps_option = run->add_option("--eps-rel", eps_rel,
+                                     "Relative half-width of the ambiguity band (default 2^-16)")
+                         ->check(CLI::Range(0x1p-24, 0x1p-4));
+  auto* repeat_option =
+      run->add_option("--repeat", repeats, "Timed repeats per algorithm (median reported)")
+          ->check(CLI::Range(1, 1000));
+  auto* threads_option =
+      run->add_option("--threads", threads, "Worker threads (default: all cores)")
+          ->check(CLI::Range(1, 4096));
+  run->add_option("--oracle", oracle, "Hard-shadow oracle: auto, exact or embree")
+      ->check(CLI::IsMember({"auto", "exact", "embree"}))
+      ->capture_default_str();
+
+  std::string gbuffer_case, gbuffer_fixture, gbuffer_out;
+  CLI::App* gbuffer = app.add_subcommand(
+      "gbuffer", "Write the view samples of a case as an EXR G-buffer (P, N, id channels)");
+  gbuffer->add_option("--case", gbuffer_case, "JSON case manifest")->check(CLI::ExistingFile);
+  gbuffer->add_option("--fixture", gbuffer_fixture, "Built-in fixture");
+  gbuffer->add_option("--out", gbuffer_out, "Output EXR file")->required();
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? exit_pass : exit_bad_input;
+  }
+
+  try {
+    if (*list) {
+      print_listing(builtin_registry(), list_json, std::cout);
+      return exit_pass;
+    }
+    if (*gbuffer) return write_gbuffer(gbuffer_case, gbuffer_fixture, gbuffer_out);
+
+    for (const std::string& text : algorithm_texts)
+      options.algorithms.push_back(parse_selection(text));
+    if (*eps_option) options.eps_rel = eps_rel;
+    if (*repeat_option) options.repeats = repeats;
+    if (*threads_option) options.threads = threads;
+    options.oracle = oracle == "exact"    ? OracleChoice::exact
+                     : oracle == "embree" ? OracleChoice::embree
+                                          : OracleChoice::automatic;
+    options.progress = isatty(STDERR_FILENO) != 0;
+    return run_suite(options, builtin_registry(), std::cout, std::cerr);
+  } catch (const InputError& e) {
+    std::cerr << "shadowcts: bad input: " << e.what() << "\n";
+    return exit_bad_input;
+  } catch (const UsageError& e) {
+    std::cerr << "shadowcts: " << e.what() << "\n";
+    return exit_bad_input;
+  } catch (const std::exception& e) {
+    std::cerr << "shadowcts: error: " << e.what() << "\n";
+    return 3;
+  }
+}

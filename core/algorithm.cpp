@@ -1,0 +1,49 @@
+#include "shadowcts/algorithm.h"
+
+#include <algorithm>
+#include <string>
+
+namespace shadowcts {
+
+std::optional<std::string> Algorithm::unsupported_reason(const Case& c, const ViewSamples& samples,
+                                                         const std::string& variant) const {
+  const AlgorithmInfo& meta = info();
+  const Capabilities& caps = meta.capabilities;
+  if (std::find(meta.variants.begin(), meta.variants.end(), variant) == meta.variants.end())
+    return "unknown variant '" + variant + "'";
+  if (caps.output == OutputKind::light_lists) {
+    if (c.ranged_lights.empty()) return "the case has no ranged lights";
+  } else {
+    if (!c.light) return "the case has no shadow light";
+    switch (c.light->kind) {
+      case ShadowLightKind::point:
+        if (!caps.point_light) return "needs a directional or sun-disk light";
+        break;
+      case ShadowLightKind::directional:
+        if (!caps.directional_light) return "does not support directional lights";
+        break;
+      case ShadowLightKind::sun_disk:
+        if (!caps.sun_disk && caps.output == OutputKind::soft_shadow)
+          return "does not support sun-disk lights";
+        // A hard-shadow algorithm treats a sun disk as its centre direction only when it can do
+        // directional lights; the planner decides whether hard shadows are compared at all.
+        if (caps.output == OutputKind::hard_shadow && !caps.directional_light)
+          return "does not support directional lights";
+        break;
+    }
+  }
+  if (caps.needs_closed_meshes)
+    for (const Mesh& m : c.meshes)
+      if (m.caster && !m.closed) return "needs closed caster meshes; '" + m.name + "' is open";
+  if (caps.max_sample_triangle_pairs != 0) {
+    const std::uint64_t pairs =
+        std::uint64_t(samples.count(SampleClass::regular)) * std::uint64_t(c.triangles.size());
+    if (pairs > caps.max_sample_triangle_pairs)
+      return "too large for this algorithm: " + std::to_string(pairs) +
+             " sample x triangle pairs (limit " + std::to_string(caps.max_sample_triangle_pairs) +
+             ")";
+  }
+  return std::nullopt;
+}
+
+}  // namespace shadowcts

@@ -1,0 +1,58 @@
+#include "shadowcts/hard_shadow_comparison.h"
+
+#include <stdexcept>
+
+namespace shadowcts {
+
+HardShadowComparison compare_hard_shadows(const std::vector<std::uint8_t>& shadowed,
+                                          const HardShadowTruth& truth) {
+  if (shadowed.size() != truth.shadowed.size())
+    throw std::invalid_argument("algorithm output has " + std::to_string(shadowed.size()) +
+                                " samples, the truth " + std::to_string(truth.shadowed.size()));
+  HardShadowComparison r;
+  constexpr int exponents = band_max_exponent - band_min_exponent + 1;
+  std::vector<std::uint64_t> curve(exponents, 0);
+
+  for (std::size_t i = 0; i < shadowed.size(); ++i) {
+    const BandClass band = truth.band[i];
+    if (band == BandClass::not_compared) continue;
+    ++r.compared;
+    const bool answer = shadowed[i] != 0;
+    const bool expected = truth.shadowed[i] != 0;
+    if (band == BandClass::ambiguous) {
+      ++r.ambiguous;
+      r.ambiguous_disagreements += answer != expected;
+    } else {
+      ++r.robust;
+      if (answer != expected) ++(expected ? r.leaks : r.false_shadows);
+    }
+    if (answer != expected)
+      // Robust at 2^e for every e <= robust_exponent.
+      for (int e = band_min_exponent; e <= band_max_exponent && e <= truth.robust_exponent[i]; ++e)
+        ++curve[e - band_min_exponent];
+  }
+  for (int e = band_min_exponent; e <= band_max_exponent; ++e)
+    r.mismatch_curve.emplace_back(e, curve[e - band_min_exponent]);
+
+  const std::uint64_t mismatches = r.leaks + r.false_shadows;
+  if (mismatches > 0) {
+    r.verdict = Verdict::fail;
+    r.reason = std::to_string(mismatches) + " robust mismatches (" + std::to_string(r.leaks) +
+               " leaks, " + std::to_string(r.false_shadows) + " false shadows) of " +
+               std::to_string(r.robust) + " robust samples";
+  } else if (r.ambiguous_disagreements >= quality_warning_min_count &&
+             double(r.ambiguous_disagreements) > quality_warning_fraction * double(r.ambiguous)) {
+    r.verdict = Verdict::quality_warning;
+    r.reason = "right on every robust sample, but " + std::to_string(r.ambiguous_disagreements) +
+               " of " + std::to_string(r.ambiguous) +
+               " ambiguous samples disagree with the exact answer";
+  } else {
+    r.verdict = Verdict::pass;
+    r.reason = "right on all " + std::to_string(r.robust) + " robust samples; " +
+               std::to_string(r.ambiguous_disagreements) + " of " + std::to_string(r.ambiguous) +
+               " ambiguous samples disagree";
+  }
+  return r;
+}
+
+}  // namespace shadowcts

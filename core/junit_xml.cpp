@@ -1,0 +1,89 @@
+#include "junit_xml.h"
+
+#include <cstdio>
+#include <map>
+#include <sstream>
+
+#include "atomic_file.h"
+
+namespace shadowcts {
+namespace {
+
+std::string xml_escape(const std::string& s) {
+  std::string out;
+  for (char ch : s) {
+    switch (ch) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&apos;"; break;
+      default:
+        // XML 1.0 has no representation for most control characters.
+        if (static_cast<unsigned char>(ch) < 0x20 && ch != '\n' && ch != '\t') out += ' ';
+        else out += ch;
+    }
+  }
+  return out;
+}
+
+std::string seconds(double ms) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.6f", ms / 1000.0);
+  return buffer;
+}
+
+}  // namespace
+
+void write_junit_xml(const std::filesystem::path& path, const std::vector<RunRecord>& records) {
+  // Suites in order of first appearance, so the file follows the run.
+  std::vector<std::string> order;
+  std::map<std::string, std::vector<const RunRecord*>> suites;
+  for (const RunRecord& r : records) {
+    if (!suites.count(r.case_name)) order.push_back(r.case_name);
+    suites[r.case_name].push_back(&r);
+  }
+  std::ostringstream xml;
+  xml << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"shadowcts\">\n";
+  for (const std::string& name : order) {
+    const auto& members = suites[name];
+    int failures = 0, errors = 0, skipped = 0;
+    double total_ms = 0;
+    for (const RunRecord* r : members) {
+      failures += r->verdict == Verdict::fail;
+      errors += r->verdict == Verdict::crash;
+      skipped += r->verdict == Verdict::not_supported;
+      total_ms += r->median_ms;
+    }
+    xml << "  <testsuite name=\"" << xml_escape(name) << "\" tests=\"" << members.size()
+        << "\" failures=\"" << failures << "\" errors=\"" << errors << "\" skipped=\"" << skipped
+        << "\" time=\"" << seconds(total_ms) << "\">\n";
+    for (const RunRecord* r : members) {
+      xml << "    <testcase classname=\"" << xml_escape(name) << "\" name=\""
+          << xml_escape(r->test_name) << "\" time=\"" << seconds(r->median_ms) << "\">";
+      const std::string reason = xml_escape(r->reason);
+      switch (r->verdict) {
+        case Verdict::fail:
+          xml << "<failure message=\"" << reason << "\" type=\"Fail\"/>";
+          break;
+        case Verdict::crash:
+          xml << "<error message=\"" << reason << "\" type=\"Crash\"/>";
+          break;
+        case Verdict::not_supported:
+          xml << "<skipped message=\"NotSupported: " << reason << "\"/>";
+          break;
+        case Verdict::quality_warning:
+          xml << "<system-out>QualityWarning: " << reason << "</system-out>";
+          break;
+        case Verdict::pass:
+          break;
+      }
+      xml << "</testcase>\n";
+    }
+    xml << "  </testsuite>\n";
+  }
+  xml << "</testsuites>\n";
+  write_file_atomically(path, xml.str());
+}
+
+}  // namespace shadowcts

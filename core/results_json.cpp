@@ -1,0 +1,82 @@
+#include "results_json.h"
+
+#include <nlohmann/json.hpp>
+
+#include "atomic_file.h"
+
+namespace shadowcts {
+namespace {
+
+using nlohmann::ordered_json;
+
+ordered_json case_json(const CaseSummary& c) {
+  ordered_json j;
+  j["name"] = c.name;
+  j["source"] = c.source;
+  j["light"] = c.light;
+  j["triangles"] = c.triangles;
+  j["ranged_lights"] = c.ranged_lights;
+  j["resolution"] = {c.width, c.height};
+  j["samples"] = {{"from", c.samples_from},
+                  {"regular", c.regular},
+                  {"sky", c.sky},
+                  {"back_facing", c.back_facing}};
+  if (!c.oracle_method.empty())
+    j["oracle"] = {{"method", c.oracle_method},     {"exact", c.oracle_exact},
+                   {"eps_rel", c.eps_rel},          {"tau", c.tau},
+                   {"time_ms", c.oracle_ms},        {"robust_lit", c.robust_lit},
+                   {"robust_shadowed", c.robust_shadowed}, {"ambiguous", c.ambiguous},
+                   {"mask_image", c.oracle_image}};
+  j["left_out"] = c.left_out;
+  return j;
+}
+
+ordered_json record_json(const RunRecord& r) {
+  ordered_json j;
+  j["name"] = r.test_name;
+  j["case"] = r.case_name;
+  j["output"] = output_kind_name(r.output);
+  j["algorithm"] = r.algorithm;
+  j["variant"] = r.variant;
+  j["backend"] = r.backend;
+  j["verdict"] = verdict_name(r.verdict);
+  j["reason"] = r.reason;
+  if (r.verdict == Verdict::not_supported) return j;
+  j["time_ms"] = {{"median", r.median_ms}, {"runs", r.run_ms}};
+  ordered_json counters = ordered_json::object();
+  for (const auto& [name, value] : r.counters) counters[name] = value;
+  j["counters"] = counters;
+  if (r.hard) {
+    const HardShadowComparison& h = *r.hard;
+    ordered_json curve = ordered_json::array();
+    for (const auto& [exponent, mismatches] : h.mismatch_curve)
+      curve.push_back({{"eps_rel_log2", exponent}, {"robust_mismatches", mismatches}});
+    j["error"] = {{"compared", h.compared},
+                  {"robust", h.robust},
+                  {"ambiguous", h.ambiguous},
+                  {"leaks", h.leaks},
+                  {"false_shadows", h.false_shadows},
+                  {"ambiguous_disagreements", h.ambiguous_disagreements},
+                  {"robust_mismatch_rate",
+                   h.robust ? double(h.leaks + h.false_shadows) / double(h.robust) : 0.0},
+                  {"mismatch_curve", curve}};
+  }
+  j["images"] = r.images;
+  return j;
+}
+
+}  // namespace
+
+void write_results_json(const std::filesystem::path& path, const std::vector<CaseSummary>& cases,
+                        const std::vector<RunRecord>& records, std::uint32_t threads) {
+  ordered_json root;
+  root["schema"] = "shadowcts.results/1";
+  root["threads"] = threads;
+  root["cases"] = ordered_json::array();
+  for (const CaseSummary& c : cases) root["cases"].push_back(case_json(c));
+  root["results"] = ordered_json::array();
+  for (const RunRecord& r : records) root["results"].push_back(record_json(r));
+  write_file_atomically(path, root.dump(2) + "\n");
+}
+
+}  // namespace shadowcts

@@ -1,0 +1,62 @@
+#pragma once
+// The one interface through which every algorithm x variant x backend plugs into the runner.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "shadowcts/case.h"
+#include "shadowcts/view_samples.h"
+
+namespace shadowcts {
+
+enum class OutputKind { hard_shadow, soft_shadow, light_lists };
+
+struct Capabilities {
+  OutputKind output = OutputKind::hard_shadow;
+  bool point_light = false;
+  bool directional_light = false;
+  bool sun_disk = false;
+  bool ranged_lights = false;
+  bool needs_closed_meshes = false;
+  // Upper bound on (regular samples x caster triangles) the algorithm is run on; 0 means none.
+  // Brute force uses it so that the plan leaves it out of cases it would take minutes on.
+  std::uint64_t max_sample_triangle_pairs = 0;
+};
+
+struct AlgorithmInfo {
+  std::string id;                     // e.g. "bruteforce", "ptsv"
+  std::string backend;                // "reference", "simd", "cuda", "embree", ...
+  std::vector<std::string> variants;  // first one is the default; never empty
+  std::string summary;
+  Capabilities capabilities;
+};
+
+// Work counters, in the order the algorithm reports them (deterministic).
+using Counters = std::vector<std::pair<std::string, std::uint64_t>>;
+
+struct AlgorithmOutput {
+  // hard_shadow: one entry per view sample, 1 = shadowed; entries of non-regular samples are 0.
+  std::vector<std::uint8_t> shadowed;
+  // soft_shadow: visible fraction of the sun disk per view sample, in [0, 1].
+  std::vector<float> visible_fraction;
+  Counters counters;
+};
+
+class Algorithm {
+ public:
+  virtual ~Algorithm() = default;
+  virtual const AlgorithmInfo& info() const = 0;
+
+  // Why the algorithm cannot run this case (NotSupported), or nullopt. The default checks the
+  // capabilities against the case's lights and meshes.
+  virtual std::optional<std::string> unsupported_reason(const Case& c, const ViewSamples& samples,
+                                                        const std::string& variant) const;
+
+  // Runs on every regular sample. Deterministic for any thread count.
+  virtual AlgorithmOutput run(const Case& c, const ViewSamples& samples,
+                              const std::string& variant) const = 0;
+};
+
+}  // namespace shadowcts

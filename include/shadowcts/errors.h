@@ -1,0 +1,21 @@
+#pragma once
+#include <stdexcept>
+#include <string>
+
+namespace shadowcts {
+
+// Bad input: a file, manifest or parameter that does not describe a valid case.
+// The message names the file and the element; the tool exits with code 2.
+class InputError : public std::runtime_error {
+ public:
+  InputError(const std::string& source, const std::string& element, const std::string& problem)
+      : std::runtime_error(source + ": " + element + ": " + problem) {}
+};
+
+// Bad command-line usage (also exit code 2).
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace shadowcts

@@ -1,0 +1,43 @@
+#pragma once
+// `shadowcts run`: plans each case, runs the selected algorithms through the registry, diffs
+// them against the oracle and writes results.json, junit.xml and images.
+#include <cstdint>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace shadowcts {
+
+class Registry;
+
+struct AlgorithmSelection {
+  std::string id;
+  std::string variant;  // empty: every variant
+};
+
+enum class OracleChoice { automatic, exact, embree };
+
+struct RunOptions {
+  std::vector<std::string> fixtures;    // fixture names; with case_files empty too: the default set
+  std::vector<std::string> case_files;  // JSON case manifests
+  std::vector<AlgorithmSelection> algorithms;  // empty: every registered algorithm
+  std::string backend;                         // empty: every backend
+  std::string out_dir = "shadowcts-out";
+  std::optional<double> eps_rel;
+  std::optional<std::uint32_t> repeats;
+  std::optional<std::uint32_t> threads;
+  OracleChoice oracle = OracleChoice::automatic;
+  bool progress = false;  // progress lines on stderr (the tool sets it when stderr is a terminal)
+};
+
+// Exit codes of the tool.
+inline constexpr int exit_pass = 0;
+inline constexpr int exit_conformance_failure = 1;
+inline constexpr int exit_bad_input = 2;
+
+// Throws InputError / UsageError before anything is written when a case or option is invalid.
+int run_suite(const RunOptions& options, const Registry& registry, std::ostream& out,
+              std::ostream& err);
+
+}  // namespace shadowcts
