@@ -15,19 +15,30 @@ struct FixtureGenerator {
   bool scalable;        // procedural: honours the triangle target; models: fixed size
 };
 
+// Procedural: ground_blockers, closed_shapes, gate_house, foliage, shared_edges, many_lights.
+// Models (fixed size, from /usr/share/assimp/models): model.2cylinder_engine, model.spider,
+// model.wuson, model.sphere_with_hole.
 const std::vector<FixtureGenerator>& fixture_generators();
 
 // Builds generator `generator` with about `target_triangles` triangles (procedural generators;
-// the result is within a factor 2 of the target), deterministic for the seed. The case name is
-// "<generator>.<size>", e.g. "gate_house.20k". Throws InputError for unknown names or impossible
-// sizes (0, or more than 100 M).
+// the result is within a factor 2 of the target), deterministic for the seed (the same bytes
+// on every platform: std::mt19937_64 with our own distributions; the regular scenes gate_house
+// and shared_edges do not use it). The case name is "<generator>.<size>" with the requested
+// target, e.g. "gate_house.20k"; Case::source is "generator:<generator>", and
+// Case::parameters.seed is `seed`. Throws InputError for unknown names and impossible sizes
+// (0, below the generator's smallest meaningful size, or more than 100 M). Model generators
+// ignore the target and the seed; their case name is the generator name, their source the
+// model file, and a missing file is an InputError that says to run ci/setup.sh.
 Case make_fixture(const std::string& generator, std::uint64_t target_triangles,
                   std::uint64_t seed = 1);
 
-// Parses "<generator>.<size>" (size: 500, 20k, 1M) or a bare model generator name.
+// Parses "<generator>.<size>" (size: 500, 20k, 1M: digits with an optional k or M) or a bare
+// model generator name, and builds it with seed 1.
 Case make_fixture(const std::string& fixture_name);
 
-// The default set a bare `shadowcts run` uses: every light kind covered, under a minute in all.
+// The default set a bare `shadowcts run` uses: every light kind (point, directional, sun disk,
+// ranged lights), the watertightness fixture and real models; each at most ~20k triangles and
+// 256x256 samples so that exact oracles finish the whole set in under a minute.
 std::vector<std::string> default_fixtures();
 
 }  // namespace shadowcts
