@@ -1,0 +1,37 @@
+#pragma once
+// Launch interface of the brute-force hard-shadow kernel. Plain data only, so that the C++20 host
+// side (the Algorithm) and the C++17 CUDA translation unit share it.
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace shadowcts {
+
+struct BruteforceCaster {
+  glm::vec3 v0, v1, v2;
+  std::uint32_t triangle;  // index into Case::triangles, to skip a sample's own receiver
+};
+
+struct BruteforceShadowInput {
+  // Regular samples only, in the order the results come back.
+  std::vector<glm::vec3> sample_positions;
+  std::vector<std::uint32_t> sample_receivers;
+  // Triangles of caster meshes, in Case::triangles order.
+  std::vector<BruteforceCaster> casters;
+  bool directional_light = false;
+  glm::vec3 light{0.0f};  // point light position, or unit direction towards a directional light
+};
+
+struct BruteforceShadowResult {
+  std::vector<std::uint8_t> shadowed;  // per input sample, 1 = shadowed
+  // Sample/caster pairs visited (the receiver included, as in the reference backend): each sample
+  // visits casters in order and stops at its first occluder, so the count does not depend on the
+  // launch configuration.
+  std::uint64_t pair_tests = 0;
+};
+
+// Runs on the current CUDA device; throws std::runtime_error if a CUDA call fails.
+BruteforceShadowResult run_bruteforce_hard_shadow_kernel(const BruteforceShadowInput& input);
+
+}  // namespace shadowcts
