@@ -1,0 +1,162 @@
+// End-to-end: the runner through the registry, and the tool's exit codes and outputs.
+#include "shadowcts/runner.h"
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "shadowcts/errors.h"
+#include "shadowcts/registry.h"
+
+namespace shadowcts {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("shadowcts_runner_test_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Exit status of the tool run through the shell (stdout/stderr to files in `dir`).
+int run_tool(const std::string& arguments, const fs::path& dir) {
+  const std::string command = std::string(SHADOWCTS_TOOL) + " " + arguments + " > " +
+                              (dir / "stdout.txt").string() + " 2> " +
+                              (dir / "stderr.txt").string();
+  const int status = std::system(command.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+RunOptions small_run(const fs::path& out, std::uint32_t threads) {
+  RunOptions o;
+  o.fixtures = {"ground_blockers.2k", "shared_edges.1k"};
+  o.out_dir = out.string();
+  o.repeats = 1;
+  o.threads = threads;
+  return o;
+}
+
+TEST(Runner, WritesResultsJunitAndImagesAndPasses) {
+  const fs::path out = fresh_dir("outputs");
+  std::ostringstream log, err;
+  const int code = run_suite(small_run(out, 2), builtin_registry(), log, err);
+  EXPECT_EQ(code, exit_pass) << log.str();
+  const auto results = nlohmann::json::parse(read_file(out / "results.json"));
+  EXPECT_EQ(results["schema"], "shadowcts.results/1");
+  ASSERT_EQ(results["cases"].size(), 2u);
+  bool ran_bruteforce = false;
+  for (const auto& r : results["results"]) {
+    EXPECT_TRUE(r["verdict"] == "Pass" || r["verdict"] == "NotSupported") << r.dump();
+    if (r["verdict"] == "NotSupported") continue;
+    ran_bruteforce |= r["algorithm"] == "bruteforce";
+    EXPECT_EQ(r["error"]["leaks"], 0);
+    for (const auto& image : r["images"]) EXPECT_TRUE(fs::exists(out / image.get<std::string>()));
+  }
+  EXPECT_TRUE(ran_bruteforce);
+  for (const auto& c : results["cases"])
+    EXPECT_TRUE(fs::exists(out / c["oracle"]["mask_image"].get<std::string>()));
+  const std::string junit = read_file(out / "junit.xml");
+  EXPECT_NE(junit.find("<testsuites"), std::string::npos);
+  EXPECT_NE(junit.find("hard.bruteforce.exact.reference.ground_blockers.2k"), std::string::npos);
+  // The plan is printed: oracle and what is left out.
+  EXPECT_NE(log.str().find("oracle:"), std::string::npos);
+  EXPECT_NE(log.str().find("left out:"), std::string::npos);
+  // No partial files left behind.
+  for (const auto& entry : fs::recursive_directory_iterator(out))
+    EXPECT_EQ(entry.path().string().find(".partial"), std::string::npos) << entry.path();
+}
+
+TEST(Runner, OutputsAreIdenticalForOneAndTwoThreads) {
+  const fs::path one = fresh_dir("threads1"), two = fresh_dir("threads2");
+  std::ostringstream log, err;
+  ASSERT_EQ(run_suite(small_run(one, 1), builtin_registry(), log, err), exit_pass);
+  ASSERT_EQ(run_suite(small_run(two, 2), builtin_registry(), log, err), exit_pass);
+  std::size_t images = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(one / "images")) {
+    if (!entry.is_regular_file()) continue;
+    const fs::path relative = fs::relative(entry.path(), one);
+    EXPECT_EQ(read_file(entry.path()), read_file(two / relative)) << relative;
+    ++images;
+  }
+  EXPECT_GT(images, 0u);
+  // results.json differs only in timings and the thread count.
+  auto strip = [](nlohmann::json j) {
+    j.erase("threads");
+    for (auto& r : j["results"]) r.erase("time_ms");
+    for (auto& c : j["cases"])
+      if (c.contains("oracle")) c["oracle"].erase("time_ms");
+    return j.dump();
+  };
+  EXPECT_EQ(strip(nlohmann::json::parse(read_file(one / "results.json"))),
+            strip(nlohmann::json::parse(read_file(two / "results.json"))));
+}
+
+TEST(Runner, UnknownAlgorithmIsAUsageErrorBeforeAnythingIsWritten) {
+  const fs::path out = fresh_dir("usage") / "never";
+  RunOptions o = small_run(out, 1);
+  o.algorithms = {{"no_such_algorithm", ""}};
+  std::ostringstream log, err;
+  EXPECT_THROW(run_suite(o, builtin_registry(), log, err), UsageError);
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(Tool, BadInputExitsWithTwoAndNamesTheFile) {
+  const fs::path dir = fresh_dir("bad_input");
+  const fs::path manifest = dir / "broken.json";
+  std::ofstream(manifest) << R"({"name": "broken", "scene": {"generator": "ground_blockers",
+      "triangles": 1000}, "light": {"type": "directional", "direction": [0, 0, 0]}})";
+  EXPECT_EQ(run_tool("run --case " + manifest.string() + " --out " + (dir / "out").string(), dir),
+            exit_bad_input);
+  const std::string message = read_file(dir / "stderr.txt");
+  EXPECT_NE(message.find("broken.json"), std::string::npos) << message;
+  EXPECT_NE(message.find("light"), std::string::npos) << message;
+  EXPECT_FALSE(fs::exists(dir / "out" / "results.json"));
+
+  std::ofstream(dir / "truncated.json") << R"({"name": "x", "scene": )";
+  EXPECT_EQ(run_tool("run --case " + (dir / "truncated.json").string(), dir), exit_bad_input);
+  EXPECT_NE(read_file(dir / "stderr.txt").find("truncated.json"), std::string::npos);
+
+  EXPECT_EQ(run_tool("run --fixture no_such_fixture.1k", dir), exit_bad_input);
+  EXPECT_EQ(run_tool("run --eps-rel 2", dir), exit_bad_input);
+  EXPECT_EQ(run_tool("frobnicate", dir), exit_bad_input);
+}
+
+TEST(Tool, ListsFixturesAndAlgorithmsAsJson) {
+  const fs::path dir = fresh_dir("list");
+  ASSERT_EQ(run_tool("list --json", dir), exit_pass);
+  const auto listing = nlohmann::json::parse(read_file(dir / "stdout.txt"));
+  EXPECT_FALSE(listing["fixtures"].empty());
+  EXPECT_FALSE(listing["default_fixtures"].empty());
+  bool bruteforce = false, embree = false;
+  for (const auto& a : listing["algorithms"]) {
+    bruteforce |= a["id"] == "bruteforce" && a["backend"] == "reference";
+    embree |= a["id"] == "embree";
+  }
+  EXPECT_TRUE(bruteforce);
+  EXPECT_TRUE(embree);
+}
+
+TEST(Tool, GbufferRoundTripsThroughACaseManifest) {
+  const fs::path dir = fresh_dir("gbuffer");
+  ASSERT_EQ(run_tool("gbuffer --fixture ground_blockers.2k --out " + (dir / "g.exr").string(), dir),
+            exit_pass);
+  EXPECT_TRUE(fs::exists(dir / "g.exr"));
+}
+
+}  // namespace
+}  // namespace shadowcts

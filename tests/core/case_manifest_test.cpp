@@ -1,0 +1,249 @@
+// Case manifests: generator and file scenes, overrides, and errors that name the JSON element.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "shadowcts/case_manifest.h"
+#include "shadowcts/errors.h"
+#include "shadowcts/fixtures.h"
+
+namespace shadowcts {
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+class TempDir {
+ public:
+  TempDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = fs::temp_directory_path() / (std::string("shadowcts_manifest_") + info->name());
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempDir() { fs::remove_all(path_); }
+  fs::path write(const std::string& name, const std::string& contents) const {
+    std::ofstream(path_ / name, std::ios::binary) << contents;
+    return path_ / name;
+  }
+
+ private:
+  fs::path path_;
+};
+
+const char* tetrahedron_off =
+    "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+
+// A ground quad (two triangles) with a point light 5 above it, as glTF with an embedded buffer.
+std::string ground_with_light_gltf() {
+  const Json doc = {
+      {"asset", {{"version", "2.0"}}},
+      {"scene", 0},
+      {"scenes", {{{"nodes", {0, 1}}}}},
+      {"nodes",
+       {{{"name", "ground"}, {"mesh", 0}},
+        {{"translation", {0, 5, 0}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}}}},
+      {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}}}}}}},
+      {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"type", "VEC3"}, {"count", 6}}}},
+      {"bufferViews", {{{"buffer", 0}, {"byteLength", 72}}}},
+      // Two triangles of the quad [-4, 4]^2 at y = 0, facing +y.
+      {"buffers",
+       {{{"byteLength", 72},
+         {"uri",
+          "data:application/octet-stream;base64,"
+          "AACAwAAAAAAAAIDAAACAwAAAAAAAAIBAAACAQAAAAAAAAIBAAACAwAAAAAAAAIDAAACAQAAAAAAAAIBAAACAQAAA"
+          "AAAAAIDA"}}}},
+      {"extensions", {{"KHR_lights_punctual", {{"lights", {{{"type", "point"}}}}}}}}};
+  return doc.dump();
+}
+
+std::string load_error(const fs::path& manifest) {
+  try {
+    load_case_manifest(manifest.string());
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << manifest << " loaded without InputError";
+  return "";
+}
+
+Json file_manifest() {
+  return {
+      {"name", "files"},
+      {"scenes",
+       {{{"file", "ground.gltf"}, {"caster", false}},
+        {{"file", "tetra.off"},
+         {"translate", {10, 0, 0}},
+         {"scale", 2.0},
+         {"rotate_y_degrees", 90}}}},
+      {"camera", {{"position", {0, 3, 8}}, {"target", {0, 0, 0}}, {"width", 64}, {"height", 48}}},
+      {"parameters", {{"eps_rel", 0.0009765625}, {"repeats", 1}, {"seed", 7}}}};
+}
+
+TEST(CaseManifest, FileScenesArePlacedAndTakeTheGltfLight) {
+  const TempDir dir;
+  dir.write("ground.gltf", ground_with_light_gltf());
+  dir.write("tetra.off", tetrahedron_off);
+  const fs::path manifest = dir.write("case.json", file_manifest().dump(2));
+  const Case c = load_case_manifest(manifest.string());
+  EXPECT_EQ(c.name, "files");
+  EXPECT_EQ(c.source, manifest.string());
+  ASSERT_EQ(c.meshes.size(), 2u);
+  EXPECT_FALSE(c.meshes[0].caster);
+  EXPECT_TRUE(c.meshes[1].caster);
+  EXPECT_TRUE(c.meshes[1].closed);
+  ASSERT_EQ(c.triangles.size(), 6u);
+  EXPECT_EQ(c.triangles[2].mesh, 1u);
+  // Tetrahedron triangle 3 = (1,0,0), (0,1,0), (0,0,1): scaled by 2, a quarter turn about y
+  // (x -> -z, z -> x), then moved by (10, 0, 0).
+  EXPECT_EQ(c.triangles[5].v0, glm::vec3(10, 0, -2));
+  EXPECT_EQ(c.triangles[5].v1, glm::vec3(10, 2, 0));
+  EXPECT_EQ(c.triangles[5].v2, glm::vec3(12, 0, 0));
+  ASSERT_TRUE(c.light.has_value());
+  EXPECT_EQ(c.light->kind, ShadowLightKind::point);
+  EXPECT_EQ(c.light->position, glm::vec3(0, 5, 0));
+  EXPECT_EQ(c.camera.width, 64u);
+  EXPECT_EQ(c.camera.height, 48u);
+  EXPECT_EQ(c.camera.position, glm::vec3(0, 3, 8));
+  EXPECT_EQ(c.parameters.eps_rel, 0.0009765625);
+  EXPECT_EQ(c.parameters.repeats, 1u);
+  EXPECT_EQ(c.parameters.seed, 7u);
+}
+
+TEST(CaseManifest, ManifestLightsReplaceFileLights) {
+  const TempDir dir;
+  dir.write("ground.gltf", ground_with_light_gltf());
+  dir.write("tetra.off", tetrahedron_off);
+  Json m = file_manifest();
+  m["light"] = {{"type", "sun"}, {"direction", {0, 2, 0}}, {"angular_radius_degrees", 0.27}};
+  m["ranged_lights"] = {{{"type", "sphere"}, {"centre", {0, 1, 0}}, {"range", 2}},
+                        {{"type", "spot"},
+                         {"centre", {0, 3, 0}},
+                         {"range", 4},
+                         {"direction", {0, -3, 0}},
+                         {"cone_half_angle_degrees", 30}}};
+  const Case c = load_case_manifest(dir.write("case.json", m.dump()).string());
+  ASSERT_TRUE(c.light.has_value());
+  EXPECT_EQ(c.light->kind, ShadowLightKind::sun_disk);
+  EXPECT_EQ(c.light->direction, glm::vec3(0, 1, 0));
+  EXPECT_NEAR(c.light->angular_radius, 0.27 * std::numbers::pi / 180.0, 1e-7);
+  ASSERT_EQ(c.ranged_lights.size(), 2u);
+  EXPECT_EQ(c.ranged_lights[1].kind, RangedLightKind::spot);
+  EXPECT_EQ(c.ranged_lights[1].direction, glm::vec3(0, -1, 0));
+  EXPECT_NEAR(c.ranged_lights[1].cone_half_angle, std::numbers::pi / 6.0, 1e-7);
+}
+
+TEST(CaseManifest, GeneratorSceneWithOverrides) {
+  const auto& generators = fixture_generators();
+  const auto scalable = std::find_if(generators.begin(), generators.end(),
+                                     [](const FixtureGenerator& g) { return g.scalable; });
+  ASSERT_NE(scalable, generators.end());
+  const TempDir dir;
+  const Json m = {{"scene", {{"generator", scalable->name}, {"triangles", 500}, {"seed", 3}}},
+                  {"camera", {{"width", 32}, {"height", 16}}},
+                  {"light", {{"type", "directional"}, {"direction", {1, 1, 0}}}}};
+  const fs::path manifest = dir.write("gen.json", m.dump());
+  const Case c = load_case_manifest(manifest.string());
+  EXPECT_EQ(c.source, manifest.string());
+  EXPECT_GE(c.triangles.size(), 250u);
+  EXPECT_LE(c.triangles.size(), 1000u);
+  EXPECT_EQ(c.camera.width, 32u);
+  EXPECT_EQ(c.camera.height, 16u);
+  ASSERT_TRUE(c.light.has_value());
+  EXPECT_EQ(c.light->kind, ShadowLightKind::directional);
+  EXPECT_NEAR(c.light->direction.x, std::sqrt(0.5), 1e-7);
+  // Same manifest, same case (deterministic generator).
+  const Case again = load_case_manifest(manifest.string());
+  ASSERT_EQ(again.triangles.size(), c.triangles.size());
+  EXPECT_EQ(again.triangles.front().v0, c.triangles.front().v0);
+}
+
+TEST(CaseManifest, UnknownKeyIsAnInputErrorWithASuggestion) {
+  const TempDir dir;
+  dir.write("ground.gltf", ground_with_light_gltf());
+  dir.write("tetra.off", tetrahedron_off);
+  Json m = file_manifest();
+  m["camrea"] = m["camera"];
+  const fs::path manifest = dir.write("case.json", m.dump());
+  const std::string message = load_error(manifest);
+  EXPECT_NE(message.find(manifest.string() + ": camrea: unknown key (did you mean 'camera'?)"),
+            std::string::npos)
+      << message;
+  Json nested = file_manifest();
+  nested["camera"]["fov"] = 40;
+  const std::string nested_message = load_error(dir.write("nested.json", nested.dump()));
+  EXPECT_NE(nested_message.find("camera.fov: unknown key"), std::string::npos) << nested_message;
+}
+
+TEST(CaseManifest, WrongTypeNamesTheJsonPath) {
+  const TempDir dir;
+  dir.write("ground.gltf", ground_with_light_gltf());
+  dir.write("tetra.off", tetrahedron_off);
+  Json m = file_manifest();
+  m["camera"]["width"] = "256";
+  EXPECT_NE(load_error(dir.write("a.json", m.dump()))
+                .find("camera.width: must be a non-negative integer"),
+            std::string::npos);
+  Json n = file_manifest();
+  n["scenes"][1]["translate"] = {1, "x", 3};
+  EXPECT_NE(
+      load_error(dir.write("b.json", n.dump())).find("scenes[1].translate[1]: must be a number"),
+      std::string::npos);
+}
+
+TEST(CaseManifest, BadLightsNameTheElement) {
+  const TempDir dir;
+  dir.write("ground.gltf", ground_with_light_gltf());
+  dir.write("tetra.off", tetrahedron_off);
+  Json m = file_manifest();
+  m["light"] = {{"type", "directional"}, {"direction", {0, 0, 0}}};
+  EXPECT_NE(load_error(dir.write("a.json", m.dump())).find("light.direction: has zero length"),
+            std::string::npos);
+  Json spot = file_manifest();
+  spot["ranged_lights"] = {{{"type", "spot"},
+                            {"centre", {0, 1, 0}},
+                            {"range", 2},
+                            {"direction", {0, -1, 0}},
+                            {"cone_half_angle_degrees", 200}}};
+  EXPECT_NE(load_error(dir.write("b.json", spot.dump()))
+                .find("ranged_lights[0].cone_half_angle_degrees: must lie in (0, 180)"),
+            std::string::npos);
+  Json kind = file_manifest();
+  kind["light"] = {{"type", "area"}};
+  EXPECT_NE(load_error(dir.write("c.json", kind.dump())).find("light.type: 'area'"),
+            std::string::npos);
+}
+
+TEST(CaseManifest, FileScenesNeedACameraAndExistingFiles) {
+  const TempDir dir;
+  dir.write("ground.gltf", ground_with_light_gltf());
+  dir.write("tetra.off", tetrahedron_off);
+  Json m = file_manifest();
+  m.erase("camera");
+  EXPECT_NE(load_error(dir.write("a.json", m.dump())).find(": camera: is required"),
+            std::string::npos);
+  Json missing = file_manifest();
+  missing["scenes"][0]["file"] = "nowhere.glb";
+  EXPECT_NE(load_error(dir.write("b.json", missing.dump())).find("nowhere.glb: file: not found"),
+            std::string::npos);
+  Json both = file_manifest();
+  both["scene"] = {{"generator", "x"}};
+  EXPECT_NE(load_error(dir.write("c.json", both.dump())).find("scene/scenes"), std::string::npos);
+}
+
+TEST(CaseManifest, SyntaxErrorIsAnInputError) {
+  const TempDir dir;
+  const fs::path manifest = dir.write("broken.json", "{\"name\": \"x\",\n");
+  const std::string message = load_error(manifest);
+  EXPECT_NE(message.find(manifest.string() + ": JSON: "), std::string::npos) << message;
+}
+
+}  // namespace
+}  // namespace shadowcts

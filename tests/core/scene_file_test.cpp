@@ -1,0 +1,629 @@
+// Scene files: every malformed input becomes an InputError naming the file (or a warning when the
+// geometry is still valid), real models load, glTF transforms and lights land where they should.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
+
+#include "shadowcts/errors.h"
+#include "shadowcts/scene_file.h"
+
+namespace shadowcts {
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+const fs::path assimp_models = SHADOWCTS_ASSIMP_MODELS_DIR;
+
+class TempDir {
+ public:
+  TempDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = fs::temp_directory_path() /
+            (std::string("shadowcts_scene_file_") + info->test_suite_name() + "_" + info->name());
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempDir() { fs::remove_all(path_); }
+  fs::path write(const std::string& name, const std::string& contents) const {
+    const fs::path file = path_ / name;
+    std::ofstream(file, std::ios::binary) << contents;
+    return file;
+  }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+// The InputError message of loading `path`, or "" (and a test failure) when none is thrown.
+std::string load_error(const fs::path& path) {
+  try {
+    load_scene_file(path.string());
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << path << " loaded without InputError";
+  return "";
+}
+
+bool finite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+void expect_plausible(const LoadedScene& scene, const std::string& what) {
+  ASSERT_FALSE(scene.triangles.empty()) << what;
+  ASSERT_FALSE(scene.meshes.empty()) << what;
+  for (const Triangle& t : scene.triangles) {
+    ASSERT_TRUE(finite(t.v0) && finite(t.v1) && finite(t.v2)) << what;
+    ASSERT_LT(t.mesh, scene.meshes.size()) << what;
+  }
+}
+
+bool any_warning_contains(const LoadedScene& scene, const std::string& text) {
+  return std::any_of(scene.warnings.begin(), scene.warnings.end(),
+                     [&](const std::string& w) { return w.find(text) != std::string::npos; });
+}
+
+// ---- the deliberately malformed glTF files of assimp's test models ------------------------
+
+// Per file, by reading it: either the error's element, or the warning that names the problem
+// while the box geometry (12 triangles) still loads.
+struct MalformedExpectation {
+  bool loads;
+  std::string text;  // in the error message, or in one warning
+};
+
+TEST(GltfMalformed, EveryAssimpFileIsAnErrorOrAWarning) {
+  const std::map<std::string, MalformedExpectation> expectations = {
+      // "primitives" is an object: the mesh has no geometry.
+      {"wrongTypes/badArray.gltf", {false, "meshes[0].primitives"}},
+      // Material and texture properties of the wrong type: shadows do not read them.
+      {"wrongTypes/badExtension.gltf", {true, "extensions.KHR_texture_transform"}},
+      {"wrongTypes/badNumber.gltf", {true, "materials[0].normalTexture.scale"}},
+      {"wrongTypes/badObject.gltf", {true, "materials[0].pbrMetallicRoughness"}},
+      {"wrongTypes/badString.gltf", {true, "scenes[0].name"}},
+      {"wrongTypes/badUint.gltf", {true, "baseColorTexture.index"}},
+      // "scene": "hello" (and its buffer file is not there either).
+      {"SchemaFailures/sceneWrongType.gltf", {false, ": scene: "}},
+      {"IndexOutOfRange/IndexOutOfRange.gltf",
+       {false, "meshes[0].primitives[0].indices (accessor 0)"}},
+      {"IndexOutOfRange/AllIndicesOutOfRange.gltf",
+       {false, "meshes[0].primitives[0].indices (accessor 0)"}},
+      {"MissingBin/BoxTextured.gltf", {false, "BoxTextured0.bin"}},
+  };
+  std::size_t seen = 0;
+  for (const char* folder : {"wrongTypes", "SchemaFailures", "IndexOutOfRange", "MissingBin"}) {
+    for (const auto& entry : fs::directory_iterator(assimp_models / "glTF2" / folder)) {
+      if (entry.path().extension() != ".gltf") continue;
+      const std::string key = std::string(folder) + "/" + entry.path().filename().string();
+      const auto expectation = expectations.find(key);
+      ASSERT_NE(expectation, expectations.end()) << "no expectation for " << key;
+      ++seen;
+      const std::string file = entry.path().string();
+      if (expectation->second.loads) {
+        const LoadedScene scene = load_scene_file(file);
+        expect_plausible(scene, key);
+        EXPECT_EQ(scene.triangles.size(), 12u) << key;
+        EXPECT_TRUE(scene.meshes[0].closed) << key << ": the box is closed once welded";
+        EXPECT_TRUE(any_warning_contains(scene, expectation->second.text))
+            << key << ": no warning mentions " << expectation->second.text;
+        EXPECT_TRUE(any_warning_contains(scene, file)) << key;
+      } else {
+        const std::string message = load_error(entry.path());
+        EXPECT_NE(message.find(file), std::string::npos) << message;
+        EXPECT_NE(message.find(expectation->second.text), std::string::npos) << message;
+      }
+    }
+  }
+  EXPECT_EQ(seen, expectations.size());
+}
+
+TEST(GltfMalformed, IndexOutOfRangeNamesTheIndex) {
+  const std::string message =
+      load_error(assimp_models / "glTF2/IndexOutOfRange/IndexOutOfRange.gltf");
+  EXPECT_NE(message.find("out of range for 24 vertices"), std::string::npos) << message;
+}
+
+TEST(Glb, TruncatedCopyIsAnInputError) {
+  const fs::path original = assimp_models / "glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
+  std::ifstream in(original, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_GT(bytes.size(), 1000u);
+  const TempDir dir;
+  for (const std::size_t keep :
+       {bytes.size() / 2, bytes.size() - 1, std::size_t{30}, std::size_t{3}}) {
+    const fs::path truncated = dir.write("2CylinderEngine.glb", bytes.substr(0, keep));
+    const std::string message = load_error(truncated);
+    EXPECT_NE(message.find(truncated.string()), std::string::npos) << message;
+  }
+}
+
+TEST(Glb, TwoCylinderEngineLoads) {
+  const fs::path file = assimp_models / "glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
+  const LoadedScene scene = load_scene_file(file.string());
+  expect_plausible(scene, file.string());
+  std::cout << "2CylinderEngine.glb: " << scene.triangles.size() << " triangles, "
+            << scene.meshes.size() << " mesh instances, "
+            << std::count_if(scene.meshes.begin(), scene.meshes.end(),
+                             [](const Mesh& m) { return m.closed; })
+            << " closed\n";
+  EXPECT_GT(scene.triangles.size(), 50'000u);
+  EXPECT_LT(scene.triangles.size(), 500'000u);
+  EXPECT_GT(scene.meshes.size(), 10u);
+  // The same file loads the same way twice (deterministic).
+  const LoadedScene again = load_scene_file(file.string());
+  ASSERT_EQ(again.triangles.size(), scene.triangles.size());
+  EXPECT_EQ(std::memcmp(again.triangles.data(), scene.triangles.data(),
+                        scene.triangles.size() * sizeof(Triangle)),
+            0);
+}
+
+// ---- hand-made glTF --------------------------------------------------------------------------
+
+// A glTF document with its binary buffer written beside it as "buffer.bin".
+class GltfBuilder {
+ public:
+  GltfBuilder() {
+    doc_ = {{"asset", {{"version", "2.0"}}},
+            {"scene", 0},
+            {"scenes", Json::array({{{"nodes", Json::array()}}})},
+            {"nodes", Json::array()},
+            {"meshes", Json::array()},
+            {"accessors", Json::array()},
+            {"bufferViews", Json::array()}};
+  }
+
+  int add_accessor(const void* data, std::size_t bytes, int component_type, const char* type,
+                   std::size_t count) {
+    while (bin_.size() % 4 != 0) bin_.push_back('\0');
+    const std::size_t offset = bin_.size();
+    bin_.append(static_cast<const char*>(data), bytes);
+    doc_["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bytes}});
+    doc_["accessors"].push_back({{"bufferView", doc_["bufferViews"].size() - 1},
+                                 {"componentType", component_type},
+                                 {"type", type},
+                                 {"count", count}});
+    return static_cast<int>(doc_["accessors"].size() - 1);
+  }
+  int add_positions(const std::vector<float>& xyz) {
+    return add_accessor(xyz.data(), xyz.size() * sizeof(float), 5126, "VEC3", xyz.size() / 3);
+  }
+  int add_indices(const std::vector<std::uint16_t>& indices) {
+    return add_accessor(indices.data(), indices.size() * 2, 5123, "SCALAR", indices.size());
+  }
+  // Positions then indices, in this order (function arguments have no evaluation order).
+  int add_indexed_mesh(const std::vector<float>& xyz, const std::vector<std::uint16_t>& indices,
+                       const std::string& name) {
+    const int positions = add_positions(xyz);
+    return add_mesh(positions, add_indices(indices), name);
+  }
+  int add_mesh(int positions, int indices, const std::string& name) {
+    Json primitive = {{"attributes", {{"POSITION", positions}}}};
+    if (indices >= 0) primitive["indices"] = indices;
+    doc_["meshes"].push_back({{"name", name}, {"primitives", Json::array({primitive})}});
+    return static_cast<int>(doc_["meshes"].size() - 1);
+  }
+  // Adds a node; a root unless some node lists it as a child later.
+  int add_node(Json node, bool root = true) {
+    doc_["nodes"].push_back(std::move(node));
+    const int index = static_cast<int>(doc_["nodes"].size() - 1);
+    if (root) doc_["scenes"][0]["nodes"].push_back(index);
+    return index;
+  }
+  int add_light(Json light) {
+    auto& lights = doc_["extensions"]["KHR_lights_punctual"]["lights"];
+    lights.push_back(std::move(light));
+    return static_cast<int>(lights.size() - 1);
+  }
+  Json& doc() { return doc_; }
+
+  fs::path write(const TempDir& dir, const std::string& name) {
+    doc_["buffers"] = Json::array({{{"uri", "buffer.bin"}, {"byteLength", bin_.size()}}});
+    dir.write("buffer.bin", bin_);
+    return dir.write(name, doc_.dump(2));
+  }
+
+ private:
+  Json doc_;
+  std::string bin_;
+};
+
+// A tetrahedron with outward-facing counter-clockwise triangles.
+const std::vector<float> tetrahedron_positions = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+const std::vector<std::uint16_t> tetrahedron_indices = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+
+TEST(GltfHandMade, TetrahedronUnderTranslateAndScaleIsClosed) {
+  const TempDir dir;
+  GltfBuilder gltf;
+  const int mesh = gltf.add_indexed_mesh(tetrahedron_positions, tetrahedron_indices, "tetra");
+  gltf.add_node(
+      {{"name", "placed"}, {"mesh", mesh}, {"translation", {1, 2, 3}}, {"scale", {2, 2, 2}}});
+  const LoadedScene scene = load_scene_file(gltf.write(dir, "tetra.gltf").string());
+  ASSERT_EQ(scene.triangles.size(), 4u);
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  EXPECT_EQ(scene.meshes[0].name, "placed/tetra");
+  EXPECT_TRUE(scene.meshes[0].closed);
+  // Triangle 3 is (1,2,3) of the tetrahedron: x = (1,0,0) -> (3,2,3).
+  EXPECT_EQ(scene.triangles[3].v0, glm::vec3(3, 2, 3));
+  EXPECT_EQ(scene.triangles[3].v1, glm::vec3(1, 4, 3));
+  EXPECT_EQ(scene.triangles[3].v2, glm::vec3(1, 2, 5));
+  EXPECT_TRUE(scene.warnings.empty());
+}
+
+TEST(GltfHandMade, OpenOrInconsistentTetrahedronIsNotClosed) {
+  const TempDir dir;
+  GltfBuilder gltf;
+  std::vector<std::uint16_t> three_faces(tetrahedron_indices.begin(),
+                                         tetrahedron_indices.end() - 3);
+  std::vector<std::uint16_t> flipped = tetrahedron_indices;
+  std::swap(flipped[10], flipped[11]);
+  const int positions = gltf.add_positions(tetrahedron_positions);
+  gltf.add_node({{"mesh", gltf.add_mesh(positions, gltf.add_indices(three_faces), "open")}});
+  gltf.add_node({{"mesh", gltf.add_mesh(positions, gltf.add_indices(flipped), "flipped")}});
+  const LoadedScene scene = load_scene_file(gltf.write(dir, "open.gltf").string());
+  ASSERT_EQ(scene.meshes.size(), 2u);
+  EXPECT_FALSE(scene.meshes[0].closed);
+  EXPECT_FALSE(scene.meshes[1].closed);
+  EXPECT_EQ(scene.triangles.size(), 7u);
+}
+
+TEST(GltfHandMade, ZeroAreaSliverWithRepeatedCornerKeepsATetrahedronClosed) {
+  const TempDir dir;
+  GltfBuilder gltf;
+  std::vector<std::uint16_t> with_sliver = tetrahedron_indices;
+  with_sliver.insert(with_sliver.end(), {0, 0, 1});
+  gltf.add_node({{"mesh", gltf.add_indexed_mesh(tetrahedron_positions, with_sliver, "m")}});
+  const LoadedScene scene = load_scene_file(gltf.write(dir, "sliver.gltf").string());
+  EXPECT_EQ(scene.triangles.size(), 5u);
+  EXPECT_TRUE(scene.meshes[0].closed);
+}
+
+TEST(GltfHandMade, MirroringNodeKeepsCounterClockwiseFrontFaces) {
+  const TempDir dir;
+  GltfBuilder gltf;
+  const int mesh = gltf.add_mesh(gltf.add_positions({0, 0, 0, 1, 0, 0, 0, 1, 0}), -1, "tri");
+  gltf.add_node({{"mesh", mesh}, {"scale", {-1, 1, 1}}});
+  const LoadedScene scene = load_scene_file(gltf.write(dir, "mirror.gltf").string());
+  ASSERT_EQ(scene.triangles.size(), 1u);
+  const Triangle& t = scene.triangles[0];
+  const glm::vec3 normal = glm::cross(t.v1 - t.v0, t.v2 - t.v0);
+  EXPECT_GT(normal.z, 0.0f) << "front face of the mirrored triangle still faces +z";
+  EXPECT_EQ(t.v0, glm::vec3(0, 0, 0));
+}
+
+TEST(GltfHandMade, NanPositionIsAnInputError) {
+  const TempDir dir;
+  GltfBuilder gltf;
+  std::vector<float> positions = tetrahedron_positions;
+  positions[4] = std::numeric_limits<float>::quiet_NaN();  // vertex 1, y
+  const int mesh = gltf.add_indexed_mesh(positions, tetrahedron_indices, "m");
+  gltf.add_node({{"mesh", mesh}});
+  const fs::path file = gltf.write(dir, "nan.gltf");
+  const std::string message = load_error(file);
+  EXPECT_NE(message.find(file.string()), std::string::npos) << message;
+  EXPECT_NE(message.find("meshes[0].primitives[0].attributes.POSITION (accessor 0)"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("vertex 1 is not finite"), std::string::npos) << message;
+}
+
+TEST(GltfHandMade, IndexOutOfRangeIsAnInputError) {
+  const TempDir dir;
+  GltfBuilder gltf;
+  std::vector<std::uint16_t> indices = tetrahedron_indices;
+  indices[7] = 4;
+  const int mesh = gltf.add_indexed_mesh(tetrahedron_positions, indices, "m");
+  gltf.add_node({{"mesh", mesh}});
+  const std::string message = load_error(gltf.write(dir, "index.gltf"));
+  EXPECT_NE(message.find("meshes[0].primitives[0].indices (accessor 1)"), std::string::npos)
+      << message;
+  EXPECT_NE(message.find("index 4 at position 7 is out of range for 4 vertices"), std::string::npos)
+      << message;
+}
+
+TEST(GltfHandMade, IndexCountNotMultipleOfThreeIsAnInputError) {
+  const TempDir dir;
+  GltfBuilder gltf;
+  const std::vector<std::uint16_t> indices(tetrahedron_indices.begin(),
+                                           tetrahedron_indices.end() - 1);
+  const int mesh = gltf.add_indexed_mesh(tetrahedron_positions, indices, "m");
+  gltf.add_node({{"mesh", mesh}});
+  const std::string message = load_error(gltf.write(dir, "count.gltf"));
+  EXPECT_NE(message.find("not a multiple of 3"), std::string::npos) << message;
+}
+
+TEST(GltfHandMade, AccessorPastItsBufferViewIsAnInputError) {
+  const TempDir dir;
+  GltfBuilder gltf;
+  const int positions = gltf.add_positions(tetrahedron_positions);
+  gltf.doc()["accessors"][positions]["count"] = 5;  // one vertex more than the view holds
+  gltf.add_node({{"mesh", gltf.add_mesh(positions, -1, "m")}});
+  const std::string message = load_error(gltf.write(dir, "past.gltf"));
+  EXPECT_NE(message.find("(accessor 0)"), std::string::npos) << message;
+  EXPECT_NE(message.find("exceed bufferViews[0]"), std::string::npos) << message;
+}
+
+TEST(GltfHandMade, SingularNodeMatrixAboveAMeshIsAnInputError) {
+  const TempDir dir;
+  GltfBuilder gltf;
+  const int mesh = gltf.add_indexed_mesh(tetrahedron_positions, tetrahedron_indices, "m");
+  const int child = gltf.add_node({{"mesh", mesh}}, false);
+  gltf.add_node(
+      {{"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1}}, {"children", {child}}});
+  const std::string message = load_error(gltf.write(dir, "singular.gltf"));
+  EXPECT_NE(message.find("nodes[1].matrix: singular transform"), std::string::npos) << message;
+}
+
+TEST(GltfHandMade, NonFiniteMatrixIsAnInputError) {
+  const TempDir dir;
+  GltfBuilder gltf;
+  const int mesh = gltf.add_indexed_mesh(tetrahedron_positions, tetrahedron_indices, "m");
+  gltf.add_node({{"mesh", mesh}, {"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 1e308, 0, 0, 1}}});
+  gltf.doc()["nodes"][0]["matrix"][12] = 1e308;
+  // JSON cannot hold inf: overflow it in the world transform instead, through a scaled parent.
+  const int child = 0;
+  gltf.doc()["scenes"][0]["nodes"] = Json::array();
+  gltf.add_node({{"scale", {1e10, 1, 1}}, {"children", {child}}});
+  const std::string message = load_error(gltf.write(dir, "overflow.gltf"));
+  EXPECT_NE(message.find("nodes[0]"), std::string::npos) << message;
+  EXPECT_NE(message.find("non-finite"), std::string::npos) << message;
+}
+
+TEST(GltfHandMade, ZeroScaleNodeWithoutContentIsHarmless) {
+  const TempDir dir;
+  GltfBuilder gltf;
+  const int mesh = gltf.add_indexed_mesh(tetrahedron_positions, tetrahedron_indices, "m");
+  gltf.add_node({{"mesh", mesh}});
+  gltf.add_node({{"scale", {0, 0, 0}}});
+  EXPECT_EQ(load_scene_file(gltf.write(dir, "hidden.gltf").string()).triangles.size(), 4u);
+}
+
+TEST(GltfHandMade, NodeCycleIsAnInputError) {
+  const TempDir dir;
+  GltfBuilder gltf;
+  const int mesh = gltf.add_indexed_mesh(tetrahedron_positions, tetrahedron_indices, "m");
+  gltf.add_node({{"mesh", mesh}, {"children", {1}}});
+  gltf.add_node({{"children", {0}}}, false);
+  const std::string message = load_error(gltf.write(dir, "cycle.gltf"));
+  EXPECT_NE(message.find("nodes[0]"), std::string::npos) << message;
+}
+
+TEST(GltfHandMade, NonTriangleModesAreSkippedWithAWarning) {
+  const TempDir dir;
+  GltfBuilder gltf;
+  const int positions = gltf.add_positions(tetrahedron_positions);
+  const int mesh = gltf.add_mesh(positions, gltf.add_indices(tetrahedron_indices), "m");
+  gltf.doc()["meshes"][mesh]["primitives"].push_back(
+      {{"attributes", {{"POSITION", positions}}}, {"mode", 1}});
+  gltf.add_node({{"mesh", mesh}});
+  const LoadedScene scene = load_scene_file(gltf.write(dir, "lines.gltf").string());
+  EXPECT_EQ(scene.triangles.size(), 4u);
+  EXPECT_TRUE(any_warning_contains(scene, "meshes[0].primitives[1]: mode 1"));
+}
+
+void expect_near(const glm::vec3& actual, const glm::vec3& expected, const char* what) {
+  EXPECT_NEAR(actual.x, expected.x, 1e-6) << what;
+  EXPECT_NEAR(actual.y, expected.y, 1e-6) << what;
+  EXPECT_NEAR(actual.z, expected.z, 1e-6) << what;
+}
+
+TEST(GltfHandMade, PunctualLightsTakeTheirNodesWorldTransform) {
+  const TempDir dir;
+  GltfBuilder gltf;
+  const int mesh = gltf.add_indexed_mesh(tetrahedron_positions, tetrahedron_indices, "m");
+  gltf.add_node({{"mesh", mesh}});
+  const double h = std::sqrt(0.5);
+  auto light_node = [&](int light, Json node) {
+    node["extensions"]["KHR_lights_punctual"]["light"] = light;
+    return node;
+  };
+  // Point light at (0, 10, 0) under a parent translated by (1, 0, 0): world (1, 10, 0).
+  const int point = gltf.add_light({{"type", "point"}});
+  const int point_node = gltf.add_node(light_node(point, {{"translation", {0, 10, 0}}}), false);
+  gltf.add_node({{"translation", {1, 0, 0}}, {"children", {point_node}}});
+  // Directional light turned -90 degrees about x: it shines along -y, so towards it is +y.
+  const int sun = gltf.add_light({{"type", "directional"}});
+  gltf.add_node(light_node(sun, {{"rotation", {-h, 0, 0, h}}}));
+  // Spot light turned 90 degrees about y: its axis -z becomes -x.
+  const int spot = gltf.add_light({{"type", "spot"},
+                                   {"range", 5.0},
+                                   {"spot", {{"innerConeAngle", 0.1}, {"outerConeAngle", 0.5}}}});
+  gltf.add_node(light_node(spot, {{"translation", {0, 0, 4}}, {"rotation", {0, h, 0, h}}}));
+  // Point light with range: a sphere; its range is unaffected by the node's scale (KHR spec).
+  const int sphere = gltf.add_light({{"type", "point"}, {"range", 3.0}});
+  gltf.add_node(light_node(sphere, {{"translation", {2, 0, 0}}, {"scale", {4, 4, 4}}}));
+  // Spot light without range: skipped with a warning.
+  const int unbounded = gltf.add_light({{"type", "spot"}, {"spot", Json::object()}});
+  gltf.add_node(light_node(unbounded, {}));
+
+  const LoadedScene scene = load_scene_file(gltf.write(dir, "lights.gltf").string());
+  ASSERT_EQ(scene.shadow_lights.size(), 2u);
+  EXPECT_EQ(scene.shadow_lights[0].kind, ShadowLightKind::point);
+  expect_near(scene.shadow_lights[0].position, {1, 10, 0}, "point position");
+  EXPECT_EQ(scene.shadow_lights[1].kind, ShadowLightKind::directional);
+  expect_near(scene.shadow_lights[1].direction, {0, 1, 0}, "direction towards the light");
+  ASSERT_EQ(scene.ranged_lights.size(), 2u);
+  const RangedLight& spot_light = scene.ranged_lights[0];
+  EXPECT_EQ(spot_light.kind, RangedLightKind::spot);
+  expect_near(spot_light.centre, {0, 0, 4}, "spot centre");
+  expect_near(spot_light.direction, {-1, 0, 0}, "spot axis");
+  EXPECT_FLOAT_EQ(spot_light.range, 5.0f);
+  EXPECT_FLOAT_EQ(spot_light.cone_half_angle, 0.5f);
+  const RangedLight& sphere_light = scene.ranged_lights[1];
+  EXPECT_EQ(sphere_light.kind, RangedLightKind::sphere);
+  expect_near(sphere_light.centre, {2, 0, 0}, "sphere centre");
+  EXPECT_FLOAT_EQ(sphere_light.range, 3.0f);
+  EXPECT_TRUE(any_warning_contains(scene, "lights[4]: spot light without range"));
+}
+
+TEST(GltfHandMade, LightReferenceOutOfRangeIsAnInputError) {
+  const TempDir dir;
+  GltfBuilder gltf;
+  const int mesh = gltf.add_indexed_mesh(tetrahedron_positions, tetrahedron_indices, "m");
+  gltf.add_node({{"mesh", mesh}});
+  gltf.add_light({{"type", "point"}});
+  gltf.add_node({{"extensions", {{"KHR_lights_punctual", {{"light", 3}}}}}});
+  const std::string message = load_error(gltf.write(dir, "badlight.gltf"));
+  EXPECT_NE(message.find("nodes[1].extensions.KHR_lights_punctual.light"), std::string::npos)
+      << message;
+}
+
+TEST(GltfHandMade, UnsupportedRequiredExtensionIsAnInputError) {
+  const TempDir dir;
+  GltfBuilder gltf;
+  const int mesh = gltf.add_indexed_mesh(tetrahedron_positions, tetrahedron_indices, "m");
+  gltf.add_node({{"mesh", mesh}});
+  gltf.doc()["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+  const std::string message = load_error(gltf.write(dir, "draco.gltf"));
+  EXPECT_NE(message.find("KHR_draco_mesh_compression"), std::string::npos) << message;
+}
+
+TEST(GltfHandMade, SyntaxErrorIsAnInputError) {
+  const TempDir dir;
+  const fs::path file = dir.write("broken.gltf", "{\"asset\": {\"version\": \"2.0\"},");
+  const std::string message = load_error(file);
+  EXPECT_NE(message.find(file.string() + ": JSON"), std::string::npos) << message;
+}
+
+// ---- OBJ / OFF / PLY / STL -------------------------------------------------------------------
+
+TEST(MeshFiles, AssimpModelsLoad) {
+  struct Model {
+    const char* file;
+    bool closed;
+  };
+  std::map<std::string, std::size_t> triangles;
+  for (const Model& model : {Model{"STL/Spider_binary.stl", false},
+                             Model{"STL/sphereWithHole.stl", false}, Model{"OFF/Wuson.off", false},
+                             Model{"PLY/Wuson.ply", false}, Model{"OBJ/spider.obj", false}}) {
+    const fs::path file = assimp_models / model.file;
+    const LoadedScene scene = load_scene_file(file.string());
+    expect_plausible(scene, model.file);
+    ASSERT_EQ(scene.meshes.size(), 1u);
+    EXPECT_EQ(scene.meshes[0].name, file.stem().string());
+    EXPECT_EQ(scene.meshes[0].closed, model.closed) << model.file;
+    triangles[model.file] = scene.triangles.size();
+    std::cout << model.file << ": " << scene.triangles.size() << " triangles, "
+              << (scene.meshes[0].closed ? "closed" : "open") << ", " << scene.warnings.size()
+              << " warnings\n";
+    for (const auto& warning : scene.warnings) std::cout << "  " << warning << "\n";
+  }
+  // The same model in two formats has the same triangles.
+  EXPECT_EQ(triangles["OFF/Wuson.off"], triangles["PLY/Wuson.ply"]);
+}
+
+const char* tetrahedron_off =
+    "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+
+TEST(MeshFiles, TetrahedronOffIsClosed) {
+  const TempDir dir;
+  const LoadedScene scene = load_scene_file(dir.write("tetra.off", tetrahedron_off).string());
+  ASSERT_EQ(scene.triangles.size(), 4u);
+  EXPECT_TRUE(scene.meshes[0].closed);
+  EXPECT_EQ(scene.meshes[0].name, "tetra");
+  EXPECT_EQ(scene.triangles[3].v0, glm::vec3(1, 0, 0));
+  EXPECT_TRUE(scene.warnings.empty());
+}
+
+TEST(MeshFiles, TetrahedronInEveryFormatIsClosed) {
+  const TempDir dir;
+  const std::string obj =
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  std::string stl = "solid tetra\n";
+  const float v[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  const int faces[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  for (const auto& f : faces) {
+    stl += "facet normal 0 0 0\nouter loop\n";
+    for (const int i : f) {
+      stl += "vertex " + std::to_string(v[i][0]) + " " + std::to_string(v[i][1]) + " " +
+             std::to_string(v[i][2]) + "\n";
+    }
+    stl += "endloop\nendfacet\n";
+  }
+  stl += "endsolid tetra\n";
+  for (const auto& [name, text] : std::map<std::string, std::string>{
+           {"t.obj", obj}, {"t.ply", ply}, {"t.stl", stl}, {"t.off", tetrahedron_off}}) {
+    const LoadedScene scene = load_scene_file(dir.write(name, text).string());
+    EXPECT_EQ(scene.triangles.size(), 4u) << name;
+    EXPECT_TRUE(scene.meshes[0].closed) << name;
+  }
+}
+
+TEST(MeshFiles, InvalidOffIsAnInputError) {
+  const TempDir dir;
+  const fs::path file = dir.write("bad.off", "this is not an off file\n");
+  const std::string message = load_error(file);
+  EXPECT_NE(message.find(file.string()), std::string::npos) << message;
+}
+
+TEST(MeshFiles, OffFaceIndexOutOfRangeIsAnInputError) {
+  const TempDir dir;
+  const std::string message = load_error(dir.write(
+      "oob.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 9\n3 0 3 2\n3 1 2 3\n"));
+  EXPECT_NE(message.find("face 1 (line 8)"), std::string::npos) << message;
+}
+
+TEST(MeshFiles, TruncatedOffIsAnInputError) {
+  const TempDir dir;
+  const std::string message = load_error(dir.write("short.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n"));
+  EXPECT_NE(message.find("vertex 2"), std::string::npos) << message;
+}
+
+TEST(MeshFiles, NonFiniteVerticesAreInputErrorsNamingTheVertex) {
+  const TempDir dir;
+  const std::string obj_message =
+      load_error(dir.write("nan.obj", "v 0 0 0\nv 1 0 0\nv 0 nan 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\n"));
+  EXPECT_NE(obj_message.find("v 3 (line 3)"), std::string::npos) << obj_message;
+  const std::string off_message =
+      load_error(dir.write("inf.off", "OFF\n3 1 0\n0 0 0\n1 0 inf\n0 1 0\n3 0 1 2\n"));
+  EXPECT_NE(off_message.find("vertex 1 (line 4)"), std::string::npos) << off_message;
+  const std::string big_message =
+      load_error(dir.write("big.off", "OFF\n3 1 0\n0 0 0\n1 0 1e39\n0 1 0\n3 0 1 2\n"));
+  EXPECT_NE(big_message.find("out of float range"), std::string::npos) << big_message;
+  const std::string stl_message = load_error(dir.write(
+      "nan.stl",
+      "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 nan 0\n"
+      "endloop\nendfacet\nendsolid t\n"));
+  EXPECT_NE(stl_message.find("vertex 2 (line 6)"), std::string::npos) << stl_message;
+  // Binary STL: the float arrives as NaN bits and is caught after reading.
+  std::string binary(80, ' ');
+  const std::uint32_t facets = 1;
+  binary.append(reinterpret_cast<const char*>(&facets), 4);
+  const float facet[12] = {0, 0, 1, 0, 0, 0, 1, 0, 0, 0, std::numeric_limits<float>::quiet_NaN(),
+                           0};
+  binary.append(reinterpret_cast<const char*>(facet), sizeof facet);
+  binary.append(2, '\0');
+  const std::string binary_message = load_error(dir.write("nan_binary.stl", binary));
+  EXPECT_NE(binary_message.find("non-finite"), std::string::npos) << binary_message;
+}
+
+TEST(MeshFiles, UnknownExtensionAndMissingFileAreInputErrors) {
+  const TempDir dir;
+  const std::string extension_message = load_error(dir.write("scene.fbx", "x"));
+  EXPECT_NE(extension_message.find("unsupported extension '.fbx'"), std::string::npos);
+  const fs::path missing = dir.path() / "missing.obj";
+  const std::string missing_message = load_error(missing);
+  EXPECT_NE(missing_message.find(missing.string() + ": file: not found"), std::string::npos)
+      << missing_message;
+}
+
+}  // namespace
+}  // namespace shadowcts

@@ -1,0 +1,105 @@
+#include "shadowcts/view_samples.h"
+
+#include <cmath>
+#include <cstring>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include "shadowcts/case.h"
+
+namespace shadowcts {
+namespace {
+
+// A ground quad (y = 0) seen from above, a small quad standing on it facing +z, a point light.
+Case ground_and_wall(ShadowLight light) {
+  Case c;
+  c.name = "test.ground_wall";
+  c.source = "test";
+  c.meshes = {{"ground", false, true}, {"wall", false, true}};
+  c.triangles = {{{-4, 0, -4}, {4, 0, -4}, {4, 0, 4}, 0},
+                 {{-4, 0, -4}, {4, 0, 4}, {-4, 0, 4}, 0},
+                 {{-1, 0, 0}, {1, 0, 0}, {1, 2, 0}, 1},
+                 {{-1, 0, 0}, {1, 2, 0}, {-1, 2, 0}, 1}};
+  c.light = light;
+  c.camera.position = {0, 6, 8};
+  c.camera.target = {0, 0, 0};
+  c.camera.width = 96;
+  c.camera.height = 64;
+  c.camera.vertical_fov_degrees = 70;
+  validate(c);
+  return c;
+}
+
+ShadowLight point_light(glm::vec3 p) {
+  ShadowLight l;
+  l.kind = ShadowLightKind::point;
+  l.position = p;
+  return l;
+}
+
+TEST(ViewSamples, LieOnTheirReceiverWithinFloatError) {
+  const Case c = ground_and_wall(point_light({0, 5, 3}));
+  const ViewSamples s = generate_view_samples(c);
+  ASSERT_EQ(s.samples.size(), 96u * 64u);
+  std::size_t surface = 0;
+  for (const ViewSample& v : s.samples) {
+    if (v.sample_class == SampleClass::sky) continue;
+    ++surface;
+    ASSERT_LT(v.receiver, c.triangles.size());
+    const Triangle& t = c.triangles[v.receiver];
+    const glm::dvec3 a(t.v0), b(t.v1), cc(t.v2), p(v.position);
+    const glm::dvec3 n = glm::normalize(glm::cross(b - a, cc - a));
+    // Distance to the receiver's plane is a few float ulps of the coordinates (at most ~8).
+    EXPECT_LT(std::fabs(glm::dot(p - a, n)), 8.0 * 4.0 * 0x1p-24) << v.pixel_x << "," << v.pixel_y;
+    // The stored normal is the receiver's normal up to sign, unit length.
+    EXPECT_NEAR(std::fabs(glm::dot(glm::dvec3(v.normal), n)), 1.0, 1e-6);
+    EXPECT_NEAR(glm::length(glm::dvec3(v.normal)), 1.0, 1e-6);
+  }
+  EXPECT_GT(surface, s.samples.size() / 2);
+}
+
+TEST(ViewSamples, SkyAndBackFacingClasses) {
+  // Light behind the wall (z < 0): the wall's camera-facing side (+z) is back-facing; the
+  // camera looks down at the ground, the top rows see past the ground: sky.
+  const Case c = ground_and_wall(point_light({0, 5, -3}));
+  const ViewSamples s = generate_view_samples(c);
+  std::size_t wall_back = 0;
+  for (const ViewSample& v : s.samples) {
+    if (v.sample_class == SampleClass::sky) {
+      EXPECT_EQ(v.receiver, no_receiver);
+      continue;
+    }
+    if (v.receiver >= 2) {
+      EXPECT_EQ(v.sample_class, SampleClass::back_facing);
+      ++wall_back;
+    } else {
+      EXPECT_EQ(v.sample_class, SampleClass::regular);  // ground faces up, light above
+    }
+  }
+  EXPECT_GT(wall_back, 0u);
+  EXPECT_GT(s.count(SampleClass::sky), 0u);
+  // Pixel coordinates are row-major, top row first.
+  EXPECT_EQ(s.samples[96 * 3 + 5].pixel_x, 5u);
+  EXPECT_EQ(s.samples[96 * 3 + 5].pixel_y, 3u);
+}
+
+TEST(ViewSamples, ByteIdenticalForOneAndTwoThreads) {
+  const Case c = ground_and_wall(point_light({0, 5, 3}));
+  ViewSamples one, two;
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    one = generate_view_samples(c);
+  }
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+    two = generate_view_samples(c);
+  }
+  ASSERT_EQ(one.samples.size(), two.samples.size());
+  EXPECT_EQ(0, std::memcmp(one.samples.data(), two.samples.data(),
+                           one.samples.size() * sizeof(ViewSample)));
+}
+
+}  // namespace
+}  // namespace shadowcts
