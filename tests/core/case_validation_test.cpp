@@ -2,6 +2,7 @@
 #include <limits>
 #include <string>
 
+#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include "shadowcts/case.h"

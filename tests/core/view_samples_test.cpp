@@ -12,14 +12,14 @@
 namespace shadowcts {
 namespace {
 
-// A ground quad (y = 0) seen from above, a small quad standing on it facing +z, a point light.
+// A ground quad (y = 0, half-width 20) seen from above, a small quad standing on it facing +z, a point light.
 Case ground_and_wall(ShadowLight light) {
   Case c;
   c.name = "test.ground_wall";
   c.source = "test";
   c.meshes = {{"ground", false, true}, {"wall", false, true}};
-  c.triangles = {{{-4, 0, -4}, {4, 0, -4}, {4, 0, 4}, 0},
-                 {{-4, 0, -4}, {4, 0, 4}, {-4, 0, 4}, 0},
+  c.triangles = {{{-20, 0, -20}, {20, 0, -20}, {20, 0, 20}, 0},
+                 {{-20, 0, -20}, {20, 0, 20}, {-20, 0, 20}, 0},
                  {{-1, 0, 0}, {1, 0, 0}, {1, 2, 0}, 1},
                  {{-1, 0, 0}, {1, 2, 0}, {-1, 2, 0}, 1}};
   c.light = light;
@@ -52,7 +52,7 @@ TEST(ViewSamples, LieOnTheirReceiverWithinFloatError) {
     const glm::dvec3 a(t.v0), b(t.v1), cc(t.v2), p(v.position);
     const glm::dvec3 n = glm::normalize(glm::cross(b - a, cc - a));
     // Distance to the receiver's plane is a few float ulps of the coordinates (at most ~8).
-    EXPECT_LT(std::fabs(glm::dot(p - a, n)), 8.0 * 4.0 * 0x1p-24) << v.pixel_x << "," << v.pixel_y;
+    EXPECT_LT(std::fabs(glm::dot(p - a, n)), 8.0 * 20.0 * 0x1p-24) << v.pixel_x << "," << v.pixel_y;
     // The stored normal is the receiver's normal up to sign, unit length.
     EXPECT_NEAR(std::fabs(glm::dot(glm::dvec3(v.normal), n)), 1.0, 1e-6);
     EXPECT_NEAR(glm::length(glm::dvec3(v.normal)), 1.0, 1e-6);

@@ -1,0 +1,69 @@
+#pragma once
+// The triangles of a case that can cast a shadow (caster mesh, non-zero area) in a bounding volume
+// hierarchy of float boxes, queried conservatively: visit() reports every triangle whose box,
+// inflated, may meet a shadow query (shadow_segment.h), so the oracle's candidate set can never
+// miss a triangle that meets the query or any query moved by at most the inflation.
+//
+// Built by median splits along the longest centroid axis: the tree depends only on the case, not
+// on the thread count that builds it, and so does the order in which visit() reports triangles.
+#include <cstdint>
+#include <vector>
+
+#include "oracles/shadow_segment.h"
+#include "shadowcts/case.h"
+
+namespace shadowcts {
+
+class CasterBvh {
+ public:
+  explicit CasterBvh(const Case& c);
+
+  std::size_t size() const { return triangles_.size(); }
+  // The case triangle index of every caster, in leaf order.
+  const std::vector<std::uint32_t>& triangles() const { return triangles_; }
+
+  // Calls visit(triangle index) for every caster whose box inflated by `inflation` may meet the
+  // query, in a fixed order; stops when visit returns true.
+  template <class Visitor>
+  void visit(const ShadowSegment& query, double inflation, Visitor&& visit) const;
+
+ private:
+  struct Node {
+    float lo[3], hi[3];
+    std::uint32_t first_or_right;  // leaf: first triangle slot; inner: right child (left = +1)
+    std::uint32_t count;           // triangles in a leaf; 0 for an inner node
+  };
+  struct BuildItem;
+  void build(std::vector<BuildItem>& items, std::size_t begin, std::size_t end, std::size_t node);
+
+  std::vector<Node> nodes_;
+  std::vector<std::uint32_t> triangles_;
+  std::vector<Node> leaf_boxes_;  // per triangle slot: the triangle's own box (count unused)
+};
+
+template <class Visitor>
+void CasterBvh::visit(const ShadowSegment& query, double inflation, Visitor&& visit) const {
+  if (nodes_.empty()) return;
+  const double padding = box_padding(query, inflation);
+  std::uint32_t stack[64];
+  int depth = 0;
+  stack[depth++] = 0;
+  while (depth > 0) {
+    const std::uint32_t index = stack[--depth];
+    const Node& node = nodes_[index];
+    if (!box_may_meet(query, node.lo, node.hi, padding)) continue;
+    if (node.count == 0) {
+      stack[depth++] = node.first_or_right;
+      stack[depth++] = index + 1;  // left child first
+      continue;
+    }
+    for (std::uint32_t slot = node.first_or_right; slot < node.first_or_right + node.count;
+         ++slot) {
+      const Node& box = leaf_boxes_[slot];
+      if (node.count > 1 && !box_may_meet(query, box.lo, box.hi, padding)) continue;
+      if (visit(triangles_[slot])) return;
+    }
+  }
+}
+
+}  // namespace shadowcts

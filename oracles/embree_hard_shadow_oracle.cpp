@@ -1,0 +1,77 @@
+#include "shadowcts/hard_shadow_oracle.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "oracles/band_moves.h"
+#include "oracles/embree_shadow_rays.h"
+#include "oracles/hard_shadow_inputs.h"
+#include "oracles/thread_limit.h"
+
+namespace shadowcts {
+namespace {
+
+// robust_exponent of a sample the estimate finds robust at eps_rel: the largest level 2^e <=
+// eps_rel (its moves are a subset of eps_rel's), within the level range; none below it.
+std::int8_t exponent_of_robust_estimate(double eps_rel) {
+  const int e = int(std::floor(std::log2(eps_rel)));
+  if (e < band_min_exponent) return ambiguous_at_every_exponent;
+  return std::int8_t(std::min(e, band_max_exponent));
+}
+
+}  // namespace
+
+HardShadowTruth embree_hard_shadow_oracle(const Case& c, const ViewSamples& samples) {
+  check_receivers(c, samples);
+  const std::size_t n = samples.samples.size();
+  const double scale = c.scale();
+  const double tau = c.parameters.eps_rel * scale;
+  // The band's moves exist only while tau >= 2^-24 S; below that every sample is robust.
+  const bool has_moves = tau > 0.0 && tau >= std::ldexp(scale, band_min_exponent);
+  const std::int8_t robust_exponent = exponent_of_robust_estimate(c.parameters.eps_rel);
+
+  HardShadowTruth truth;
+  truth.method =
+      "estimated: Embree 3 robust occlusion rays; band from the 14 moves at tau only (moved "
+      "origins rounded to float); robust_exponent records only the class at eps_rel";
+  truth.exact = false;
+  truth.eps_rel = c.parameters.eps_rel;
+  truth.tau = tau;
+  truth.shadowed.assign(n, 0);
+  truth.band.assign(n, BandClass::not_compared);
+  truth.robust_exponent.assign(n, ambiguous_at_every_exponent);
+
+  run_with_thread_limit(c.parameters.threads, [&] {
+    const EmbreeShadowRays rays(c);
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, n, 256),
+        [&](const tbb::blocked_range<std::size_t>& range) {
+          for (std::size_t i = range.begin(); i != range.end(); ++i) {
+            const ViewSample& sample = samples.samples[i];
+            if (sample.sample_class != SampleClass::regular) continue;
+            const bool shadowed = rays.occluded(sample.position, sample.receiver);
+            bool robust = true;
+            if (has_moves) {
+              for (const glm::ivec3& move : band_moves) {
+                const glm::vec3 moved(glm::dvec3(sample.position) + tau * glm::dvec3(move));
+                if (rays.occluded(moved, sample.receiver) != shadowed) {
+                  robust = false;
+                  break;
+                }
+              }
+            }
+            truth.shadowed[i] = shadowed ? 1 : 0;
+            truth.band[i] = !robust    ? BandClass::ambiguous
+                            : shadowed ? BandClass::robust_shadowed
+                                       : BandClass::robust_lit;
+            truth.robust_exponent[i] = robust ? robust_exponent : ambiguous_at_every_exponent;
+          }
+        });
+  });
+  return truth;
+}
+
+}  // namespace shadowcts

@@ -1,0 +1,48 @@
+#include "oracles/hard_shadow_inputs.h"
+
+#include <string>
+
+#include "oracles/exact_segment_triangle.h"
+#include "shadowcts/errors.h"
+
+namespace shadowcts {
+
+HardShadowLight hard_shadow_light(const Case& c) {
+  if (!c.light) throw InputError(c.source, "light", "a hard-shadow case needs a shadow light");
+  HardShadowLight light;
+  switch (c.light->kind) {
+    case ShadowLightKind::point:
+      light.position = glm::dvec3(c.light->position);
+      return light;
+    case ShadowLightKind::directional:
+      light.directional = true;
+      light.direction = glm::dvec3(c.light->direction);
+      if (light.direction == glm::dvec3(0.0))
+        throw InputError(c.source, "light.direction", "has zero length");
+      return light;
+    case ShadowLightKind::sun_disk:
+      break;
+  }
+  throw InputError(c.source, "light",
+                   "hard shadows need a point or directional light, not a sun disk");
+}
+
+bool casts_shadow(const Case& c, std::size_t i) {
+  const Triangle& t = c.triangles[i];
+  if (t.mesh >= c.meshes.size())
+    throw InputError(c.source, "triangles[" + std::to_string(i) + "].mesh",
+                     "mesh id " + std::to_string(t.mesh) + " out of range");
+  return c.meshes[t.mesh].caster && !is_zero_area(t);
+}
+
+void check_receivers(const Case& c, const ViewSamples& samples) {
+  for (std::size_t i = 0; i < samples.samples.size(); ++i) {
+    const ViewSample& s = samples.samples[i];
+    if (s.sample_class == SampleClass::regular && s.receiver != no_receiver &&
+        s.receiver >= c.triangles.size())
+      throw InputError(c.source, "view sample " + std::to_string(i),
+                       "receiver " + std::to_string(s.receiver) + " is not a triangle index");
+  }
+}
+
+}  // namespace shadowcts

@@ -1,0 +1,67 @@
+#include "reference/embree/hard_shadow_embree.h"
+
+#include <atomic>
+#include <stdexcept>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "oracles/embree_shadow_rays.h"
+#include "oracles/hard_shadow_inputs.h"
+#include "oracles/thread_limit.h"
+
+namespace shadowcts {
+namespace {
+
+class EmbreeHardShadow final : public Algorithm {
+ public:
+  EmbreeHardShadow() {
+    info_.id = "embree";
+    info_.backend = "embree";
+    info_.variants = {"robust"};
+    info_.summary = "Embree 3 occlusion rays in robust mode, receiver ignored by a filter";
+    info_.capabilities.output = OutputKind::hard_shadow;
+    info_.capabilities.point_light = true;
+    info_.capabilities.directional_light = true;
+  }
+
+  const AlgorithmInfo& info() const override { return info_; }
+
+  AlgorithmOutput run(const Case& c, const ViewSamples& samples,
+                      const std::string& variant) const override {
+    if (variant != "robust")
+      throw std::invalid_argument("embree: unknown variant '" + variant + "'");
+    check_receivers(c, samples);
+    AlgorithmOutput output;
+    output.shadowed.assign(samples.samples.size(), 0);
+    std::atomic<std::uint64_t> rays{0};
+    run_with_thread_limit(c.parameters.threads, [&] {
+      const EmbreeShadowRays tracer(c);
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.samples.size(), 256),
+                        [&](const tbb::blocked_range<std::size_t>& range) {
+                          std::uint64_t traced = 0;
+                          for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                            const ViewSample& sample = samples.samples[i];
+                            if (sample.sample_class != SampleClass::regular) continue;
+                            ++traced;
+                            output.shadowed[i] =
+                                tracer.occluded(sample.position, sample.receiver) ? 1 : 0;
+                          }
+                          rays += traced;
+                        });
+    });
+    output.counters = {{"rays", rays.load()}};
+    return output;
+  }
+
+ private:
+  AlgorithmInfo info_;
+};
+
+}  // namespace
+
+std::unique_ptr<Algorithm> make_embree_hard_shadow() {
+  return std::make_unique<EmbreeHardShadow>();
+}
+
+}  // namespace shadowcts
