@@ -13,9 +13,12 @@ namespace {
 
 std::string output_name(OutputKind kind) {
   switch (kind) {
-    case OutputKind::hard_shadow: return "hard_shadow";
-    case OutputKind::soft_shadow: return "soft_shadow";
-    case OutputKind::light_lists: return "light_lists";
+    case OutputKind::hard_shadow:
+      return "hard_shadow";
+    case OutputKind::soft_shadow:
+      return "soft_shadow";
+    case OutputKind::light_lists:
+      return "light_lists";
   }
   return "hard_shadow";
 }
@@ -69,9 +72,9 @@ void print_listing(const Registry& registry, bool json, std::ostream& out) {
   out << "\nalgorithms\n";
   for (const auto& a : registry.algorithms()) {
     const AlgorithmInfo& m = a->info();
-    out << "  " << std::left << std::setw(14) << m.id << std::setw(11) << m.backend
-        << "variants " << join(m.variants, ",") << "; " << output_name(m.capabilities.output)
-        << "; lights " << join(light_kinds(m.capabilities), ",")
+    out << "  " << std::left << std::setw(14) << m.id << std::setw(11) << m.backend << "variants "
+        << join(m.variants, ",") << "; " << output_name(m.capabilities.output) << "; lights "
+        << join(light_kinds(m.capabilities), ",")
         << (m.capabilities.needs_closed_meshes ? "; needs closed meshes" : "") << "\n"
         << "  " << std::setw(25) << "" << m.summary << "\n";
   }

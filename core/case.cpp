@@ -98,7 +98,8 @@ void validate_parameters(const Case& c) {
 
 double Case::scale() const {
   double s = 0.0;
-  for (const Triangle& t : triangles) s = std::max({s, max_abs(t.v0), max_abs(t.v1), max_abs(t.v2)});
+  for (const Triangle& t : triangles)
+    s = std::max({s, max_abs(t.v0), max_abs(t.v1), max_abs(t.v2)});
   s = std::max(s, max_abs(camera.position));
   if (light && light->kind == ShadowLightKind::point) s = std::max(s, max_abs(light->position));
   return s;

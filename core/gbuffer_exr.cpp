@@ -89,6 +89,7 @@ void write_gbuffer_exr(const std::string& path, const ViewSamples& samples) {
   spec.channelformats.assign(6, OIIO::TypeDesc::FLOAT);
   spec.channelformats.emplace_back(OIIO::TypeDesc::UINT);
   spec.attribute("compression", "zip");  // lossless: the round trip is bit-exact
+  spec.attribute("DateTime", "");        // no write-time stamp in capDate: same samples, same bytes
 
   const std::filesystem::path target(path);
   const std::filesystem::path temporary(path + ".tmp");

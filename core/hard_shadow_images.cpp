@@ -68,7 +68,8 @@ RgbImage mismatch_image(const ViewSamples& samples, const std::vector<std::uint8
     switch (truth.band[i]) {
       case BandClass::ambiguous:
         return answer == expected ? ambiguous_agrees_colour : ambiguous_differs_colour;
-      case BandClass::not_compared: return back_facing_colour;
+      case BandClass::not_compared:
+        return back_facing_colour;
       default:
         if (answer == expected) return expected ? agree_shadowed_colour : agree_lit_colour;
         return expected ? leak_colour : false_shadow_colour;
@@ -84,12 +85,12 @@ std::string write_oracle_images(const std::filesystem::path& out_dir, const std:
 
 std::vector<std::string> write_algorithm_images(const std::filesystem::path& out_dir,
                                                 const std::string& case_name,
-                                                const RunRecord& record,
-                                                const ViewSamples& samples,
+                                                const RunRecord& record, const ViewSamples& samples,
                                                 const std::vector<std::uint8_t>& shadowed,
                                                 const HardShadowTruth& truth) {
-  const std::string stem = "images/" + path_safe(case_name) + "/" +
-                           path_safe(record.algorithm + "." + record.variant + "." + record.backend);
+  const std::string stem =
+      "images/" + path_safe(case_name) + "/" +
+      path_safe(record.algorithm + "." + record.variant + "." + record.backend);
   return {write_both(out_dir, stem + ".mask", shadow_mask_image(samples, shadowed)),
           write_both(out_dir, stem + ".mismatch", mismatch_image(samples, shadowed, truth))};
 }

@@ -19,7 +19,12 @@ void write_image(const std::string& path, const RgbImage& image) {
     if (!out) throw std::runtime_error(path + ": no image writer: " + OIIO::geterror());
     OIIO::ImageSpec spec(int(image.width), int(image.height), 3,
                          exr ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::UINT8);
-    if (exr) spec.attribute("compression", "zip");
+    if (exr) {
+      spec.attribute("compression", "zip");
+      // An empty DateTime keeps OpenEXR from stamping the write time into capDate: the same
+      // run gives the same bytes.
+      spec.attribute("DateTime", "");
+    }
     // Passing UINT8 pixels lets OIIO convert them to the file's format (0..255 -> 0..1 in EXR).
     if (!out->open(temporary.string(), spec) ||
         !out->write_image(OIIO::TypeDesc::UINT8, image.rgb.data()) || !out->close()) {

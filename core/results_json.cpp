@@ -22,10 +22,14 @@ ordered_json case_json(const CaseSummary& c) {
                   {"sky", c.sky},
                   {"back_facing", c.back_facing}};
   if (!c.oracle_method.empty())
-    j["oracle"] = {{"method", c.oracle_method},     {"exact", c.oracle_exact},
-                   {"eps_rel", c.eps_rel},          {"tau", c.tau},
-                   {"time_ms", c.oracle_ms},        {"robust_lit", c.robust_lit},
-                   {"robust_shadowed", c.robust_shadowed}, {"ambiguous", c.ambiguous},
+    j["oracle"] = {{"method", c.oracle_method},
+                   {"exact", c.oracle_exact},
+                   {"eps_rel", c.eps_rel},
+                   {"tau", c.tau},
+                   {"time_ms", c.oracle_ms},
+                   {"robust_lit", c.robust_lit},
+                   {"robust_shadowed", c.robust_shadowed},
+                   {"ambiguous", c.ambiguous},
                    {"mask_image", c.oracle_image}};
   j["left_out"] = c.left_out;
   return j;

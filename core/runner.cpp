@@ -12,8 +12,8 @@
 #include <tbb/info.h>
 
 #include "hard_shadow_images.h"
-#include "results_json.h"
 #include "junit_xml.h"
+#include "results_json.h"
 #include "run_record.h"
 #include "shadowcts/case_manifest.h"
 #include "shadowcts/errors.h"
@@ -40,9 +40,12 @@ double median(std::vector<double> v) {
 std::string light_name(const Case& c) {
   if (!c.light) return "none";
   switch (c.light->kind) {
-    case ShadowLightKind::point: return "point";
-    case ShadowLightKind::directional: return "directional";
-    case ShadowLightKind::sun_disk: return "sun_disk";
+    case ShadowLightKind::point:
+      return "point";
+    case ShadowLightKind::directional:
+      return "directional";
+    case ShadowLightKind::sun_disk:
+      return "sun_disk";
   }
   return "none";
 }
@@ -135,7 +138,8 @@ void print_summary(std::ostream& out, const std::vector<RunRecord>& records) {
   out << "\nsummary\n";
   out << std::left << std::setw(26) << "case" << std::setw(30) << "algorithm" << std::setw(15)
       << "verdict" << std::right << std::setw(11) << "median ms" << std::setw(10) << "leaks"
-      << std::setw(10) << "false sh." << std::setw(11) << "ambiguous" << "\n";
+      << std::setw(10) << "false sh." << std::setw(11) << "ambiguous"
+      << "\n";
   for (const RunRecord& r : records) {
     out << std::left << std::setw(26) << r.case_name << std::setw(30)
         << (r.algorithm + ":" + r.variant + " [" + r.backend + "]") << std::setw(15)
@@ -152,7 +156,8 @@ void print_summary(std::ostream& out, const std::vector<RunRecord>& records) {
   }
   std::size_t counts[5] = {};
   for (const RunRecord& r : records) ++counts[int(r.verdict)];
-  out << "\n" << records.size() << " results: " << counts[int(Verdict::pass)] << " Pass, "
+  out << "\n"
+      << records.size() << " results: " << counts[int(Verdict::pass)] << " Pass, "
       << counts[int(Verdict::fail)] << " Fail, " << counts[int(Verdict::quality_warning)]
       << " QualityWarning, " << counts[int(Verdict::not_supported)] << " NotSupported, "
       << counts[int(Verdict::crash)] << " Crash\n";
@@ -162,9 +167,12 @@ void print_summary(std::ostream& out, const std::vector<RunRecord>& records) {
 
 std::string output_kind_name(OutputKind kind) {
   switch (kind) {
-    case OutputKind::hard_shadow: return "hard";
-    case OutputKind::soft_shadow: return "soft";
-    case OutputKind::light_lists: return "lights";
+    case OutputKind::hard_shadow:
+      return "hard";
+    case OutputKind::soft_shadow:
+      return "soft";
+    case OutputKind::light_lists:
+      return "lights";
   }
   return "hard";
 }
@@ -174,8 +182,9 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
   check_selection(options, registry);
   const std::vector<Case> cases = load_cases(options);  // all input is checked before any work
 
-  const std::uint32_t threads =
-      options.threads.value_or(0) ? *options.threads : std::uint32_t(tbb::info::default_concurrency());
+  const std::uint32_t threads = options.threads.value_or(0)
+                                    ? *options.threads
+                                    : std::uint32_t(tbb::info::default_concurrency());
   tbb::global_control thread_limit(tbb::global_control::max_allowed_parallelism, threads);
 
   const std::filesystem::path out_dir(options.out_dir);
@@ -260,10 +269,9 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
     // The oracle, only when something needs it.
     HardShadowTruth truth;
     if (any_hard) {
-      const bool use_exact =
-          options.oracle == OracleChoice::exact ||
-          (options.oracle == OracleChoice::automatic &&
-           c.triangles.size() <= exact_oracle_triangle_limit);
+      const bool use_exact = options.oracle == OracleChoice::exact ||
+                             (options.oracle == OracleChoice::automatic &&
+                              c.triangles.size() <= exact_oracle_triangle_limit);
       progress.show(step + (use_exact ? "exact oracle" : "Embree oracle"));
       const auto start = Clock::now();
       truth = use_exact ? exact_hard_shadow_oracle(hard_case, samples)
@@ -286,17 +294,17 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
       summary.oracle_image = write_oracle_images(out_dir, c.name, samples, truth);
     }
 
-    out << "case " << c.name << "  (" << summary.triangles << " triangles, " << summary.width
-        << "x" << summary.height << " samples: " << summary.regular << " regular, " << summary.sky
+    out << "case " << c.name << "  (" << summary.triangles << " triangles, " << summary.width << "x"
+        << summary.height << " samples: " << summary.regular << " regular, " << summary.sky
         << " sky, " << summary.back_facing << " back-facing; light " << summary.light;
     if (summary.ranged_lights) out << ", " << summary.ranged_lights << " ranged lights";
     out << ")\n";
     if (any_hard)
-      out << "  oracle:   " << summary.oracle_method << ", eps_rel " << summary.eps_rel
-          << " (tau " << summary.tau << "): " << summary.robust_lit << " robust-lit, "
-          << summary.robust_shadowed << " robust-shadowed, " << summary.ambiguous
-          << " ambiguous, " << std::fixed << std::setprecision(1) << summary.oracle_ms
-          << " ms\n" << std::defaultfloat;
+      out << "  oracle:   " << summary.oracle_method << ", eps_rel " << summary.eps_rel << " (tau "
+          << summary.tau << "): " << summary.robust_lit << " robust-lit, "
+          << summary.robust_shadowed << " robust-shadowed, " << summary.ambiguous << " ambiguous, "
+          << std::fixed << std::setprecision(1) << summary.oracle_ms << " ms\n"
+          << std::defaultfloat;
     for (const PlannedRun& p : planned)
       out << "  run:      " << p.algorithm->info().id << ":" << p.variant << " ["
           << p.algorithm->info().backend << "]\n";
@@ -324,8 +332,8 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
           } else if (result.shadowed != first.shadowed ||
                      result.visible_fraction != first.visible_fraction) {
             record.verdict = Verdict::fail;
-            record.reason = "nondeterministic: repeat " + std::to_string(r + 1) +
-                            " differs from the first run";
+            record.reason =
+                "nondeterministic: repeat " + std::to_string(r + 1) + " differs from the first run";
           }
         }
         record.median_ms = median(record.run_ms);
@@ -337,8 +345,8 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
             record.reason = comparison.reason;
           }
           record.hard = std::move(comparison);
-          record.images = write_algorithm_images(out_dir, c.name, record, samples,
-                                                 first.shadowed, truth);
+          record.images =
+              write_algorithm_images(out_dir, c.name, record, samples, first.shadowed, truth);
         }
       } catch (const std::exception& e) {
         record.verdict = Verdict::crash;
@@ -356,9 +364,8 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
   write_results_json(out_dir / "results.json", summaries, records, threads);
   write_junit_xml(out_dir / "junit.xml", records);
   print_summary(out, records);
-  out << "wrote " << (out_dir / "results.json").string() << ", "
-      << (out_dir / "junit.xml").string() << " and images under "
-      << (out_dir / "images").string() << "\n";
+  out << "wrote " << (out_dir / "results.json").string() << ", " << (out_dir / "junit.xml").string()
+      << " and images under " << (out_dir / "images").string() << "\n";
 
   const bool any_failure = std::any_of(records.begin(), records.end(), [](const RunRecord& r) {
     return r.verdict == Verdict::fail || r.verdict == Verdict::crash;

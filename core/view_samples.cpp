@@ -4,9 +4,9 @@
 #include <string>
 
 #include <embree3/rtcore.h>
-#include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <glm/geometric.hpp>
 
 #include "shadowcts/case.h"
 #include "shadowcts/embree_scene.h"
@@ -97,10 +97,10 @@ ViewSamples generate_view_samples(const Case& c) {
         // The position is interpolated from the receiver's own vertices (not o + t d), so it lies
         // on the receiver within float rounding of the barycentric combination.
         const double u = hit.hit.u, v = hit.hit.v;
-        const glm::dvec3 p = (1.0 - u - v) * glm::dvec3(t.v0) + u * glm::dvec3(t.v1) +
-                             v * glm::dvec3(t.v2);
-        glm::dvec3 n = glm::cross(glm::dvec3(t.v1) - glm::dvec3(t.v0),
-                                  glm::dvec3(t.v2) - glm::dvec3(t.v0));
+        const glm::dvec3 p =
+            (1.0 - u - v) * glm::dvec3(t.v0) + u * glm::dvec3(t.v1) + v * glm::dvec3(t.v2);
+        glm::dvec3 n =
+            glm::cross(glm::dvec3(t.v1) - glm::dvec3(t.v0), glm::dvec3(t.v2) - glm::dvec3(t.v0));
         const double len = glm::length(n);
         if (!(len > 0.0)) continue;  // Embree does not report zero-area hits; keep it sky if so
         n /= len;
@@ -119,16 +119,15 @@ void classify_samples(const Case& c, ViewSamples& samples, const std::string& so
   if (samples.width != c.camera.width || samples.height != c.camera.height)
     throw InputError(source, "resolution",
                      std::to_string(samples.width) + "x" + std::to_string(samples.height) +
-                         " differs from the case camera's " + std::to_string(c.camera.width) +
-                         "x" + std::to_string(c.camera.height));
+                         " differs from the case camera's " + std::to_string(c.camera.width) + "x" +
+                         std::to_string(c.camera.height));
   for (ViewSample& s : samples.samples) {
     if (s.sample_class == SampleClass::sky) continue;
     if (s.receiver >= c.triangles.size())
-      throw InputError(source,
-                       "pixel (" + std::to_string(s.pixel_x) + ", " + std::to_string(s.pixel_y) +
-                           ").id",
-                       "receiver id " + std::to_string(s.receiver) + " out of range (" +
-                           std::to_string(c.triangles.size()) + " triangles)");
+      throw InputError(
+          source, "pixel (" + std::to_string(s.pixel_x) + ", " + std::to_string(s.pixel_y) + ").id",
+          "receiver id " + std::to_string(s.receiver) + " out of range (" +
+              std::to_string(c.triangles.size()) + " triangles)");
     s.sample_class = classify(c, s.position, s.normal);
   }
 }

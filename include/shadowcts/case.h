@@ -26,8 +26,9 @@ enum class ShadowLightKind { point, directional, sun_disk };
 
 struct ShadowLight {
   ShadowLightKind kind = ShadowLightKind::point;
-  glm::vec3 position{0.0f};   // point light
-  glm::vec3 direction{0.0f};  // directional and sun disk: unit vector from the scene towards the light
+  glm::vec3 position{0.0f};  // point light
+  glm::vec3 direction{
+      0.0f};  // directional and sun disk: unit vector from the scene towards the light
   float angular_radius = 0.0f;  // sun disk, radians, in (0, pi/2)
 };
 

@@ -11,9 +11,9 @@
 namespace shadowcts {
 
 struct HardShadowComparison {
-  std::uint64_t compared = 0;   // regular samples
-  std::uint64_t robust = 0;     // robust at the run's eps_rel
-  std::uint64_t ambiguous = 0;  // ambiguous at the run's eps_rel
+  std::uint64_t compared = 0;       // regular samples
+  std::uint64_t robust = 0;         // robust at the run's eps_rel
+  std::uint64_t ambiguous = 0;      // ambiguous at the run's eps_rel
   std::uint64_t leaks = 0;          // robust samples answered lit where the truth is shadowed
   std::uint64_t false_shadows = 0;  // robust samples answered shadowed where the truth is lit
   // Ambiguous samples whose answer differs from the exact answer at the unmoved sample.

@@ -18,7 +18,7 @@ struct HardShadowTruth {
   std::string method;  // how it was obtained, e.g. "exact: CGAL Epick predicates, AABB tree"
   bool exact = false;  // false: fast oracle (float rays), band estimated
   double eps_rel = 0.0;
-  double tau = 0.0;  // eps_rel * case scale
+  double tau = 0.0;                    // eps_rel * case scale
   std::vector<std::uint8_t> shadowed;  // answer at the unmoved sample, 1 = shadowed
   std::vector<BandClass> band;         // class at eps_rel; not_compared for sky / back-facing
   // Per sample: the largest e in [band_min_exponent, band_max_exponent] such that the sample is

@@ -9,10 +9,10 @@ namespace shadowcts {
 
 struct LoadedScene {
   std::vector<Mesh> meshes;
-  std::vector<Triangle> triangles;          // world space; Triangle::mesh indexes `meshes`
-  std::vector<ShadowLight> shadow_lights;   // KHR_lights_punctual point (no range) / directional
-  std::vector<RangedLight> ranged_lights;   // KHR_lights_punctual point with range / spot
-  std::vector<std::string> warnings;        // problems that still left valid geometry
+  std::vector<Triangle> triangles;         // world space; Triangle::mesh indexes `meshes`
+  std::vector<ShadowLight> shadow_lights;  // KHR_lights_punctual point (no range) / directional
+  std::vector<RangedLight> ranged_lights;  // KHR_lights_punctual point with range / spot
+  std::vector<std::string> warnings;       // problems that still left valid geometry
 };
 
 // Dispatches on the extension. Throws InputError naming the file and element on malformed input.

@@ -8,11 +8,16 @@ enum class Verdict { pass, fail, quality_warning, not_supported, crash };
 
 constexpr std::string_view verdict_name(Verdict v) {
   switch (v) {
-    case Verdict::pass: return "Pass";
-    case Verdict::fail: return "Fail";
-    case Verdict::quality_warning: return "QualityWarning";
-    case Verdict::not_supported: return "NotSupported";
-    case Verdict::crash: return "Crash";
+    case Verdict::pass:
+      return "Pass";
+    case Verdict::fail:
+      return "Fail";
+    case Verdict::quality_warning:
+      return "QualityWarning";
+    case Verdict::not_supported:
+      return "NotSupported";
+    case Verdict::crash:
+      return "Crash";
   }
   return "Crash";
 }

@@ -21,7 +21,7 @@ inline constexpr std::uint32_t no_receiver = std::numeric_limits<std::uint32_t>:
 
 struct ViewSample {
   glm::vec3 position{0.0f};
-  glm::vec3 normal{0.0f};  // geometric, unit, facing the camera
+  glm::vec3 normal{0.0f};                // geometric, unit, facing the camera
   std::uint32_t receiver = no_receiver;  // triangle index into Case::triangles
   std::uint32_t pixel_x = 0, pixel_y = 0;
   SampleClass sample_class = SampleClass::sky;

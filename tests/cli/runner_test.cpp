@@ -155,7 +155,31 @@ TEST(Tool, GbufferRoundTripsThroughACaseManifest) {
   const fs::path dir = fresh_dir("gbuffer");
   ASSERT_EQ(run_tool("gbuffer --fixture ground_blockers.2k --out " + (dir / "g.exr").string(), dir),
             exit_pass);
-  EXPECT_TRUE(fs::exists(dir / "g.exr"));
+  ASSERT_TRUE(fs::exists(dir / "g.exr"));
+  // The same case once with Embree primary rays, once from the G-buffer just written.
+  std::ofstream(dir / "rays.json")
+      << R"({"name": "rays", "scene": {"generator": "ground_blockers", "triangles": 2000}})";
+  std::ofstream(dir / "from_gbuffer.json")
+      << R"({"name": "from_gbuffer", "scene": {"generator": "ground_blockers", "triangles": 2000},
+            "gbuffer": "g.exr"})";
+  ASSERT_EQ(run_tool("run --repeat 1 --algorithm embree --case " + (dir / "rays.json").string() +
+                         " --case " + (dir / "from_gbuffer.json").string() + " --out " +
+                         (dir / "out").string(),
+                     dir),
+            exit_pass);
+  const auto results = nlohmann::json::parse(read_file(dir / "out" / "results.json"));
+  const auto& rays = results["cases"][0];
+  const auto& gbuffer = results["cases"][1];
+  EXPECT_EQ(rays["samples"]["from"], "embree primary rays");
+  EXPECT_NE(gbuffer["samples"]["from"].get<std::string>().find("g.exr"), std::string::npos);
+  for (const char* key : {"regular", "sky", "back_facing"})
+    EXPECT_EQ(rays["samples"][key], gbuffer["samples"][key]) << key;
+  EXPECT_EQ(rays["oracle"]["robust_shadowed"], gbuffer["oracle"]["robust_shadowed"]);
+  EXPECT_EQ(rays["oracle"]["ambiguous"], gbuffer["oracle"]["ambiguous"]);
+  bool says_why = false;
+  for (const auto& why : gbuffer["left_out"])
+    says_why |= why.get<std::string>().find("G-buffer") != std::string::npos;
+  EXPECT_TRUE(says_why);
 }
 
 }  // namespace

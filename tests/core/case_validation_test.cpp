@@ -2,8 +2,8 @@
 #include <limits>
 #include <string>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include "shadowcts/case.h"
 #include "shadowcts/errors.h"
@@ -35,7 +35,9 @@ void expect_error(const Case& c, const std::string& element) {
   }
 }
 
-TEST(CaseValidation, AcceptsAValidCase) { EXPECT_NO_THROW(validate(valid_case())); }
+TEST(CaseValidation, AcceptsAValidCase) {
+  EXPECT_NO_THROW(validate(valid_case()));
+}
 
 TEST(CaseValidation, ZeroAreaTrianglesAreValid) {
   Case c = valid_case();

@@ -3,16 +3,17 @@
 #include <cmath>
 #include <cstring>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
+#include <glm/geometric.hpp>
 
 #include "shadowcts/case.h"
 
 namespace shadowcts {
 namespace {
 
-// A ground quad (y = 0, half-width 20) seen from above, a small quad standing on it facing +z, a point light.
+// A ground quad (y = 0, half-width 20) seen from above, a small quad standing on it facing +z, a
+// point light.
 Case ground_and_wall(ShadowLight light) {
   Case c;
   c.name = "test.ground_wall";

@@ -16,11 +16,11 @@ struct TruthBuilder {
 
 TEST(HardShadowComparison, CountsLeaksFalseShadowsAndAmbiguousSeparately) {
   TruthBuilder b;
-  b.add(true, BandClass::robust_shadowed, -10);   // 0: answered lit -> leak
-  b.add(false, BandClass::robust_lit, -10);       // 1: answered shadowed -> false shadow
-  b.add(true, BandClass::robust_shadowed, -10);   // 2: right
-  b.add(false, BandClass::ambiguous, -20);        // 3: ambiguous, answered differently
-  b.add(false, BandClass::not_compared, -10);     // 4: sky: ignored whatever the answer
+  b.add(true, BandClass::robust_shadowed, -10);  // 0: answered lit -> leak
+  b.add(false, BandClass::robust_lit, -10);      // 1: answered shadowed -> false shadow
+  b.add(true, BandClass::robust_shadowed, -10);  // 2: right
+  b.add(false, BandClass::ambiguous, -20);       // 3: ambiguous, answered differently
+  b.add(false, BandClass::not_compared, -10);    // 4: sky: ignored whatever the answer
   const std::vector<std::uint8_t> answer = {0, 1, 1, 1, 1};
   const HardShadowComparison r = compare_hard_shadows(answer, b.truth);
   EXPECT_EQ(r.compared, 4u);
@@ -36,7 +36,7 @@ TEST(HardShadowComparison, MismatchCurveFollowsRobustExponents) {
   TruthBuilder b;
   b.add(true, BandClass::ambiguous, -20);  // wrong; robust only up to 2^-20
   b.add(false, BandClass::ambiguous, ambiguous_at_every_exponent);  // wrong; never robust
-  b.add(true, BandClass::robust_shadowed, -12);  // right
+  b.add(true, BandClass::robust_shadowed, -12);                     // right
   const HardShadowComparison r = compare_hard_shadows({0, 1, 1}, b.truth);
   ASSERT_EQ(r.mismatch_curve.size(), std::size_t(band_max_exponent - band_min_exponent + 1));
   for (const auto& [e, mismatches] : r.mismatch_curve) EXPECT_EQ(mismatches, e <= -20 ? 1u : 0u);
