@@ -55,7 +55,7 @@ std::size_t ViewSamples::count(SampleClass c) const {
 ViewSamples generate_view_samples(const Case& c) {
   const Camera& cam = c.camera;
   const CameraFrame frame = camera_frame(cam);
-  EmbreeScene scene(c, EmbreeScene::Contents::all_triangles);
+  const EmbreeScene scene(c);
 
   ViewSamples out;
   out.width = cam.width;
@@ -92,7 +92,7 @@ ViewSamples generate_view_samples(const Case& c) {
         s.pixel_y = y;
         if (hit.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;  // sky
 
-        const std::uint32_t tri_index = hit.hit.primID;
+        const std::uint32_t tri_index = scene.triangle_of_primitive(hit.hit.primID);
         const Triangle& t = c.triangles[tri_index];
         // The position is interpolated from the receiver's own vertices (not o + t d), so it lies
         // on the receiver within float rounding of the barycentric combination.

@@ -1,18 +1,15 @@
 #include "oracles/embree_shadow_rays.h"
 
 #include <limits>
-#include <stdexcept>
-#include <string>
 #include <vector>
 
 #include <embree3/rtcore.h>
 
 #include "oracles/hard_shadow_inputs.h"
+#include "shadowcts/embree_scene.h"
 
 namespace shadowcts {
 namespace {
-
-constexpr unsigned no_primitive = std::numeric_limits<unsigned>::max();
 
 // Passed through rtcOccluded1 to the filter: Embree hands the context pointer back unchanged, so
 // the filter can read the sample's receiver.
@@ -30,78 +27,26 @@ void ignore_receiver(const RTCFilterFunctionNArguments* args) {
   }
 }
 
-void throw_on_error(RTCDevice device, const char* what) {
-  const RTCError error = rtcGetDeviceError(device);
-  if (error != RTC_ERROR_NONE)
-    throw std::runtime_error(std::string("Embree: ") + what + " failed (error " +
-                             std::to_string(int(error)) + ")");
+std::vector<std::uint32_t> shadow_casters(const Case& c) {
+  // Non-casters and zero-area triangles never shadow: they are left out of the scene instead
+  // of being filtered ray by ray.
+  std::vector<std::uint32_t> casters;
+  for (std::size_t i = 0; i < c.triangles.size(); ++i)
+    if (casts_shadow(c, i)) casters.push_back(std::uint32_t(i));
+  return casters;
 }
 
 }  // namespace
 
 struct EmbreeShadowRays::Scene {
-  RTCDevice device = nullptr;
-  RTCScene scene = nullptr;
   HardShadowLight light;
-  std::vector<unsigned> primitive_of_triangle;  // no_primitive for non-casters
+  EmbreeScene casters;
 
-  ~Scene() {
-    if (scene) rtcReleaseScene(scene);
-    if (device) rtcReleaseDevice(device);
-  }
+  explicit Scene(const Case& c)
+      : light(hard_shadow_light(c)), casters(c, shadow_casters(c), ignore_receiver) {}
 };
 
-EmbreeShadowRays::EmbreeShadowRays(const Case& c) : scene_(std::make_unique<Scene>()) {
-  Scene& s = *scene_;
-  s.light = hard_shadow_light(c);
-  // Non-casters and zero-area triangles never shadow: they are left out of the scene instead
-  // of being filtered ray by ray.
-  std::vector<std::uint32_t> casters;
-  s.primitive_of_triangle.assign(c.triangles.size(), no_primitive);
-  for (std::size_t i = 0; i < c.triangles.size(); ++i) {
-    if (casts_shadow(c, i)) {
-      s.primitive_of_triangle[i] = unsigned(casters.size());
-      casters.push_back(std::uint32_t(i));
-    }
-  }
-
-  s.device = rtcNewDevice("verbose=0");
-  if (s.device == nullptr) throw std::runtime_error("Embree: cannot create a device");
-  s.scene = rtcNewScene(s.device);
-  rtcSetSceneFlags(s.scene, RTC_SCENE_FLAG_ROBUST);
-  rtcSetSceneBuildQuality(s.scene, RTC_BUILD_QUALITY_HIGH);
-  const std::size_t n = casters.size();
-  if (n == 0) {  // nothing casts a shadow: an empty scene answers every ray with "lit"
-    rtcCommitScene(s.scene);
-    throw_on_error(s.device, "building the scene");
-    return;
-  }
-  RTCGeometry geometry = rtcNewGeometry(s.device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  // Four floats per vertex: Embree reads vertices with 16-byte loads.
-  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 4 * sizeof(float), 3 * n));
-  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), n));
-  throw_on_error(s.device, "allocating geometry buffers");
-  for (std::size_t i = 0; i < n; ++i) {
-    const Triangle& t = c.triangles[casters[i]];
-    const glm::vec3* corners[3] = {&t.v0, &t.v1, &t.v2};
-    for (std::size_t k = 0; k < 3; ++k) {
-      float* vertex = vertices + 4 * (3 * i + k);
-      vertex[0] = corners[k]->x;
-      vertex[1] = corners[k]->y;
-      vertex[2] = corners[k]->z;
-      vertex[3] = 0.0f;
-      indices[3 * i + k] = unsigned(3 * i + k);
-    }
-  }
-  rtcSetGeometryOccludedFilterFunction(geometry, ignore_receiver);
-  rtcCommitGeometry(geometry);
-  rtcAttachGeometryByID(s.scene, geometry, 0);
-  rtcReleaseGeometry(geometry);
-  rtcCommitScene(s.scene);
-  throw_on_error(s.device, "building the scene");
-}
+EmbreeShadowRays::EmbreeShadowRays(const Case& c) : scene_(std::make_unique<Scene>(c)) {}
 
 EmbreeShadowRays::~EmbreeShadowRays() = default;
 
@@ -109,8 +54,7 @@ bool EmbreeShadowRays::occluded(const glm::vec3& origin, std::uint32_t receiver)
   const Scene& s = *scene_;
   ReceiverContext context;
   rtcInitIntersectContext(&context.context);
-  context.receiver_primitive =
-      receiver < s.primitive_of_triangle.size() ? s.primitive_of_triangle[receiver] : no_primitive;
+  context.receiver_primitive = s.casters.primitive_of_triangle(receiver);
 
   RTCRay ray{};
   ray.org_x = origin.x;
@@ -131,7 +75,7 @@ bool EmbreeShadowRays::occluded(const glm::vec3& origin, std::uint32_t receiver)
   }
   ray.mask = 0xffffffffu;
   ray.flags = 0;
-  rtcOccluded1(s.scene, &context.context, &ray);
+  rtcOccluded1(s.casters.handle(), &context.context, &ray);
   return ray.tfar == -std::numeric_limits<float>::infinity();
 }
 
