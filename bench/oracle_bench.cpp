@@ -11,6 +11,9 @@
 
 #include <glm/geometric.hpp>
 
+#include <tbb/parallel_for.h>
+
+#include "oracles/embree_shadow_rays.h"
 #include "shadowcts/case.h"
 #include "shadowcts/hard_shadow_oracle.h"
 #include "shadowcts/view_samples.h"
@@ -137,6 +140,23 @@ void BM_EmbreeHardShadowOracle(benchmark::State& state) {
   report(state, b, truth);
 }
 
+// One Embree occlusion ray per sample, no band: the plain answer a user's renderer would trace.
+// The oracles above do much more (the band's moves), so this is the floor they are measured
+// against, not a peer.
+void BM_EmbreeSingleRayPerSample(benchmark::State& state) {
+  const BenchCase& b = bench_case(std::size_t(state.range(0)));
+  const EmbreeShadowRays rays(b.c);
+  std::vector<std::uint8_t> shadowed(b.samples.samples.size());
+  for (auto _ : state) {
+    tbb::parallel_for(std::size_t(0), shadowed.size(), [&](std::size_t i) {
+      const ViewSample& s = b.samples.samples[i];
+      shadowed[i] = rays.occluded(s.position, s.receiver);
+    });
+    benchmark::DoNotOptimize(shadowed.data());
+  }
+  state.counters["triangles"] = double(b.c.triangles.size());
+}
+
 BENCHMARK(BM_ExactHardShadowOracle)
     ->Arg(100'000)
     ->Arg(1'000'000)
@@ -144,6 +164,13 @@ BENCHMARK(BM_ExactHardShadowOracle)
     ->UseRealTime()
     ->Iterations(1);
 BENCHMARK(BM_EmbreeHardShadowOracle)
+    ->Arg(100'000)
+    ->Arg(1'000'000)
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime()
+    ->Iterations(1);
+
+BENCHMARK(BM_EmbreeSingleRayPerSample)
     ->Arg(100'000)
     ->Arg(1'000'000)
     ->Unit(benchmark::kSecond)
