@@ -33,6 +33,26 @@ struct AlgorithmInfo {
   Capabilities capabilities;
 };
 
+struct Aabb {
+  glm::vec3 min{0.0f}, max{0.0f};
+};
+
+// Light assignment output: lists of ranged lights per tile or cluster, and which list each sample
+// uses. Completeness is checked per sample against the exact oracle; soundness per list against
+// the volume the list was culled with.
+struct LightLists {
+  static constexpr std::uint32_t no_list = 0xFFFFFFFFu;
+  // List k holds lights[offsets[k] .. offsets[k + 1]) (indices into Case::ranged_lights);
+  // offsets.size() == number of lists + 1.
+  std::vector<std::uint32_t> offsets{0};
+  std::vector<std::uint32_t> lights;
+  // Per list: the axis-aligned box its lights were culled against (it must contain the list's
+  // samples; a listed light that cannot touch it is unsound).
+  std::vector<Aabb> bounds;
+  // Per view sample: its list, or no_list for samples that are not regular.
+  std::vector<std::uint32_t> list_of_sample;
+};
+
 // Work counters, in the order the algorithm reports them (deterministic).
 using Counters = std::vector<std::pair<std::string, std::uint64_t>>;
 
@@ -41,6 +61,8 @@ struct AlgorithmOutput {
   std::vector<std::uint8_t> shadowed;
   // soft_shadow: visible fraction of the sun disk per view sample, in [0, 1].
   std::vector<float> visible_fraction;
+  // light_lists.
+  LightLists light_lists;
   Counters counters;
 };
 
