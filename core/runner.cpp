@@ -251,7 +251,17 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
           records.push_back(std::move(record));
           continue;
         }
-        any_hard |= meta.capabilities.output == OutputKind::hard_shadow;
+        if (meta.capabilities.output != OutputKind::hard_shadow) {
+          // Never a verdict without a comparison.
+          record.verdict = Verdict::not_supported;
+          record.reason = "the runner has no oracle comparison for " +
+                          output_kind_name(meta.capabilities.output) + " outputs yet";
+          summary.left_out.push_back(meta.id + ":" + variant + " [" + meta.backend +
+                                     "]: " + record.reason);
+          records.push_back(std::move(record));
+          continue;
+        }
+        any_hard = true;
         planned.push_back({a.get(), variant});
       }
     }
