@@ -21,16 +21,7 @@ ordered_json case_json(const CaseSummary& c) {
                   {"regular", c.regular},
                   {"sky", c.sky},
                   {"back_facing", c.back_facing}};
-  if (!c.oracle_method.empty())
-    j["oracle"] = {{"method", c.oracle_method},
-                   {"exact", c.oracle_exact},
-                   {"eps_rel", c.eps_rel},
-                   {"tau", c.tau},
-                   {"time_ms", c.oracle_ms},
-                   {"robust_lit", c.robust_lit},
-                   {"robust_shadowed", c.robust_shadowed},
-                   {"ambiguous", c.ambiguous},
-                   {"mask_image", c.oracle_image}};
+  j["oracles"] = c.oracles;
   j["left_out"] = c.left_out;
   return j;
 }
@@ -50,21 +41,7 @@ ordered_json record_json(const RunRecord& r) {
   ordered_json counters = ordered_json::object();
   for (const auto& [name, value] : r.counters) counters[name] = value;
   j["counters"] = counters;
-  if (r.hard) {
-    const HardShadowComparison& h = *r.hard;
-    ordered_json curve = ordered_json::array();
-    for (const auto& [exponent, mismatches] : h.mismatch_curve)
-      curve.push_back({{"eps_rel_log2", exponent}, {"robust_mismatches", mismatches}});
-    j["error"] = {{"compared", h.compared},
-                  {"robust", h.robust},
-                  {"ambiguous", h.ambiguous},
-                  {"leaks", h.leaks},
-                  {"false_shadows", h.false_shadows},
-                  {"ambiguous_disagreements", h.ambiguous_disagreements},
-                  {"robust_mismatch_rate",
-                   h.robust ? double(h.leaks + h.false_shadows) / double(h.robust) : 0.0},
-                  {"mismatch_curve", curve}};
-  }
+  j["error"] = r.error;
   j["images"] = r.images;
   return j;
 }

@@ -1,12 +1,12 @@
 #pragma once
 // One record of a run: a case x algorithm x variant x backend, with what it measured.
 #include <cstdint>
-#include <optional>
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "shadowcts/algorithm.h"
-#include "shadowcts/hard_shadow_comparison.h"
 #include "shadowcts/verdict.h"
 
 namespace shadowcts {
@@ -18,12 +18,9 @@ struct CaseSummary {
   std::uint32_t width = 0, height = 0;
   std::uint64_t regular = 0, sky = 0, back_facing = 0;
   std::string samples_from;  // "embree primary rays" or the G-buffer path
-  std::string oracle_method;
-  bool oracle_exact = false;
-  double eps_rel = 0, tau = 0, oracle_ms = 0;
-  std::uint64_t robust_lit = 0, robust_shadowed = 0, ambiguous = 0;
+  // Per output kind compared ("hard", "soft", "lights"): the oracle's method, time, figures.
+  nlohmann::ordered_json oracles = nlohmann::ordered_json::object();
   std::vector<std::string> left_out;  // "what: why"
-  std::string oracle_image;           // relative to the output folder; empty if none
 };
 
 struct RunRecord {
@@ -36,7 +33,8 @@ struct RunRecord {
   std::vector<double> run_ms;  // every timed repeat
   double median_ms = 0;
   Counters counters;
-  std::optional<HardShadowComparison> hard;
+  nlohmann::ordered_json error;     // the comparison's figures (results.json "error")
+  std::string headline;             // the key figures in a few words, for the terminal
   std::vector<std::string> images;  // relative to the output folder
 };
 

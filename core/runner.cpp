@@ -5,13 +5,17 @@
 #include <cstdio>
 #include <filesystem>
 #include <iomanip>
+#include <map>
+#include <memory>
 #include <ostream>
+#include <set>
 #include <sstream>
 
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
-#include "hard_shadow_images.h"
+#include "case_evaluation.h"
+#include "hard_shadow_evaluation.h"
 #include "junit_xml.h"
 #include "results_json.h"
 #include "run_record.h"
@@ -19,7 +23,6 @@
 #include "shadowcts/errors.h"
 #include "shadowcts/fixtures.h"
 #include "shadowcts/gbuffer_exr.h"
-#include "shadowcts/hard_shadow_oracle.h"
 #include "shadowcts/registry.h"
 
 namespace shadowcts {
@@ -49,10 +52,6 @@ std::string light_name(const Case& c) {
   }
   return "none";
 }
-
-// Above this many caster triangles the automatic choice is the fast oracle: the exact oracle's
-// AABB tree and exact predicates then cost more memory and time than a CI run should spend.
-constexpr std::uint64_t exact_oracle_triangle_limit = 4'000'000;
 
 std::vector<Case> load_cases(const RunOptions& options) {
   std::vector<Case> cases;
@@ -128,18 +127,46 @@ class Progress {
   std::ostream& err_;
 };
 
-std::string record_name(OutputKind output, const AlgorithmInfo& meta, const std::string& variant,
-                        const std::string& case_name) {
-  return output_kind_name(output) + "." + meta.id + "." + variant + "." + meta.backend + "." +
-         case_name;
+RunRecord new_record(const Case& c, const AlgorithmInfo& meta, const std::string& variant) {
+  RunRecord record;
+  record.case_name = c.name;
+  record.algorithm = meta.id;
+  record.variant = variant;
+  record.backend = meta.backend;
+  record.output = meta.capabilities.output;
+  record.test_name = output_kind_name(record.output) + "." + meta.id + "." + variant + "." +
+                     meta.backend + "." + c.name;
+  return record;
+}
+
+bool same_results(const AlgorithmOutput& a, const AlgorithmOutput& b) {
+  const LightLists &x = a.light_lists, &y = b.light_lists;
+  return a.shadowed == b.shadowed && a.visible_fraction == b.visible_fraction &&
+         x.offsets == y.offsets && x.lights == y.lights && x.list_of_sample == y.list_of_sample;
+}
+
+bool can_evaluate(OutputKind kind) {
+  return kind == OutputKind::hard_shadow;
+}
+
+std::unique_ptr<CaseEvaluation> evaluate(OutputKind kind, const Case& c, const ViewSamples& samples,
+                                         OracleChoice choice, const std::filesystem::path& out_dir,
+                                         std::vector<std::string>& left_out) {
+  switch (kind) {
+    case OutputKind::hard_shadow:
+      return evaluate_hard_shadows(c, samples, choice, out_dir, left_out);
+    case OutputKind::soft_shadow:
+    case OutputKind::light_lists:
+      break;
+  }
+  throw std::logic_error("no evaluation for " + output_kind_name(kind) + " outputs");
 }
 
 void print_summary(std::ostream& out, const std::vector<RunRecord>& records) {
   out << "\nsummary\n";
   out << std::left << std::setw(26) << "case" << std::setw(30) << "algorithm" << std::setw(15)
-      << "verdict" << std::right << std::setw(11) << "median ms" << std::setw(10) << "leaks"
-      << std::setw(10) << "false sh." << std::setw(11) << "ambiguous"
-      << "\n";
+      << "verdict" << std::right << std::setw(11) << "median ms"
+      << "   figures\n";
   for (const RunRecord& r : records) {
     out << std::left << std::setw(26) << r.case_name << std::setw(30)
         << (r.algorithm + ":" + r.variant + " [" + r.backend + "]") << std::setw(15)
@@ -148,11 +175,8 @@ void print_summary(std::ostream& out, const std::vector<RunRecord>& records) {
       out << "\n";
       continue;
     }
-    out << std::setw(11) << std::fixed << std::setprecision(2) << r.median_ms;
-    if (r.hard)
-      out << std::setw(10) << r.hard->leaks << std::setw(10) << r.hard->false_shadows
-          << std::setw(11) << r.hard->ambiguous;
-    out << "\n";
+    out << std::setw(11) << std::fixed << std::setprecision(2) << r.median_ms << "   " << r.headline
+        << "\n";
   }
   std::size_t counts[5] = {};
   for (const RunRecord& r : records) ++counts[int(r.verdict)];
@@ -229,39 +253,28 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
                                  " back-facing samples: they have no shadow to compare");
 
     // Plan: which algorithms run, which are left out and why.
-    std::vector<PlannedRun> planned;
     const Case hard_case = hard_shadow_view(c);
-    bool any_hard = false;
+    std::vector<PlannedRun> planned;
+    std::set<OutputKind> kinds;
     for (const auto& a : registry.algorithms()) {
       const AlgorithmInfo& meta = a->info();
       for (const std::string& variant : meta.variants) {
         if (!selected(options, meta, variant)) continue;
-        const Case& view = meta.capabilities.output == OutputKind::hard_shadow ? hard_case : c;
-        RunRecord record;
-        record.case_name = c.name;
-        record.algorithm = meta.id;
-        record.variant = variant;
-        record.backend = meta.backend;
-        record.output = meta.capabilities.output;
-        record.test_name = record_name(meta.capabilities.output, meta, variant, c.name);
-        if (auto why = a->unsupported_reason(view, samples, variant)) {
+        const OutputKind kind = meta.capabilities.output;
+        std::optional<std::string> why = a->unsupported_reason(
+            kind == OutputKind::hard_shadow ? hard_case : c, samples, variant);
+        if (!why && !can_evaluate(kind))
+          why = "the runner has no oracle comparison for " + output_kind_name(kind) +
+                " outputs yet";  // never a verdict without a comparison
+        if (why) {
+          RunRecord record = new_record(c, meta, variant);
           record.verdict = Verdict::not_supported;
           record.reason = *why;
           summary.left_out.push_back(meta.id + ":" + variant + " [" + meta.backend + "]: " + *why);
           records.push_back(std::move(record));
           continue;
         }
-        if (meta.capabilities.output != OutputKind::hard_shadow) {
-          // Never a verdict without a comparison.
-          record.verdict = Verdict::not_supported;
-          record.reason = "the runner has no oracle comparison for " +
-                          output_kind_name(meta.capabilities.output) + " outputs yet";
-          summary.left_out.push_back(meta.id + ":" + variant + " [" + meta.backend +
-                                     "]: " + record.reason);
-          records.push_back(std::move(record));
-          continue;
-        }
-        any_hard = true;
+        kinds.insert(kind);
         planned.push_back({a.get(), variant});
       }
     }
@@ -272,36 +285,17 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
     if (!c.light) summary.left_out.push_back("hard-shadow oracle: the case has no shadow light");
     if (c.ranged_lights.empty())
       summary.left_out.push_back("light-assignment oracle: the case has no ranged lights");
-    else
-      summary.left_out.push_back(
-          "light-assignment comparison: no registered algorithm assigns ranged lights yet");
 
-    // The oracle, only when something needs it.
-    HardShadowTruth truth;
-    if (any_hard) {
-      const bool use_exact = options.oracle == OracleChoice::exact ||
-                             (options.oracle == OracleChoice::automatic &&
-                              c.triangles.size() <= exact_oracle_triangle_limit);
-      progress.show(step + (use_exact ? "exact oracle" : "Embree oracle"));
-      const auto start = Clock::now();
-      truth = use_exact ? exact_hard_shadow_oracle(hard_case, samples)
-                        : embree_hard_shadow_oracle(hard_case, samples);
-      summary.oracle_ms = elapsed_ms(start);
-      summary.oracle_method = truth.method;
-      summary.oracle_exact = truth.exact;
-      summary.eps_rel = truth.eps_rel;
-      summary.tau = truth.tau;
-      if (!use_exact)
-        summary.left_out.push_back("exact oracle: " + std::to_string(c.triangles.size()) +
-                                   " triangles exceed its limit of " +
-                                   std::to_string(exact_oracle_triangle_limit) +
-                                   " (or --oracle embree); the fast oracle's band is estimated");
-      for (BandClass b : truth.band) {
-        summary.robust_lit += b == BandClass::robust_lit;
-        summary.robust_shadowed += b == BandClass::robust_shadowed;
-        summary.ambiguous += b == BandClass::ambiguous;
-      }
-      summary.oracle_image = write_oracle_images(out_dir, c.name, samples, truth);
+    // Oracles, only for the output kinds that something planned needs.
+    std::map<OutputKind, std::unique_ptr<CaseEvaluation>> evaluations;
+    for (OutputKind kind : kinds) {
+      progress.show(step + output_kind_name(kind) + " oracle");
+      evaluations[kind] = evaluate(kind, kind == OutputKind::hard_shadow ? hard_case : c, samples,
+                                   options.oracle, out_dir, summary.left_out);
+      const OracleSummary& o = evaluations[kind]->oracle();
+      summary.oracles[output_kind_name(kind)] =
+          nlohmann::ordered_json{{"method", o.method}, {"exact", o.exact}, {"time_ms", o.time_ms}};
+      summary.oracles[output_kind_name(kind)].update(o.details);
     }
 
     out << "case " << c.name << "  (" << summary.triangles << " triangles, " << summary.width << "x"
@@ -309,11 +303,9 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
         << " sky, " << summary.back_facing << " back-facing; light " << summary.light;
     if (summary.ranged_lights) out << ", " << summary.ranged_lights << " ranged lights";
     out << ")\n";
-    if (any_hard)
-      out << "  oracle:   " << summary.oracle_method << ", eps_rel " << summary.eps_rel << " (tau "
-          << summary.tau << "): " << summary.robust_lit << " robust-lit, "
-          << summary.robust_shadowed << " robust-shadowed, " << summary.ambiguous << " ambiguous, "
-          << std::fixed << std::setprecision(1) << summary.oracle_ms << " ms\n"
+    for (const auto& [kind, evaluation] : evaluations)
+      out << "  oracle:   [" << output_kind_name(kind) << "] " << evaluation->oracle().plan_line
+          << ", " << std::fixed << std::setprecision(1) << evaluation->oracle().time_ms << " ms\n"
           << std::defaultfloat;
     for (const PlannedRun& p : planned)
       out << "  run:      " << p.algorithm->info().id << ":" << p.variant << " ["
@@ -322,15 +314,9 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
 
     for (const PlannedRun& p : planned) {
       const AlgorithmInfo& meta = p.algorithm->info();
-      RunRecord record;
-      record.case_name = c.name;
-      record.algorithm = meta.id;
-      record.variant = p.variant;
-      record.backend = meta.backend;
-      record.output = meta.capabilities.output;
-      record.test_name = record_name(meta.capabilities.output, meta, p.variant, c.name);
+      RunRecord record = new_record(c, meta, p.variant);
       progress.show(step + meta.id + ":" + p.variant + " [" + meta.backend + "]");
-      const Case& view = meta.capabilities.output == OutputKind::hard_shadow ? hard_case : c;
+      const Case& view = record.output == OutputKind::hard_shadow ? hard_case : c;
       try {
         AlgorithmOutput first;
         for (std::uint32_t r = 0; r < c.parameters.repeats; ++r) {
@@ -339,8 +325,7 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
           record.run_ms.push_back(elapsed_ms(start));
           if (r == 0) {
             first = std::move(result);
-          } else if (result.shadowed != first.shadowed ||
-                     result.visible_fraction != first.visible_fraction) {
+          } else if (!same_results(result, first)) {
             record.verdict = Verdict::fail;
             record.reason =
                 "nondeterministic: repeat " + std::to_string(r + 1) + " differs from the first run";
@@ -348,16 +333,7 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
         }
         record.median_ms = median(record.run_ms);
         record.counters = first.counters;
-        if (record.output == OutputKind::hard_shadow) {
-          HardShadowComparison comparison = compare_hard_shadows(first.shadowed, truth);
-          if (record.verdict != Verdict::fail) {
-            record.verdict = comparison.verdict;
-            record.reason = comparison.reason;
-          }
-          record.hard = std::move(comparison);
-          record.images =
-              write_algorithm_images(out_dir, c.name, record, samples, first.shadowed, truth);
-        }
+        evaluations.at(record.output)->judge(first, record);
       } catch (const std::exception& e) {
         record.verdict = Verdict::crash;
         record.reason = std::string("exception: ") + e.what();

@@ -1,0 +1,33 @@
+#pragma once
+// Per case and output kind: the oracle's truth, computed once, and the judgement of every run
+// against it. One implementation per output kind (hard shadows, soft shadows, light lists).
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "run_record.h"
+#include "shadowcts/algorithm.h"
+
+namespace shadowcts {
+
+struct OracleSummary {
+  std::string method;  // how the truth was obtained
+  bool exact = false;  // false: sampled or estimated (the method says how)
+  double time_ms = 0;
+  std::string plan_line;           // what the plan prints after "oracle:"
+  nlohmann::ordered_json details;  // kind-specific figures for results.json
+};
+
+class CaseEvaluation {
+ public:
+  virtual ~CaseEvaluation() = default;
+  const OracleSummary& oracle() const { return oracle_; }
+  // Fills record.error, record.headline and record.images, and sets record.verdict and
+  // record.reason unless the record already failed (e.g. nondeterministic repeats).
+  virtual void judge(const AlgorithmOutput& output, RunRecord& record) const = 0;
+
+ protected:
+  OracleSummary oracle_;
+};
+
+}  // namespace shadowcts

@@ -1,0 +1,101 @@
+#include "hard_shadow_evaluation.h"
+
+#include <chrono>
+#include <sstream>
+
+#include "hard_shadow_images.h"
+#include "shadowcts/hard_shadow_comparison.h"
+#include "shadowcts/hard_shadow_oracle.h"
+
+namespace shadowcts {
+namespace {
+
+// Above this many triangles the automatic choice is the fast oracle: the exact oracle's
+// candidate structure and exact predicates then cost more memory and time than a CI run should
+// spend.
+constexpr std::uint64_t exact_oracle_triangle_limit = 4'000'000;
+
+class HardShadowEvaluation : public CaseEvaluation {
+ public:
+  HardShadowEvaluation(const Case& c, const ViewSamples& samples, bool exact,
+                       const std::filesystem::path& out_dir)
+      : case_name_(c.name), samples_(samples), out_dir_(out_dir) {
+    const auto start = std::chrono::steady_clock::now();
+    truth_ = exact ? exact_hard_shadow_oracle(c, samples) : embree_hard_shadow_oracle(c, samples);
+    oracle_.time_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    oracle_.method = truth_.method;
+    oracle_.exact = truth_.exact;
+    std::uint64_t robust_lit = 0, robust_shadowed = 0, ambiguous = 0;
+    for (BandClass b : truth_.band) {
+      robust_lit += b == BandClass::robust_lit;
+      robust_shadowed += b == BandClass::robust_shadowed;
+      ambiguous += b == BandClass::ambiguous;
+    }
+    std::ostringstream line;
+    line << truth_.method << ", eps_rel " << truth_.eps_rel << " (tau " << truth_.tau
+         << "): " << robust_lit << " robust-lit, " << robust_shadowed << " robust-shadowed, "
+         << ambiguous << " ambiguous";
+    oracle_.plan_line = line.str();
+    oracle_.details = {{"eps_rel", truth_.eps_rel},
+                       {"tau", truth_.tau},
+                       {"robust_lit", robust_lit},
+                       {"robust_shadowed", robust_shadowed},
+                       {"ambiguous", ambiguous},
+                       {"mask_image", write_oracle_images(out_dir, c.name, samples, truth_)}};
+  }
+
+  void judge(const AlgorithmOutput& output, RunRecord& record) const override {
+    const HardShadowComparison h = compare_hard_shadows(output.shadowed, truth_);
+    if (record.verdict != Verdict::fail) {
+      record.verdict = h.verdict;
+      record.reason = h.reason;
+    }
+    nlohmann::ordered_json curve = nlohmann::ordered_json::array();
+    for (const auto& [exponent, mismatches] : h.mismatch_curve)
+      curve.push_back({{"eps_rel_log2", exponent}, {"robust_mismatches", mismatches}});
+    record.error = {{"compared", h.compared},
+                    {"robust", h.robust},
+                    {"ambiguous", h.ambiguous},
+                    {"leaks", h.leaks},
+                    {"false_shadows", h.false_shadows},
+                    {"ambiguous_disagreements", h.ambiguous_disagreements},
+                    {"robust_mismatch_rate",
+                     h.robust ? double(h.leaks + h.false_shadows) / double(h.robust) : 0.0},
+                    {"mismatch_curve", curve}};
+    record.headline = "leaks " + std::to_string(h.leaks) + ", false shadows " +
+                      std::to_string(h.false_shadows) + ", ambiguous " +
+                      std::to_string(h.ambiguous_disagreements) + "/" +
+                      std::to_string(h.ambiguous) + " differ";
+    record.images =
+        write_algorithm_images(out_dir_, case_name_, record, samples_, output.shadowed, truth_);
+  }
+
+ private:
+  std::string case_name_;
+  const ViewSamples& samples_;
+  std::filesystem::path out_dir_;
+  HardShadowTruth truth_;
+};
+
+}  // namespace
+
+std::unique_ptr<CaseEvaluation> evaluate_hard_shadows(const Case& hard_case,
+                                                      const ViewSamples& samples,
+                                                      OracleChoice choice,
+                                                      const std::filesystem::path& out_dir,
+                                                      std::vector<std::string>& left_out) {
+  const bool exact =
+      choice == OracleChoice::exact || (choice == OracleChoice::automatic &&
+                                        hard_case.triangles.size() <= exact_oracle_triangle_limit);
+  if (!exact)
+    left_out.push_back(
+        choice == OracleChoice::embree
+            ? "exact hard-shadow oracle: --oracle embree asked for the fast one (band estimated)"
+            : "exact hard-shadow oracle: " + std::to_string(hard_case.triangles.size()) +
+                  " triangles exceed its limit of " + std::to_string(exact_oracle_triangle_limit) +
+                  "; the fast oracle's band is estimated");
+  return std::make_unique<HardShadowEvaluation>(hard_case, samples, exact, out_dir);
+}
+
+}  // namespace shadowcts

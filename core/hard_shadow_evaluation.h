@@ -1,0 +1,23 @@
+#pragma once
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "case_evaluation.h"
+#include "shadowcts/case.h"
+#include "shadowcts/runner.h"
+#include "shadowcts/view_samples.h"
+
+namespace shadowcts {
+
+// Computes the hard-shadow truth of `hard_case` (its light is point or directional) with the
+// exact oracle, or the fast one above its size limit or on request (noted in `left_out`), and
+// writes the oracle's mask image.
+std::unique_ptr<CaseEvaluation> evaluate_hard_shadows(const Case& hard_case,
+                                                      const ViewSamples& samples,
+                                                      OracleChoice choice,
+                                                      const std::filesystem::path& out_dir,
+                                                      std::vector<std::string>& left_out);
+
+}  // namespace shadowcts
