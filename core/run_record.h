@@ -28,6 +28,7 @@ struct RunRecord {
   std::string test_name;  // dotted: <output>.<algorithm>.<variant>.<backend>.<case>
   std::string algorithm, variant, backend;
   OutputKind output = OutputKind::hard_shadow;
+  bool approximate = false;  // Capabilities::approximate
   Verdict verdict = Verdict::pass;
   std::string reason;
   std::vector<double> run_ms;  // every timed repeat

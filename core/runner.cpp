@@ -134,6 +134,7 @@ RunRecord new_record(const Case& c, const AlgorithmInfo& meta, const std::string
   record.variant = variant;
   record.backend = meta.backend;
   record.output = meta.capabilities.output;
+  record.approximate = meta.capabilities.approximate;
   record.test_name = output_kind_name(record.output) + "." + meta.id + "." + variant + "." +
                      meta.backend + "." + c.name;
   return record;

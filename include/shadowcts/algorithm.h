@@ -20,6 +20,9 @@ struct Capabilities {
   bool sun_disk = false;
   bool ranged_lights = false;
   bool needs_closed_meshes = false;
+  // Approximate by design (shadow maps): robust mismatches are its error figures, reported as
+  // QualityWarning instead of Fail.
+  bool approximate = false;
   // Upper bound on (regular samples x caster triangles) the algorithm is run on; 0 means none.
   // Brute force uses it so that the plan leaves it out of cases it would take minutes on.
   std::uint64_t max_sample_triangle_pairs = 0;
@@ -64,6 +67,9 @@ struct AlgorithmOutput {
   // light_lists.
   LightLists light_lists;
   Counters counters;
+  // Optional per-sample work counters (e.g. test-and-set operations, nodes visited), one vector
+  // of samples.size() entries per named counter: the report draws them as heat maps.
+  std::vector<std::pair<std::string, std::vector<std::uint32_t>>> per_sample_counters;
 };
 
 class Algorithm {
