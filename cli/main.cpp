@@ -1,6 +1,7 @@
 // shadowcts: conformance tests with reference oracles for shadow and light-assignment algorithms.
 #include <unistd.h>
 
+#include <cstdio>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -76,6 +77,8 @@ int main(int argc, char** argv) {
   auto* threads_option =
       run->add_option("--threads", threads, "Worker threads (default: all cores)")
           ->check(CLI::Range(1, 4096));
+  std::string shard;
+  run->add_option("--shard", shard, "Run only shard I of N (I/N, 0-based), for CI matrices");
   run->add_option("--oracle", oracle, "Hard-shadow oracle: auto, exact or embree")
       ->check(CLI::IsMember({"auto", "exact", "embree"}))
       ->capture_default_str();
@@ -109,6 +112,15 @@ int main(int argc, char** argv) {
     options.oracle = oracle == "exact"    ? OracleChoice::exact
                      : oracle == "embree" ? OracleChoice::embree
                                           : OracleChoice::automatic;
+    if (!shard.empty()) {
+      unsigned index = 0, count = 0;
+      char slash = 0, rest = 0;
+      if (std::sscanf(shard.c_str(), "%u%c%u%c", &index, &slash, &count, &rest) != 3 ||
+          slash != '/' || count == 0 || index >= count)
+        throw UsageError("--shard '" + shard + "': expected I/N with 0 <= I < N");
+      options.shard_index = index;
+      options.shard_count = count;
+    }
     options.progress = isatty(STDERR_FILENO) != 0;
     return run_suite(options, builtin_registry(), std::cout, std::cerr);
   } catch (const InputError& e) {

@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "atomic_file.h"
+#include "machine_info.h"
 
 namespace shadowcts {
 namespace {
@@ -52,7 +53,11 @@ void write_results_json(const std::filesystem::path& path, const std::vector<Cas
                         const std::vector<RunRecord>& records, std::uint32_t threads) {
   ordered_json root;
   root["schema"] = "shadowcts.results/1";
+  const MachineInfo machine = machine_info();
+  root["machine"] = {{"cpu", machine.cpu}, {"hardware_threads", machine.hardware_threads}};
   root["threads"] = threads;
+  root["timing"] =
+      "one untimed warm-up run per record, then time_ms.runs timed repeats; median reported";
   root["cases"] = ordered_json::array();
   for (const CaseSummary& c : cases) root["cases"].push_back(case_json(c));
   root["results"] = ordered_json::array();

@@ -25,9 +25,12 @@ struct RunOptions {
   std::string backend;                         // empty: every backend
   std::string out_dir = "shadowcts-out";
   std::optional<double> eps_rel;
-  std::optional<std::uint32_t> repeats;
+  std::optional<std::uint32_t> repeats;  // timed repeats after one untimed warm-up run
   std::optional<std::uint32_t> threads;
   OracleChoice oracle = OracleChoice::automatic;
+  // Run only the cases at positions shard_index, shard_index + shard_count, ... of the case list.
+  std::uint32_t shard_index = 0;
+  std::uint32_t shard_count = 1;
   bool progress = false;  // progress lines on stderr (the tool sets it when stderr is a terminal)
 };
 

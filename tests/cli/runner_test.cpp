@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include <gtest/gtest.h>
@@ -104,6 +105,40 @@ TEST(Runner, OutputsAreIdenticalForOneAndTwoThreads) {
   };
   EXPECT_EQ(strip(nlohmann::json::parse(read_file(one / "results.json"))),
             strip(nlohmann::json::parse(read_file(two / "results.json"))));
+}
+
+TEST(Runner, ThreeShardsTogetherEqualTheUnshardedRun) {
+  auto records_of = [](const fs::path& dir) {
+    std::map<std::string, nlohmann::json> by_name;
+    const auto results = nlohmann::json::parse(read_file(dir / "results.json"));
+    for (auto r : results["results"]) {
+      r.erase("time_ms");
+      by_name[r["name"]] = r;
+    }
+    return by_name;
+  };
+  RunOptions whole = small_run(fresh_dir("unsharded"), 2);
+  whole.fixtures = {"ground_blockers.2k", "shared_edges.1k", "closed_shapes.1k", "model.spider"};
+  whole.algorithms = {{"embree", ""}};
+  std::ostringstream log, err;
+  ASSERT_EQ(run_suite(whole, builtin_registry(), log, err), exit_pass);
+  std::map<std::string, nlohmann::json> merged;
+  std::size_t cases_seen = 0;
+  for (std::uint32_t shard = 0; shard < 3; ++shard) {
+    RunOptions part = whole;
+    part.out_dir = fresh_dir("shard" + std::to_string(shard)).string();
+    part.shard_index = shard;
+    part.shard_count = 3;
+    ASSERT_EQ(run_suite(part, builtin_registry(), log, err), exit_pass);
+    cases_seen +=
+        nlohmann::json::parse(read_file(fs::path(part.out_dir) / "results.json"))["cases"].size();
+    for (auto& [name, record] : records_of(part.out_dir)) {
+      EXPECT_FALSE(merged.count(name)) << name << " ran in two shards";
+      merged[name] = record;
+    }
+  }
+  EXPECT_EQ(cases_seen, whole.fixtures.size());
+  EXPECT_EQ(merged, records_of(whole.out_dir));
 }
 
 TEST(Runner, UnknownAlgorithmIsAUsageErrorBeforeAnythingIsWritten) {
