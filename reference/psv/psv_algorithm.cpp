@@ -1,0 +1,66 @@
+#include "reference/psv/psv_algorithm.h"
+
+#include <stdexcept>
+
+#include "reference/psv/psv_shadows.h"
+
+namespace shadowcts {
+namespace {
+
+psv::PsvOptions variant_options(const std::string& variant) {
+  psv::PsvOptions options;
+  if (variant == "stack") {
+    options.query = psv::QueryKind::stack;
+  } else if (variant == "stack32") {
+    options.query = psv::QueryKind::stack;
+    options.stack_capacity = 32;
+  } else if (variant == "depth") {
+    options.query = psv::QueryKind::depth;
+  } else if (variant == "stackless") {
+    options.query = psv::QueryKind::stackless;
+  } else if (variant == "hybrid") {
+    options.query = psv::QueryKind::hybrid;
+  } else {
+    throw std::invalid_argument("psv: unknown variant '" + variant + "'");
+  }
+  return options;
+}
+
+class PsvAlgorithm final : public Algorithm {
+ public:
+  PsvAlgorithm() {
+    info_.id = "psv";
+    info_.backend = "reference";
+    info_.variants = {"stack", "stack32", "depth", "stackless", "hybrid"};
+    info_.summary =
+        "partitioned shadow volumes: TOP tree with exact plane sides; PSV, D-PSV, D-Stackless "
+        "and D-Hybrid queries (Mora 2016)";
+    info_.capabilities.output = OutputKind::hard_shadow;
+    info_.capabilities.point_light = true;
+    info_.capabilities.directional_light = true;
+  }
+
+  const AlgorithmInfo& info() const override { return info_; }
+
+  AlgorithmOutput run(const Case& c, const ViewSamples& samples,
+                      const std::string& variant) const override {
+    psv::PsvOptions options = variant_options(variant);
+    options.seed = c.parameters.seed;
+    psv::PsvResult result = psv::psv_hard_shadows(c, samples, options);
+    AlgorithmOutput output;
+    output.shadowed = std::move(result.shadowed);
+    output.counters = std::move(result.counters);
+    return output;
+  }
+
+ private:
+  AlgorithmInfo info_;
+};
+
+}  // namespace
+
+std::unique_ptr<Algorithm> make_psv() {
+  return std::make_unique<PsvAlgorithm>();
+}
+
+}  // namespace shadowcts

@@ -1,0 +1,120 @@
+#include "reference/psv/psv_shadows.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "oracles/hard_shadow_inputs.h"
+#include "oracles/thread_limit.h"
+#include "reference/psv/plane_side.h"
+#include "reference/psv/query_context.h"
+#include "reference/psv/query_hybrid.h"
+#include "reference/psv/query_stack.h"
+#include "reference/psv/query_stackless.h"
+#include "reference/psv/top_tree_build.h"
+#include "reference/psv/top_tree_depth.h"
+
+namespace shadowcts::psv {
+namespace {
+
+double max_abs(const glm::vec3& v) {
+  return std::max({std::fabs(double(v.x)), std::fabs(double(v.y)), std::fabs(double(v.z))});
+}
+
+// Bound on every coordinate the plane tests see: triangles, light, samples.
+double coordinate_bound(const Case& c, const ViewSamples& samples) {
+  double bound = c.scale();
+  for (const ViewSample& s : samples.samples)
+    if (s.sample_class == SampleClass::regular) bound = std::max(bound, max_abs(s.position));
+  return std::max(bound, 1e-30);
+}
+
+}  // namespace
+
+PsvResult psv_hard_shadows(const Case& c, const ViewSamples& samples, const PsvOptions& options) {
+  const HardShadowLight light = hard_shadow_light(c);
+  check_receivers(c, samples);
+  const PlaneSide planes(light, c.triangles, coordinate_bound(c, samples));
+  BuildStatistics build;
+  const std::vector<std::uint32_t> order = insertion_order(c, planes, options.seed, build);
+  const TopTree tree = build_top_tree(c, planes, order, build);
+  const bool depth_test = options.query != QueryKind::stack;
+  const QueryContext context(tree, planes, depth_test);
+
+  PsvResult result;
+  result.shadowed.assign(samples.samples.size(), 0);
+  result.nodes_visited.assign(samples.samples.size(), 0);
+  std::atomic<std::uint64_t> queries{0}, visited_total{0}, visited_max{0}, high_water{0},
+      overflows{0}, switches{0};
+  run_with_thread_limit(c.parameters.threads, [&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.samples.size(), 64),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        std::uint64_t count = 0, total = 0, most = 0, deepest = 0, overflowed = 0,
+                                      switched = 0;
+                        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                          const ViewSample& sample = samples.samples[i];
+                          if (sample.sample_class != SampleClass::regular) continue;
+                          QueryPoint p;
+                          p.position = glm::dvec3(sample.position);
+                          p.receiver = sample.receiver;
+                          p.light_depth = sample_light_depth(light, p.position);
+                          QueryWork work;
+                          QueryAnswer answer = QueryAnswer::lit;
+                          switch (options.query) {
+                            case QueryKind::stack:
+                            case QueryKind::depth:
+                              answer = query_stack(context, p, options.stack_capacity, work);
+                              if (answer == QueryAnswer::stack_overflow) {
+                                ++overflowed;
+                                answer = query_stackless(context, p, work);
+                              }
+                              break;
+                            case QueryKind::stackless:
+                              answer = query_stackless(context, p, work);
+                              break;
+                            case QueryKind::hybrid:
+                              answer = query_hybrid(context, p, options.stack_capacity, work);
+                              break;
+                          }
+                          result.shadowed[i] = answer == QueryAnswer::shadowed ? 1 : 0;
+                          result.nodes_visited[i] = std::uint32_t(work.nodes_visited);
+                          ++count;
+                          total += work.nodes_visited;
+                          most = std::max(most, work.nodes_visited);
+                          deepest = std::max<std::uint64_t>(deepest, work.stack_high_water);
+                          switched += work.hybrid_switches;
+                        }
+                        // Sums and maxima of integers: the totals do not depend on the
+                        // partitioning.
+                        queries += count;
+                        visited_total += total;
+                        overflows += overflowed;
+                        switches += switched;
+                        for (std::uint64_t seen = visited_max.load(); seen < most;)
+                          visited_max.compare_exchange_weak(seen, most);
+                        for (std::uint64_t seen = high_water.load(); seen < deepest;)
+                          high_water.compare_exchange_weak(seen, deepest);
+                      });
+  });
+  const bool uses_stack = options.query != QueryKind::stackless;
+  result.counters = {{"triangles_inserted", build.volumes},
+                     {"triangles_culled_front_facing", build.culled_front_facing},
+                     {"triangles_culled_flat", build.culled_flat},
+                     {"triangles_dropped_in_shadow", build.dropped_in_shadow},
+                     {"tree_nodes", tree.nodes.size()},
+                     {"tree_height", build.height},
+                     {"queries", queries.load()},
+                     {"nodes_visited_total", visited_total.load()},
+                     {"nodes_visited_max", visited_max.load()},
+                     {"stack_capacity", uses_stack ? options.stack_capacity : 0},
+                     {"stack_high_water", high_water.load()},
+                     {"stack_overflows", overflows.load()},
+                     {"hybrid_switches", switches.load()},
+                     {"exact_plane_tests", planes.exact_fallbacks()}};
+  return result;
+}
+
+}  // namespace shadowcts::psv

@@ -1,0 +1,233 @@
+// The four TOP tree queries against each other and against the exact oracle.
+#include <cstdint>
+#include <iostream>
+#include <random>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "hand_built_case.h"
+#include "reference/psv/psv_algorithm.h"
+#include "reference/psv/psv_shadows.h"
+#include "shadowcts/hard_shadow_comparison.h"
+#include "shadowcts/hard_shadow_oracle.h"
+
+namespace shadowcts::psv {
+namespace {
+
+std::uint64_t counter(const PsvResult& r, const std::string& name) {
+  for (const auto& [key, value] : r.counters)
+    if (key == name) return value;
+  ADD_FAILURE() << "no counter " << name;
+  return 0;
+}
+
+PsvResult run(const Case& c, const ViewSamples& samples, QueryKind query,
+              std::uint32_t stack_capacity = 12, std::uint64_t seed = 1) {
+  PsvOptions options;
+  options.query = query;
+  options.stack_capacity = stack_capacity;
+  options.seed = seed;
+  return psv_hard_shadows(c, samples, options);
+}
+
+// Robust samples on which the mask differs from the truth.
+std::uint64_t robust_mismatches(const std::vector<std::uint8_t>& mask,
+                                const HardShadowTruth& truth) {
+  const HardShadowComparison comparison = compare_hard_shadows(mask, truth);
+  return comparison.leaks + comparison.false_shadows;
+}
+
+// Samples that are robust in the truth and differ between two masks.
+std::uint64_t robust_differences(const std::vector<std::uint8_t>& a,
+                                 const std::vector<std::uint8_t>& b, const HardShadowTruth& truth) {
+  std::uint64_t differences = 0;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    differences +=
+        (truth.band[i] == BandClass::robust_lit || truth.band[i] == BandClass::robust_shadowed) &&
+        a[i] != b[i];
+  return differences;
+}
+
+testing::HandBuiltCase random_case(int index) {
+  const ShadowLight light = index % 2 == 0 ? testing::point_light({1.5f, 10.0f, 0.75f})
+                                           : testing::directional_light({0.25f, 1.0f, -0.375f});
+  auto h = testing::make_random_case(900 + std::uint64_t(index), 8, 1500, 1.25f, 3000, light);
+  testing::add_pyramid_fan(h);
+  h.add_ground_sample({0.0f, 0.0f, 0.0f});  // under the fan's apex: through shared edges
+  return h;
+}
+
+class PsvQueries : public ::testing::TestWithParam<int> {};
+
+TEST_P(PsvQueries, AllQueriesAgreeWithEachOtherAndTheOracle) {
+  const auto h = random_case(GetParam());
+  const HardShadowTruth truth = exact_hard_shadow_oracle(h.c, h.samples);
+  const PsvResult stack = run(h.c, h.samples, QueryKind::stack, 64);
+  const PsvResult depth = run(h.c, h.samples, QueryKind::depth, 64);
+  const PsvResult stackless = run(h.c, h.samples, QueryKind::stackless);
+  const PsvResult hybrid = run(h.c, h.samples, QueryKind::hybrid);
+  EXPECT_EQ(robust_mismatches(stack.shadowed, truth), 0u);
+  for (const PsvResult* other : {&depth, &stackless, &hybrid}) {
+    EXPECT_EQ(robust_differences(stack.shadowed, other->shadowed, truth), 0u);
+    EXPECT_EQ(robust_mismatches(other->shadowed, truth), 0u);
+  }
+  EXPECT_EQ(counter(stack, "stack_overflows"), 0u);
+  EXPECT_EQ(counter(depth, "stack_overflows"), 0u);
+  std::uint64_t shadowed = 0;
+  for (std::uint8_t s : stack.shadowed) shadowed += s;
+  EXPECT_GT(shadowed, h.samples.samples.size() / 10);  // not a trivially lit case
+  EXPECT_LT(shadowed, h.samples.samples.size() * 9 / 10);
+  // The depth test only removes work.
+  EXPECT_LE(counter(depth, "nodes_visited_total"), counter(stack, "nodes_visited_total"));
+  // The counters are the same for any thread count.
+  Case single = h.c;
+  single.parameters.threads = 1;
+  const PsvResult again = run(single, h.samples, QueryKind::hybrid);
+  EXPECT_EQ(again.shadowed, hybrid.shadowed);
+  EXPECT_EQ(again.counters, hybrid.counters);
+  EXPECT_EQ(again.nodes_visited, hybrid.nodes_visited);
+}
+
+TEST_P(PsvQueries, HybridGivesTheSameMaskForEveryStackSizeAndNeverOverflows) {
+  const auto h = random_case(GetParam());
+  const HardShadowTruth truth = exact_hard_shadow_oracle(h.c, h.samples);
+  const PsvResult reference = run(h.c, h.samples, QueryKind::stackless);
+  std::uint64_t switches_at_one = 0;
+  for (std::uint32_t size : {1u, 4u, 12u, 48u}) {
+    const PsvResult hybrid = run(h.c, h.samples, QueryKind::hybrid, size);
+    EXPECT_EQ(robust_differences(hybrid.shadowed, reference.shadowed, truth), 0u) << size;
+    EXPECT_EQ(robust_mismatches(hybrid.shadowed, truth), 0u) << size;
+    EXPECT_EQ(counter(hybrid, "stack_overflows"), 0u) << size;
+    EXPECT_LE(counter(hybrid, "stack_high_water"), size);
+    if (size == 1) switches_at_one = counter(hybrid, "hybrid_switches");
+    if (size == 48) {
+      EXPECT_EQ(counter(hybrid, "hybrid_switches"), 0u);
+    }
+  }
+  EXPECT_GT(switches_at_one, 0u);  // the stackless part was exercised
+}
+
+TEST_P(PsvQueries, TinyStackReportsOverflowInsteadOfAWrongAnswer) {
+  const auto h = random_case(GetParam());
+  const HardShadowTruth truth = exact_hard_shadow_oracle(h.c, h.samples);
+  const PsvResult tiny = run(h.c, h.samples, QueryKind::stack, 1);
+  EXPECT_GT(counter(tiny, "stack_overflows"), 0u);
+  EXPECT_LE(counter(tiny, "stack_high_water"), 1u);
+  EXPECT_EQ(robust_mismatches(tiny.shadowed, truth), 0u);
+  EXPECT_EQ(tiny.shadowed, run(h.c, h.samples, QueryKind::stackless).shadowed);
+}
+
+TEST_P(PsvQueries, InsertionOrderChangesNoRobustResult) {
+  const auto h = random_case(GetParam());
+  const HardShadowTruth truth = exact_hard_shadow_oracle(h.c, h.samples);
+  const PsvResult first = run(h.c, h.samples, QueryKind::hybrid, 12, 1);
+  for (std::uint64_t seed : {2u, 3u, 12345u}) {
+    const PsvResult other = run(h.c, h.samples, QueryKind::hybrid, 12, seed);
+    EXPECT_EQ(robust_differences(first.shadowed, other.shadowed, truth), 0u) << seed;
+    // A different tree: the work differs, the answer does not.
+    EXPECT_NE(first.nodes_visited, other.nodes_visited) << seed;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(RandomCases, PsvQueries, ::testing::Range(0, 4));
+
+// Figure 3 of Mora 2016: lit points closer to the light than every occluder. A point light behind
+// the camera, a field of floating quads beyond the visible near ground: PSV scans the tree for
+// the near ground, D-PSV stops at the root.
+TEST(PsvDepthTest, FewerNodesForLitSamplesWithTheLightBehindTheCamera) {
+  Case c;
+  c.name = "light_behind_camera";
+  c.source = "psv_query_test.cpp";
+  c.meshes = {Mesh{"ground", false, false}, Mesh{"quads", false, true}};
+  c.triangles.push_back({{-60, 0, -60}, {60, 0, -60}, {0, 0, 60}, 0});
+  std::mt19937_64 random(5);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  for (int i = 0; i < 600; ++i) {
+    const glm::vec3 centre{-20.0f + 40.0f * unit(random), 1.0f + 3.0f * unit(random),
+                           -40.0f + 35.0f * unit(random)};
+    const glm::vec3 u{0.8f, 0.3f * (unit(random) - 0.5f), 0.0f};
+    const glm::vec3 v{0.3f * (unit(random) - 0.5f), 0.8f, 0.3f * (unit(random) - 0.5f)};
+    c.triangles.push_back({centre - u - v, centre + u - v, centre + u + v, 1});
+    c.triangles.push_back({centre - u - v, centre + u + v, centre - u + v, 1});
+  }
+  ShadowLight light;
+  light.position = {0.0f, 12.0f, 40.0f};
+  c.light = light;
+  c.camera.position = {0.0f, 8.0f, 30.0f};
+  c.camera.target = {0.0f, 0.0f, -10.0f};
+  c.camera.far_plane = 200.0f;
+  c.camera.width = c.camera.height = 128;
+  validate(c);
+  const ViewSamples samples = generate_view_samples(c);
+  const HardShadowTruth truth = exact_hard_shadow_oracle(c, samples);
+  const PsvResult psv = run(c, samples, QueryKind::stack, 64);
+  const PsvResult dpsv = run(c, samples, QueryKind::depth, 64);
+  EXPECT_EQ(robust_mismatches(psv.shadowed, truth), 0u);
+  EXPECT_EQ(dpsv.shadowed, psv.shadowed);
+  std::uint64_t lit = 0, shadowed = 0, psv_lit_nodes = 0, dpsv_lit_nodes = 0;
+  for (std::size_t i = 0; i < samples.samples.size(); ++i) {
+    if (samples.samples[i].sample_class != SampleClass::regular) continue;
+    if (psv.shadowed[i]) {
+      ++shadowed;
+      continue;
+    }
+    ++lit;
+    psv_lit_nodes += psv.nodes_visited[i];
+    dpsv_lit_nodes += dpsv.nodes_visited[i];
+  }
+  ASSERT_GT(lit, 1000u);
+  ASSERT_GT(shadowed, 100u);
+  EXPECT_LT(dpsv_lit_nodes * 2, psv_lit_nodes);
+  std::cout << "light behind the camera: " << lit << " lit samples, nodes visited per lit sample "
+            << double(psv_lit_nodes) / double(lit) << " (PSV) vs "
+            << double(dpsv_lit_nodes) / double(lit) << " (D-PSV)\n";
+  ::testing::Test::RecordProperty("psv_nodes_per_lit_sample", std::to_string(psv_lit_nodes / lit));
+  ::testing::Test::RecordProperty("dpsv_nodes_per_lit_sample",
+                                  std::to_string(dpsv_lit_nodes / lit));
+}
+
+TEST(PsvAlgorithm, DescribesItselfAndRejectsUnknownVariants) {
+  const auto algorithm = make_psv();
+  const AlgorithmInfo& info = algorithm->info();
+  EXPECT_EQ(info.id, "psv");
+  EXPECT_EQ(info.backend, "reference");
+  EXPECT_EQ(info.variants,
+            (std::vector<std::string>{"stack", "stack32", "depth", "stackless", "hybrid"}));
+  EXPECT_TRUE(info.capabilities.point_light);
+  EXPECT_TRUE(info.capabilities.directional_light);
+  EXPECT_FALSE(info.capabilities.sun_disk);
+  auto h = testing::make_hand_built_case(testing::point_light({0, 8, 0}));
+  testing::add_pyramid_fan(h);
+  h.add_ground_sample({0, 0, 0});
+  EXPECT_THROW(algorithm->run(h.c, h.samples, "stack7"), std::invalid_argument);
+  const AlgorithmOutput output = algorithm->run(h.c, h.samples, "stack32");
+  EXPECT_EQ(output.shadowed, std::vector<std::uint8_t>{1});
+  ASSERT_FALSE(output.counters.empty());
+  EXPECT_EQ(output.counters.front().first, "triangles_inserted");
+}
+
+// The receiver never shadows its own sample (even exactly on its plane), zero-area triangles never
+// shadow, and a sample on another triangle (closed) is shadowed by it.
+TEST(PsvSemantics, ReceiverZeroAreaAndClosedTriangles) {
+  auto h = testing::make_hand_built_case(testing::point_light({0.5f, 8, 0.5f}));
+  testing::add_pyramid_fan(h);
+  h.add_triangle({-1, 1, 0}, {1, 1, 0}, {0, 1, 0});  // zero area, across the segment
+  const std::size_t through_edge = h.add_ground_sample({0.5f, 0, 0.5f});
+  const std::size_t on_receiver = h.add_sample({0.5f, 2.5f, 0.5f}, 3);    // on the fan's edge
+  const std::size_t on_own_face = h.add_sample({0.0f, 2.75f, 0.25f}, 3);  // exactly on it
+  const std::size_t unblocked = h.add_ground_sample({6.0f, 0, -6.0f});
+  const HardShadowTruth truth = exact_hard_shadow_oracle(h.c, h.samples);
+  EXPECT_EQ(truth.shadowed[on_own_face], 0);
+  for (QueryKind query :
+       {QueryKind::stack, QueryKind::depth, QueryKind::stackless, QueryKind::hybrid}) {
+    const PsvResult r = run(h.c, h.samples, query);
+    EXPECT_EQ(r.shadowed[through_edge], 1);
+    EXPECT_EQ(r.shadowed[on_receiver], 1);  // still on triangle 2
+    EXPECT_EQ(r.shadowed[unblocked], 0);
+    EXPECT_EQ(r.shadowed[on_own_face], 0);
+  }
+}
+
+}  // namespace
+}  // namespace shadowcts::psv
