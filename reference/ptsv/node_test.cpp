@@ -1,0 +1,37 @@
+#include "reference/ptsv/node_test.h"
+
+#include <algorithm>
+
+namespace shadowcts::ptsv {
+
+NodeTolerances NodeTolerances::for_bounds(double node_bound, double scene_bound) {
+  NodeTolerances t;
+  // A plane value is a dot product of a unit normal (relative error ~2^-52) with a difference of
+  // coordinates below 2 * bound; its rounding is below 2^-48 * bound. 2^-36 leaves a wide margin
+  // and stays far below the ambiguity band (2^-24 * scale at its finest).
+  t.rounding = node_bound * 0x1p-36;
+  t.accept_bias = trivial_accept_bias(scene_bound);
+  return t;
+}
+
+PlaneRange plane_range(const Plane& plane, const std::array<glm::dvec3, 8>& corners) {
+  PlaneRange r{plane.at(corners[0]), plane.at(corners[0])};
+  for (std::size_t i = 1; i < 8; ++i) {
+    const double value = plane.at(corners[i]);
+    r.low = std::min(r.low, value);
+    r.high = std::max(r.high, value);
+  }
+  return r;
+}
+
+PlaneRange plane_range(const Plane& plane, const WorldBox& box) {
+  glm::dvec3 reject_point, accept_point;
+  for (int k = 0; k < 3; ++k) {
+    const bool positive = plane.normal[k] >= 0.0;
+    reject_point[k] = positive ? box.lo[k] : box.hi[k];
+    accept_point[k] = positive ? box.hi[k] : box.lo[k];
+  }
+  return {plane.at(reject_point), plane.at(accept_point)};
+}
+
+}  // namespace shadowcts::ptsv

@@ -1,0 +1,88 @@
+#pragma once
+// A node (or tile) against a shadow volume, and a sample against it (Sintorn 2014, Algorithm 1
+// lines 11-19; Sintorn 2011, Algorithm 2). For each plane the trivial-reject point of the node's
+// bounds is the one with the smallest plane value, the trivial-accept point the one with the
+// largest: a node is rejected when its trivial-reject point is outside any plane, accepted when
+// its trivial-accept point is inside all four, otherwise tested against the culling planes and
+// refined.
+//
+// Consistency with the sample test, which decides the answer: a node is rejected or accepted only
+// with a margin above the rounding of these evaluations, so every sample in a rejected node fails
+// the sample test and every sample in an accepted node passes it (its own receiver aside, which
+// the accept bias keeps out). All variants therefore give the same mask as testing every sample
+// against every volume.
+#include <array>
+
+#include <glm/vec3.hpp>
+
+#include "reference/ptsv/counters.h"
+#include "reference/ptsv/hierarchy.h"
+#include "reference/ptsv/triangle_setup.h"
+#include "shadowcts/view_samples.h"
+
+namespace shadowcts::ptsv {
+
+enum class NodeVerdict { reject, accept, refine };
+
+struct NodeTolerances {
+  double rounding = 0.0;  // above any rounding of a plane value at a node corner or a sample
+  double accept_bias = 0.0;
+  // node_bound: >= every |coordinate| of a node corner, sample or anchor ever evaluated;
+  // scene_bound: >= every |coordinate| of a sample or triangle (the bias' scale).
+  static NodeTolerances for_bounds(double node_bound, double scene_bound);
+};
+
+// Smallest and largest value of the plane over the bounds.
+struct PlaneRange {
+  double low, high;
+};
+PlaneRange plane_range(const Plane& plane, const std::array<glm::dvec3, 8>& corners);
+PlaneRange plane_range(const Plane& plane, const WorldBox& box);
+
+enum class CullingPlanes { none, extra, silhouette };
+
+template <class Bounds>
+NodeVerdict classify_node(const ShadowVolume& volume, const Bounds& bounds,
+                          const NodeTolerances& tolerances, CullingPlanes culling,
+                          TraversalCounters& counters) {
+  ++counters.node_tests;
+  bool accept = true;
+  for (int k = 0; k < 4; ++k) {
+    const Plane& plane = k < 3 ? volume.edges[std::size_t(k)] : volume.triangle_plane;
+    const PlaneRange range = plane_range(plane, bounds);
+    if (range.low > tolerances.rounding) {
+      ++counters.trivial_rejects;
+      return NodeVerdict::reject;
+    }
+    const double inside_by =
+        k < 3 ? tolerances.rounding : tolerances.rounding + tolerances.accept_bias;
+    if (!(range.high < -inside_by)) accept = false;
+  }
+  if (accept) {
+    ++counters.trivial_accepts;
+    return NodeVerdict::accept;
+  }
+  const int count = culling == CullingPlanes::extra        ? volume.extra_count
+                    : culling == CullingPlanes::silhouette ? volume.silhouette_count
+                                                           : 0;
+  for (int k = 0; k < count; ++k) {
+    const Plane& plane = culling == CullingPlanes::extra ? volume.extra[std::size_t(k)]
+                                                         : volume.silhouette[std::size_t(k)];
+    if (plane_range(plane, bounds).low > tolerances.rounding) {
+      ++counters.culling_plane_rejects;
+      return NodeVerdict::reject;
+    }
+  }
+  return NodeVerdict::refine;
+}
+
+// The per-sample test: inside the closed volume, and not the sample's own receiver.
+inline bool sample_in_volume(const ShadowVolume& volume, const ViewSample& sample) {
+  if (sample.receiver == volume.triangle) return false;
+  const glm::dvec3 p(sample.position);
+  for (const Plane& plane : volume.edges)
+    if (plane.at(p) > 0.0) return false;
+  return !(volume.triangle_plane.at(p) > 0.0);
+}
+
+}  // namespace shadowcts::ptsv

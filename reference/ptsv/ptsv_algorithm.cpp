@@ -1,0 +1,205 @@
+#include "reference/ptsv/ptsv_algorithm.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "oracles/hard_shadow_inputs.h"
+#include "reference/ptsv/cluster_keys.h"
+#include "reference/ptsv/counters.h"
+#include "reference/ptsv/hdb2011.h"
+#include "reference/ptsv/hierarchy.h"
+#include "reference/ptsv/node_test.h"
+#include "reference/ptsv/traversal.h"
+#include "reference/ptsv/triangle_setup.h"
+#include "reference/ptsv/two_pass.h"
+#include "reference/ptsv/view_frame.h"
+#include "shadowcts/errors.h"
+
+namespace shadowcts {
+namespace {
+
+using namespace ptsv;
+
+struct VariantConfig {
+  const char* name;
+  bool depth_buffer_2011;
+  NodeBounds bounds;
+  bool extra_planes;
+  bool two_pass;
+};
+
+constexpr VariantConfig variant_table[] = {
+    {"twopass", false, NodeBounds::explicit_boxes, true, true},
+    {"implicit", false, NodeBounds::implicit_cells, false, false},
+    {"implicit+planes", false, NodeBounds::implicit_cells, true, false},
+    {"explicit", false, NodeBounds::explicit_boxes, false, false},
+    {"explicit+planes", false, NodeBounds::explicit_boxes, true, false},
+    {"hdb2011", true, NodeBounds::implicit_cells, false, false},
+};
+
+const VariantConfig& variant_config(const std::string& variant) {
+  for (const VariantConfig& v : variant_table)
+    if (variant == v.name) return v;
+  throw std::invalid_argument("ptsv: unknown variant '" + variant + "'");
+}
+
+double max_abs(const glm::dvec3& v) {
+  return std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+}
+
+// >= every |coordinate| of a triangle, the camera, the light and every regular sample.
+double scene_bound(const Case& c, const ViewSamples& samples) {
+  double bound = c.scale();
+  for (const ViewSample& s : samples.samples)
+    if (s.sample_class == SampleClass::regular)
+      bound = std::max(bound, max_abs(glm::dvec3(s.position)));
+  return bound;
+}
+
+// The largest |coordinate| of an implicit cell the traversal may test (the root's children
+// contain all deeper cells).
+double implicit_corner_bound(const ClusterHierarchy& h, const ViewFrame& frame) {
+  double bound = 0.0;
+  const int level = std::min(1, h.leaf_level());
+  for (std::uint32_t index : h.level(level).index)
+    for (const glm::dvec3& corner :
+         cell_corners(frame, implicit_node_cell(h.layout(), level, index)))
+      bound = std::max(bound, max_abs(corner));
+  return bound;
+}
+
+class Ptsv final : public Algorithm {
+ public:
+  Ptsv() {
+    info_.id = "ptsv";
+    info_.backend = "reference";
+    for (const VariantConfig& v : variant_table) info_.variants.push_back(v.name);
+    info_.summary =
+        "per-triangle shadow volumes through the view-sample cluster hierarchy (Sintorn 2014): "
+        "implicit/explicit bounds, extra culling planes, two-pass traversal; hdb2011: the 2011 "
+        "hierarchical-depth-buffer PTSV. Front-face culling for closed meshes clear of the camera";
+    info_.capabilities.output = OutputKind::hard_shadow;
+    info_.capabilities.point_light = true;
+    info_.capabilities.directional_light = true;
+  }
+
+  const AlgorithmInfo& info() const override { return info_; }
+
+  std::optional<std::string> unsupported_reason(const Case& c, const ViewSamples& samples,
+                                                const std::string& variant) const override {
+    if (auto why = Algorithm::unsupported_reason(c, samples, variant)) return why;
+    const std::string problem = input_problem(c, samples, variant_config(variant));
+    if (!problem.empty()) return problem;
+    return std::nullopt;
+  }
+
+  AlgorithmOutput run(const Case& c, const ViewSamples& samples,
+                      const std::string& variant) const override {
+    const VariantConfig& config = variant_config(variant);
+    hard_shadow_light(c);  // throws InputError without a point or directional light
+    check_receivers(c, samples);
+    if (samples.width == 0 || samples.height == 0 ||
+        samples.samples.size() != std::size_t(samples.width) * samples.height)
+      throw InputError(c.source, "view samples", "not one sample per pixel");
+    const ViewFrame frame = make_view_frame(c.camera, samples.width, samples.height);
+    const double bound = scene_bound(c, samples);
+
+    SetupOptions setup;
+    setup.extra_planes = !config.depth_buffer_2011 && config.extra_planes;
+    setup.silhouette_planes = config.depth_buffer_2011;
+    SetupCounts setup_counts;
+    const std::vector<ShadowVolume> volumes = set_up_shadow_volumes(
+        c, front_face_culling_meshes(c, samples.width, samples.height), setup, bound, setup_counts);
+
+    AlgorithmOutput output;
+    output.shadowed.assign(samples.samples.size(), 0);
+    TraversalCounters counters;
+    std::uint64_t nodes = 0, levels = 0, key_bits = 0;
+    if (config.depth_buffer_2011) {
+      HierarchicalDepthBuffer buffer(frame, samples);
+      if (!buffer.problem().empty()) throw InputError(c.source, "view samples", buffer.problem());
+      const NodeTolerances tolerances =
+          NodeTolerances::for_bounds(std::max(bound, buffer.corner_bound()), bound);
+      for (const ShadowVolume& volume : volumes)
+        buffer.traverse(volume, tolerances, output.shadowed, counters);
+      buffer.merge(output.shadowed);
+      for (int l = 0; l < buffer.level_count(); ++l)
+        for (std::uint8_t occupied : buffer.level(l).occupied) nodes += occupied;
+      levels = std::uint64_t(buffer.level_count());
+    } else {
+      const KeyLayoutResult layout =
+          make_cluster_key_layout(c.camera, samples.width, samples.height);
+      if (!layout.problem.empty()) throw InputError(c.source, "camera", layout.problem);
+      const ClusterKeys keys = assign_cluster_keys(layout.layout, frame, samples,
+                                                   config.bounds == NodeBounds::implicit_cells);
+      if (!keys.problem.empty()) throw InputError(c.source, "view samples", keys.problem);
+      ClusterHierarchy hierarchy(layout.layout, keys.key, samples);
+      const double node_bound = config.bounds == NodeBounds::implicit_cells
+                                    ? std::max(bound, implicit_corner_bound(hierarchy, frame))
+                                    : bound;
+      ClusterTraversal traversal(hierarchy, frame, samples, config.bounds, config.extra_planes,
+                                 NodeTolerances::for_bounds(node_bound, bound), output.shadowed,
+                                 counters);
+      if (config.two_pass) {
+        traverse_two_pass(traversal, volumes, default_job_level(hierarchy.leaf_level()), counters);
+      } else {
+        for (const ShadowVolume& volume : volumes) traversal.traverse_from_root(volume);
+      }
+      traversal.mark_trivially_accepted(keys.key);
+      nodes = hierarchy.node_count();
+      levels = std::uint64_t(hierarchy.leaf_level()) + 1;
+      key_bits = std::uint64_t(layout.layout.key_bits());
+    }
+
+    output.counters = {
+        {"test_and_set_operations", counters.test_and_set()},
+        {"node_tests", counters.node_tests},
+        {"sample_tests", counters.sample_tests},
+        {"nodes_visited", counters.nodes_visited},
+        {"trivial_accepts", counters.trivial_accepts},
+        {"trivial_rejects", counters.trivial_rejects},
+        {"culling_plane_rejects", counters.culling_plane_rejects},
+        {"first_pass_jobs", counters.first_pass_jobs},
+        {"second_pass_jobs", counters.second_pass_jobs},
+        {"shadow_volumes", setup_counts.volumes},
+        {"front_faces_culled", setup_counts.front_faces_culled},
+        {"edge_on_triangles", setup_counts.edge_on},
+        {"zero_area_triangles", setup_counts.zero_area},
+        {"culling_planes", setup_counts.extra_planes + setup_counts.silhouette_planes},
+        {"hierarchy_nodes", nodes},
+        {"hierarchy_levels", levels},
+        {"key_bits", key_bits},
+    };
+    return output;
+  }
+
+ private:
+  // Why the variant's structures cannot hold these samples, or "".
+  static std::string input_problem(const Case& c, const ViewSamples& samples,
+                                   const VariantConfig& config) {
+    if (samples.width == 0 || samples.height == 0 ||
+        samples.samples.size() != std::size_t(samples.width) * samples.height)
+      return "the view samples are not one per pixel";
+    const ViewFrame frame = make_view_frame(c.camera, samples.width, samples.height);
+    if (config.depth_buffer_2011) return HierarchicalDepthBuffer(frame, samples).problem();
+    const KeyLayoutResult layout = make_cluster_key_layout(c.camera, samples.width, samples.height);
+    if (!layout.problem.empty()) return layout.problem;
+    return assign_cluster_keys(layout.layout, frame, samples,
+                               config.bounds == NodeBounds::implicit_cells)
+        .problem;
+  }
+
+  AlgorithmInfo info_;
+};
+
+}  // namespace
+
+std::unique_ptr<Algorithm> make_ptsv() {
+  return std::make_unique<Ptsv>();
+}
+
+}  // namespace shadowcts

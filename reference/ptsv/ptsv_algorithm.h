@@ -1,0 +1,24 @@
+#pragma once
+// Reference `ptsv`: per-triangle shadow volumes traversed through the view-sample cluster
+// hierarchy (Sintorn, Kämpe, Olsson, Assarsson 2014), with the 2011 hierarchical-depth-buffer
+// PTSV (Sintorn, Olsson, Assarsson 2011) as a variant. Variants, cumulative as in the paper's
+// Figure 8:
+//   twopass          explicit bounds + extra culling planes + two-pass traversal (the default:
+//                    the complete 2014 algorithm)
+//   implicit         node bounds from the cluster keys, the four volume planes only (Baseline)
+//   implicit+planes  ... plus the per-vertex culling planes (Additional planes)
+//   explicit         tight boxes of each node's samples, four planes
+//   explicit+planes  explicit bounds + culling planes (Explicit bounds)
+//   hdb2011          the 2011 algorithm: 2D depth-buffer tiles, silhouette-edge culling
+// Every variant gives the same shadow mask (the per-sample plane test decides; node tests only
+// skip work), so they differ in their counters and time.
+#include <memory>
+
+#include "shadowcts/algorithm.h"
+
+namespace shadowcts {
+
+// id "ptsv", backend "reference".
+std::unique_ptr<Algorithm> make_ptsv();
+
+}  // namespace shadowcts
