@@ -46,4 +46,8 @@ std::optional<std::string> Algorithm::unsupported_reason(const Case& c, const Vi
   return std::nullopt;
 }
 
+SoftErrorBudget Algorithm::soft_error_budget(const std::string&) const {
+  return {};
+}
+
 }  // namespace shadowcts

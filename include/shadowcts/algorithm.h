@@ -56,6 +56,13 @@ struct LightLists {
   std::vector<std::uint32_t> list_of_sample;
 };
 
+// The error a soft-shadow variant declares it may make (visible fraction, in [0, 1]); its
+// verdict is Fail beyond it.
+struct SoftErrorBudget {
+  double per_sample = 0.0;  // largest |e| allowed on a robust sample
+  double mean = 0.0;        // largest mean |e| over the compared samples
+};
+
 // Work counters, in the order the algorithm reports them (deterministic).
 using Counters = std::vector<std::pair<std::string, std::uint64_t>>;
 
@@ -81,6 +88,9 @@ class Algorithm {
   // capabilities against the case's lights and meshes.
   virtual std::optional<std::string> unsupported_reason(const Case& c, const ViewSamples& samples,
                                                         const std::string& variant) const;
+
+  // soft_shadow outputs: the variant's declared error budget. The default claims exactness.
+  virtual SoftErrorBudget soft_error_budget(const std::string& variant) const;
 
   // Runs on every regular sample. Deterministic for any thread count.
   virtual AlgorithmOutput run(const Case& c, const ViewSamples& samples,

@@ -1,0 +1,45 @@
+#pragma once
+// Diffs an algorithm's visible fractions against the soft-shadow ground truth: error statistics
+// and a verdict against the error budget the algorithm's variant declares.
+//
+// Per compared sample e = f_alg - f_truth. A robust sample fails when
+//   |e| > budget.per_sample + truth.band_sensitivity + truth.error_bound
+// (the algorithm's own budget, what the band allows, what the oracle itself is unsure of); the run
+// fails when any robust sample fails, when mean |e| over the compared samples exceeds
+// budget.mean + the mean truth error bound, or when an output is NaN or outside [0, 1].
+// Ambiguous samples enter the statistics but never fail on their own.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "shadowcts/algorithm.h"
+#include "shadowcts/soft_shadow_oracle.h"
+#include "shadowcts/verdict.h"
+
+namespace shadowcts {
+
+struct SoftShadowComparison {
+  std::uint64_t compared = 0;   // regular samples
+  std::uint64_t robust = 0;     // of them, robust in the band
+  std::uint64_t ambiguous = 0;  // compared - robust
+  double mean_abs_error = 0.0;
+  double rms_error = 0.0;
+  double p99_abs_error = 0.0;  // 99th percentile of |e| (nearest rank)
+  double max_abs_error = 0.0;
+  double mean_signed_error = 0.0;     // bias: > 0 means too bright
+  std::uint64_t umbra_leaks = 0;      // f_truth == 0 and f_alg > 0.5
+  std::uint64_t lit_occlusions = 0;   // f_truth == 1 and f_alg < 0.5
+  std::uint64_t over_budget = 0;      // robust samples over their allowance
+  std::uint64_t invalid_outputs = 0;  // NaN or outside [0, 1] on compared samples
+  std::int64_t worst_sample = -1;     // index of the largest |e| (-1: none compared)
+  Verdict verdict = Verdict::pass;    // pass or fail
+  std::string reason;                 // one line explaining the verdict
+};
+
+// `visible_fraction` has one entry per view sample (AlgorithmOutput::visible_fraction); samples the
+// truth does not compare are ignored. Throws std::invalid_argument when the sizes differ.
+SoftShadowComparison compare_soft_shadows(const std::vector<float>& visible_fraction,
+                                          const SoftShadowTruth& truth,
+                                          const SoftErrorBudget& budget);
+
+}  // namespace shadowcts

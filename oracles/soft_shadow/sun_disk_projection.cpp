@@ -1,0 +1,167 @@
+#include "oracles/soft_shadow/sun_disk_projection.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <glm/geometric.hpp>
+
+#include "shadowcts/errors.h"
+
+namespace shadowcts {
+namespace {
+
+// Slack that turns the double evaluations below into conservative bounds: their relative rounding
+// error is a few 1e-16, six orders of magnitude below it.
+constexpr double angle_slack = 1e-9;
+constexpr double relative_slack = 1e-12;
+
+using Homogeneous = glm::dvec3;  // (X * z, Y * z, z) in disk units
+
+// Keeps the part of `polygon` where a X + b Y + c >= 0 (Sutherland-Hodgman, one plane).
+void clip(DiskPolygon& polygon, const glm::dvec3& line) {
+  DiskPolygon out;
+  auto value = [&](const glm::dvec2& q) { return line.x * q.x + line.y * q.y + line.z; };
+  for (int i = 0; i < polygon.count; ++i) {
+    const glm::dvec2& a = polygon.corners[i];
+    const glm::dvec2& b = polygon.corners[(i + 1) % polygon.count];
+    const double fa = value(a), fb = value(b);
+    if (fa >= 0.0) out.corners[out.count++] = a;
+    if ((fa >= 0.0) != (fb >= 0.0)) {
+      const double t = fa / (fa - fb);
+      out.corners[out.count++] = a + t * (b - a);
+    }
+  }
+  polygon = out.count >= 3 ? out : DiskPolygon{};
+}
+
+double angle_between(const glm::dvec3& a, const glm::dvec3& b) {
+  return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
+}
+
+}  // namespace
+
+SunDiskFrame sun_disk_frame(const ShadowLight& light, const std::string& source) {
+  if (light.kind != ShadowLightKind::sun_disk)
+    throw InputError(source, "light", "soft shadows need a sun-disk light");
+  const glm::dvec3 d(light.direction);
+  if (!(glm::dot(d, d) > 0.0) || !std::isfinite(glm::dot(d, d)))
+    throw InputError(source, "light.direction", "must be a finite non-zero vector");
+  const double a = double(light.angular_radius);
+  if (!(a > 0.0 && a < std::numbers::pi / 2))
+    throw InputError(source, "light.angular_radius",
+                     "a sun disk needs an angular radius in (0, pi/2) radians");
+  SunDiskFrame f;
+  f.direction = glm::normalize(d);
+  // Any orthonormal pair works (the disk is round); start from the axis least aligned with d.
+  const glm::dvec3 helper =
+      std::fabs(f.direction.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  f.x_axis = glm::normalize(glm::cross(helper, f.direction));
+  f.y_axis = glm::cross(f.direction, f.x_axis);
+  f.angular_radius = a;
+  f.tan_radius = std::tan(a);
+  return f;
+}
+
+SunDiskFrame sun_disk_frame(const Case& c) {
+  if (!c.light) throw InputError(c.source, "light", "soft shadows need a sun-disk light");
+  return sun_disk_frame(*c.light, c.source);
+}
+
+DiskPolygon project_triangle(const SunDiskFrame& frame, const glm::dvec3& p,
+                             const std::array<glm::dvec3, 3>& v, FrontProjection front,
+                             double half_width) {
+  std::array<Homogeneous, 3> h;
+  bool all_front = true, all_behind = true;
+  for (int i = 0; i < 3; ++i) {
+    const glm::dvec3 w = v[i] - p;
+    h[i] = {glm::dot(w, frame.x_axis) / frame.tan_radius,
+            glm::dot(w, frame.y_axis) / frame.tan_radius, glm::dot(w, frame.direction)};
+    all_front = all_front && h[i].z > 0.0;
+    all_behind = all_behind && h[i].z <= 0.0;
+  }
+  DiskPolygon polygon;
+  if (all_behind) return polygon;
+  if (all_front && front == FrontProjection::vertices) {
+    for (int i = 0; i < 3; ++i) polygon.corners[i] = {h[i].x / h[i].z, h[i].y / h[i].z};
+    polygon.count = 3;
+    return polygon;
+  }
+  const double det = glm::dot(h[0], glm::cross(h[1], h[2]));
+  if (det == 0.0) return polygon;  // seen edge-on: no area
+  const double sign = det > 0.0 ? 1.0 : -1.0;
+  polygon.corners[0] = {-half_width, -half_width};
+  polygon.corners[1] = {half_width, -half_width};
+  polygon.corners[2] = {half_width, half_width};
+  polygon.corners[3] = {-half_width, half_width};
+  polygon.count = 4;
+  for (int i = 0; i < 3 && polygon.count > 0; ++i)
+    clip(polygon, sign * glm::cross(h[i], h[(i + 1) % 3]));
+  return polygon;
+}
+
+double angle_to_triangle(const glm::dvec3& d, const std::array<glm::dvec3, 3>& w) {
+  std::array<glm::dvec3, 3> u;
+  for (int i = 0; i < 3; ++i) {
+    const double length = glm::length(w[i]);
+    if (length == 0.0) return 0.0;
+    u[i] = w[i] / length;
+  }
+  const double det = glm::dot(u[0], glm::cross(u[1], u[2]));
+  if (det != 0.0) {
+    const double s = det > 0.0 ? 1.0 : -1.0;
+    bool inside = true;
+    for (int i = 0; i < 3; ++i)
+      inside = inside && s * glm::dot(glm::cross(u[i], u[(i + 1) % 3]), d) >= 0.0;
+    if (inside) return 0.0;
+  }
+  double best = std::numbers::pi;
+  for (int i = 0; i < 3; ++i) best = std::min(best, angle_between(d, u[i]));
+  for (int i = 0; i < 3; ++i) {
+    const glm::dvec3& a = u[i];
+    const glm::dvec3& b = u[(i + 1) % 3];
+    const glm::dvec3 n = glm::cross(a, b);
+    const double n_length = glm::length(n);
+    if (n_length < 1e-12) {
+      // Nearly antiparallel directions: the edge passes (almost) through p.
+      if (glm::dot(a, b) < 0.0) return 0.0;
+      continue;  // (nearly) the same direction: the endpoints decide
+    }
+    const glm::dvec3 normal = n / n_length;
+    const glm::dvec3 in_plane = d - glm::dot(d, normal) * normal;
+    // The nearest point of the great circle lies on the arc from a to b.
+    if (glm::dot(glm::cross(a, in_plane), n) >= 0.0 && glm::dot(glm::cross(in_plane, b), n) >= 0.0)
+      best = std::min(best, std::atan2(std::fabs(glm::dot(d, normal)), glm::length(in_plane)));
+  }
+  return std::max(0.0, best - angle_slack);
+}
+
+double distance_to_triangle(const glm::dvec3& p, const std::array<glm::dvec3, 3>& v) {
+  const glm::dvec3 &a = v[0], &b = v[1], &c = v[2];
+  const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
+  const auto lower = [&](const glm::dvec3& q) {
+    const double scale = glm::length(p) + glm::length(a) + glm::length(b) + glm::length(c);
+    return std::max(0.0, glm::length(p - q) * (1.0 - relative_slack) - relative_slack * scale);
+  };
+  const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return lower(a);
+  const glm::dvec3 bp = p - b;
+  const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+  if (d3 >= 0.0 && d4 <= d3) return lower(b);
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return lower(a + (d1 / (d1 - d3)) * ab);
+  const glm::dvec3 cp = p - c;
+  const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+  if (d6 >= 0.0 && d5 <= d6) return lower(c);
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return lower(a + (d2 / (d2 - d6)) * ac);
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0)
+    return lower(b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b));
+  const double denominator = va + vb + vc;
+  if (denominator == 0.0) return 0.0;  // degenerate: conservative
+  const double vv = vb / denominator, ww = vc / denominator;
+  return lower(a + ab * vv + ac * ww);
+}
+
+}  // namespace shadowcts

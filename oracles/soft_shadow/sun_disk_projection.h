@@ -1,0 +1,59 @@
+#pragma once
+// Central projection of a caster triangle from a sample onto the sun disk, in double precision:
+// the one place where the soft-shadow oracles round. "Disk units" are the plane perpendicular to
+// the light direction d at unit distance from the sample, scaled by 1 / tan(a), so the disk is the
+// unit disk around the origin.
+#include <array>
+#include <string>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "shadowcts/case.h"
+
+namespace shadowcts {
+
+struct SunDiskFrame {
+  glm::dvec3 x_axis{1.0, 0.0, 0.0}, y_axis{0.0, 1.0, 0.0};  // orthonormal, perpendicular to d
+  glm::dvec3 direction{0.0, 0.0, 1.0};                      // d, unit, towards the light
+  double angular_radius = 0.0;                              // a, radians
+  double tan_radius = 0.0;                                  // tan(a): the disk radius at distance 1
+};
+
+// Throws InputError (naming `source`) unless the light is a sun disk with a non-zero direction and
+// an angular radius in (0, pi/2).
+SunDiskFrame sun_disk_frame(const ShadowLight& light, const std::string& source);
+// The case's light; InputError when the case has none or it is not a sun disk.
+SunDiskFrame sun_disk_frame(const Case& c);
+
+// A convex polygon in disk units: the projection of a triangle, clipped where needed. A square
+// (4 corners) clipped by three half-planes has at most 7 corners.
+struct DiskPolygon {
+  std::array<glm::dvec2, 7> corners{};
+  int count = 0;  // 0: the projection has no area (behind the sample, or seen edge-on)
+};
+
+// How a triangle whose vertices all lie strictly in front of the sample is projected: by its three
+// projected vertices (the exact oracle: shared vertices project to the same doubles, so shared
+// edges match exactly), or, like every other triangle, homogeneously clipped to the square.
+enum class FrontProjection { vertices, clipped };
+
+// The projection of the triangle with vertices v from p, intersected with the square
+// [-half_width, half_width]^2 where it is clipped. Triangles with vertices on both sides of the
+// fragment plane (z = 0) are handled homogeneously: the projection of the part in front of p is
+// { X : s (h_i x h_j) . (X, Y, 1) >= 0 for the three edges }, h the vertices in homogeneous disk
+// coordinates and s the sign of det(h0, h1, h2), so no vertex is ever divided by its z.
+DiskPolygon project_triangle(const SunDiskFrame& frame, const glm::dvec3& p,
+                             const std::array<glm::dvec3, 3>& v, FrontProjection front,
+                             double half_width);
+
+// The smallest angle between d and a direction from p to a point of the closed triangle (v
+// relative to p), in radians, rounded down by far more than its rounding error (a conservative
+// lower bound); 0 when d points into the triangle's cone or p lies on the triangle.
+double angle_to_triangle(const glm::dvec3& d, const std::array<glm::dvec3, 3>& w);
+
+// The distance from p to the closed triangle (Ericson, "Real-Time Collision Detection" 5.1.5),
+// rounded down by far more than its rounding error.
+double distance_to_triangle(const glm::dvec3& p, const std::array<glm::dvec3, 3>& v);
+
+}  // namespace shadowcts

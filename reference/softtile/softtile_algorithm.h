@@ -1,0 +1,34 @@
+#pragma once
+// Reference `softtile`: tiled per-triangle soft shadow volumes after Kalbertodt (2023, the post in
+// ../shared/papers/): a gather pass culls the scene for the frame; an eval pass per 16 x 16 pixel
+// tile bounds the tile's relevant samples by a sphere or a tapered capsule, culls cluster cones
+// then truncated triangle cones against it, and rasterizes every candidate into each pixel's disk
+// bitmask (the 16 x 16 grid or N x 31 rows), optionally rotated per pixel. The visible fraction is
+// the share of the disk's cells left lit.
+//
+// The tile's candidate buffer holds tile_triangle_limit triangles, as the post's shared memory
+// does; a tile with more is not dropped (the post's checkerboard) but processed in further batches,
+// and counted. Counters, in order: gather_clusters, gather_clusters_culled, gather_triangles,
+// gather_light_facing_dropped, tiles, tiles_with_relevant_pixels, tile_capsule_bounds,
+// tile_candidates_total, tile_candidates_max, overflowing_tiles, overflow_batches,
+// pixel_triangle_tests, triangles_rasterized, triangles_rasterized_max_per_pixel.
+#include <memory>
+#include <string>
+
+#include "oracles/soft_shadow/soft_shadow_comparison.h"
+#include "shadowcts/algorithm.h"
+
+namespace shadowcts {
+
+inline constexpr int softtile_tile_size = 16;
+inline constexpr std::size_t softtile_tile_triangle_limit = 2048;
+
+// id "softtile", backend "reference", output soft_shadow, sun disks only. Variants: grid16
+// (default), grid16+rot, rows3, rows5, rows7, rows15, rows31, rows31+rot, post.
+std::unique_ptr<Algorithm> make_softtile();
+
+// The error budget each variant declares (docs/soft-shadow-budgets.md). Throws
+// std::invalid_argument for an unknown variant.
+SoftErrorBudget softtile_error_budget(const std::string& variant);
+
+}  // namespace shadowcts

@@ -1,0 +1,55 @@
+#pragma once
+// The gather pass: the whole scene culled once per frame, clusters first, then triangles. What
+// survives is packed densely with its light-space vertices and truncated shadow cones.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "reference/softtile/shadow_cone.h"
+#include "shadowcts/case.h"
+#include "shadowcts/view_samples.h"
+
+namespace shadowcts::softtile {
+
+// Light space: z towards the sun, x and y any orthonormal pair perpendicular to it (the post's
+// to_light_space_matrix).
+struct LightSpace {
+  glm::dvec3 x_axis, y_axis, z_axis;
+  glm::vec3 to_light(const glm::vec3& world) const;  // rounded to float, as the shader reads it
+};
+
+struct GatheredTriangle {
+  std::uint32_t triangle;  // index into Case::triangles
+  std::array<glm::vec3, 3> light_space;
+  ShadowCone cone;
+};
+
+struct GatheredCluster {
+  ShadowCone cone;
+  std::uint32_t first = 0, count = 0;  // range in Gathered::triangles
+};
+
+struct Gathered {
+  SunGeometry sun;
+  LightSpace light_space;
+  std::vector<GatheredTriangle> triangles;
+  std::vector<GatheredCluster> clusters;
+  // Counters.
+  std::uint64_t clusters_in = 0, clusters_culled = 0, triangles_culled = 0,
+                light_facing_dropped = 0;
+};
+
+// Mesh clusters: runs of up to this many consecutive triangles of one mesh (the case has no
+// renderer clusters, so the reference makes the simplest ones).
+inline constexpr std::uint32_t cluster_size = 64;
+
+// Keeps every caster triangle whose truncated cone may reach the bounding sphere of the frame's
+// relevant samples (the post culls against the view frustum, extended because geometry outside
+// it shadows inside it; the samples' bound is that region, tight), and drops triangles that face
+// the light for every direction of the disk only in meshes proven closed: a ray towards the light
+// from outside a closed mesh that enters it also leaves it through a face that does not.
+Gathered gather(const Case& c, const ViewSamples& samples);
+
+}  // namespace shadowcts::softtile

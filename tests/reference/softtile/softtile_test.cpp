@@ -1,0 +1,232 @@
+// The reference softtile's parts and behaviour: the post's disk masks and scanline rasterization,
+// edge flipping for triangles crossing the fragment plane, the hard-shadow limit a -> 0, the tile
+// overflow, light-facing culling of closed meshes, the sin(a) shortcut, determinism.
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include <gtest/gtest.h>
+#include <glm/geometric.hpp>
+
+#include "oracles/soft_shadow/soft_shadow_comparison.h"
+#include "reference/softtile/disk_bitmask.h"
+#include "reference/softtile/softtile_algorithm.h"
+#include "reference/softtile/softtile_variant.h"
+#include "shadowcts/hard_shadow_oracle.h"
+#include "shadowcts/soft_shadow_oracle.h"
+#include "tests/oracles/soft_shadow/soft_case.h"
+
+namespace shadowcts {
+namespace {
+
+using testing::sun_disk;
+
+TEST(DiskBitmask, ThePostsSixteenBySixteenDisk) {
+  const softtile::DiskBitmask mask(softtile::parse_variant("grid16"));
+  EXPECT_EQ(mask.disk_cells(), 208);
+  EXPECT_EQ(mask.rows(), 16);
+  for (int r = 0; r < 16; ++r) EXPECT_EQ(mask.row(r), mask.row(15 - r)) << r;  // symmetric
+  EXPECT_EQ(mask.row(0), 0x07e0u);
+  EXPECT_EQ(mask.row(7), 0xffffu);
+}
+
+TEST(DiskBitmask, RowsOfThirtyOneBits) {
+  for (int rows : {3, 5, 7, 15, 31}) {
+    const softtile::DiskBitmask mask(softtile::parse_variant("rows" + std::to_string(rows)));
+    // About the disk's share pi / 4 of the rows x 31 cells.
+    const double share = double(mask.disk_cells()) / (rows * 31.0);
+    EXPECT_NEAR(share, std::numbers::pi / 4.0, 0.12) << rows;
+    for (int r = 0; r < rows; ++r) EXPECT_LT(mask.row(r), 1u << 31);
+  }
+}
+
+TEST(DiskBitmask, HalfPlaneClearsTheCellsOnItsSide) {
+  for (const char* name : {"grid16", "rows3", "rows31"}) {
+    softtile::DiskBitmask mask(softtile::parse_variant(name));
+    const int before = mask.disk_cells();
+    // Inside: X >= 0.3 (edge x = 0.3, inside to the right). Two far edges close the triangle.
+    mask.clear_triangle({glm::vec3(1, 0, -0.3f), glm::vec3(0, 1, 10), glm::vec3(0, -1, 10)});
+    int expected_lit = 0;
+    const softtile::DiskBitmask fresh(softtile::parse_variant(name));
+    for (int r = 0; r < fresh.rows(); ++r)
+      for (int col = 0; col < fresh.columns(); ++col) {
+        const bool in_disk = fresh.row(r) >> (fresh.columns() - 1 - col) & 1u;
+        const double x = -1.0 + (col + 0.5) * 2.0 / fresh.columns();
+        expected_lit += in_disk && x < 0.3;
+      }
+    EXPECT_EQ(mask.lit_cells(), expected_lit) << name;
+    EXPECT_LT(mask.lit_cells(), before);
+  }
+}
+
+// One caster over a non-caster ground, samples under it; softtile against the exact oracle.
+SoftShadowComparison compare_on(const testing::HandBuiltCase& h, const std::string& variant,
+                                AlgorithmOutput* output_out = nullptr) {
+  const auto algorithm = make_softtile();
+  AlgorithmOutput output = algorithm->run(h.c, h.samples, variant);
+  const SoftShadowTruth truth = exact_soft_shadow_oracle(h.c, h.samples);
+  const SoftShadowComparison r =
+      compare_soft_shadows(output.visible_fraction, truth, softtile_error_budget(variant));
+  if (output_out) *output_out = std::move(output);
+  return r;
+}
+
+TEST(Softtile, TrianglesCrossingTheFragmentPlaneAgreeWithTheClippedExactAnswer) {
+  // Big leaning triangles with one vertex below the samples' plane perpendicular to d: edge
+  // flipping must give the clipped projection (a wrong flip clears the complement of the disk).
+  const ShadowLight light = sun_disk({0.0f, 1.0f, 0.0f}, 5.0);
+  testing::HandBuiltCase h = testing::make_hand_built_case(light);
+  h.add_triangle({-0.3f, 1.0f, 0.2f}, {0.4f, 1.5f, 0.1f}, {0.05f, -1.0f, -0.2f});
+  for (int i = 0; i < 64; ++i)
+    h.add_ground_sample(
+        {-0.2f + 0.4f * float(i % 8) / 7.0f, 0.0f, -0.2f + 0.4f * float(i / 8) / 7.0f});
+  h.samples.width = 8;
+  h.samples.height = 8;
+  for (std::size_t i = 0; i < h.samples.samples.size(); ++i) {
+    h.samples.samples[i].pixel_x = std::uint32_t(i % 8);
+    h.samples.samples[i].pixel_y = std::uint32_t(i / 8);
+  }
+  for (const char* variant : {"grid16", "rows31", "grid16+rot"}) {
+    const SoftShadowComparison r = compare_on(h, variant);
+    EXPECT_EQ(r.verdict, Verdict::pass) << variant << ": " << r.reason;
+    EXPECT_LT(r.max_abs_error, 0.06) << variant;
+  }
+}
+
+TEST(Softtile, TendsToTheHardShadowAsTheDiskShrinks) {
+  // Robust samples of the hard-shadow oracle (directional light along the disk's centre) are
+  // fully lit or fully shadowed once the disk is small enough.
+  const glm::vec3 direction{0.3f, 1.0f, 0.2f};
+  // No samples at the images of blocker vertices: the 14 band moves can all miss a sharp corner
+  // the ray passes within rounding of, so such a sample can be "robust" for hard shadows while any
+  // disk, however small, sees part of the corner (and the exact soft oracle agrees with softtile).
+  testing::HandBuiltCase hard = testing::make_random_case(
+      17, 8, 120, 1.0f, 800, testing::directional_light(direction), /*vertex_images=*/false);
+  const HardShadowTruth hard_truth = exact_hard_shadow_oracle(hard.c, hard.samples);
+  const auto algorithm = make_softtile();
+  std::size_t previous_mismatches = hard.samples.samples.size();
+  for (double radians : {1e-2, 1e-3, 1e-5}) {
+    Case soft = hard.c;
+    soft.light = sun_disk(direction, 1.0);
+    soft.light->angular_radius = float(radians);
+    const AlgorithmOutput output = algorithm->run(soft, hard.samples, "grid16");
+    std::size_t mismatches = 0, robust = 0;
+    for (std::size_t i = 0; i < hard.samples.samples.size(); ++i) {
+      if (hard_truth.band[i] != BandClass::robust_lit &&
+          hard_truth.band[i] != BandClass::robust_shadowed)
+        continue;
+      ++robust;
+      const float expected = hard_truth.shadowed[i] ? 0.0f : 1.0f;
+      mismatches += output.visible_fraction[i] != expected;
+    }
+    ASSERT_GT(robust, 500u);
+    EXPECT_LE(mismatches, previous_mismatches) << radians;
+    previous_mismatches = mismatches;
+    if (radians == 1e-5) {
+      EXPECT_EQ(mismatches, 0u);
+    }
+  }
+}
+
+TEST(Softtile, TileOverflowIsProcessedAndCounted) {
+  // 3000 small stacked casters over one tile: more than the tile's buffer holds.
+  const ShadowLight light = sun_disk({0.0f, 1.0f, 0.0f}, 2.0);
+  testing::HandBuiltCase h = testing::make_hand_built_case(light);
+  std::mt19937_64 random(4);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  for (int i = 0; i < 3000; ++i) {
+    const glm::vec3 centre{0.3f * unit(random), 1.5f + unit(random), 0.3f * unit(random)};
+    h.add_triangle(centre + glm::vec3(-0.3f, 0, -0.3f), centre + glm::vec3(0.3f, 0, -0.3f),
+                   centre + glm::vec3(0, 0.01f, 0.3f));
+  }
+  for (int i = 0; i < 16; ++i)
+    h.add_ground_sample(
+        {-0.1f + 0.2f * float(i % 4) / 3.0f, 0.0f, -0.1f + 0.2f * float(i / 4) / 3.0f});
+  h.samples.width = 4;
+  h.samples.height = 4;
+  for (std::size_t i = 0; i < 16; ++i) {
+    h.samples.samples[i].pixel_x = std::uint32_t(i % 4);
+    h.samples.samples[i].pixel_y = std::uint32_t(i / 4);
+  }
+  AlgorithmOutput output;
+  const SoftShadowComparison r = compare_on(h, "grid16", &output);
+  EXPECT_EQ(r.verdict, Verdict::pass) << r.reason;
+  std::uint64_t overflowing = 0, batches = 0;
+  for (const auto& [name, value] : output.counters) {
+    if (name == "overflowing_tiles") overflowing = value;
+    if (name == "overflow_batches") batches = value;
+  }
+  EXPECT_EQ(overflowing, 1u);
+  EXPECT_GE(batches, 1u);
+}
+
+TEST(Softtile, LightFacingTrianglesOfClosedMeshesAreDroppedWithoutChangingTheResult) {
+  const ShadowLight light = sun_disk({0.2f, 1.0f, 0.1f}, 3.0);
+  testing::HandBuiltCase h = testing::make_hand_built_case(light);
+  testing::add_pyramid_fan(h);  // four faces around an apex: light-facing and not
+  // Close it with the base (outward: facing down).
+  h.add_triangle({-1, 2, -1}, {1, 2, 1}, {1, 2, -1});
+  h.add_triangle({-1, 2, -1}, {-1, 2, 1}, {1, 2, 1});
+  for (int i = 0; i < 64; ++i)
+    h.add_ground_sample(
+        {-1.6f + 3.2f * float(i % 8) / 7.0f, 0.0f, -1.6f + 3.2f * float(i / 8) / 7.0f});
+  const auto algorithm = make_softtile();
+  const AlgorithmOutput open = algorithm->run(h.c, h.samples, "grid16");
+  h.c.meshes[testing::blocker_mesh].closed = true;
+  const AlgorithmOutput closed = algorithm->run(h.c, h.samples, "grid16");
+  EXPECT_EQ(open.visible_fraction, closed.visible_fraction);
+  std::uint64_t dropped = 0;
+  for (const auto& [name, value] : closed.counters)
+    if (name == "gather_light_facing_dropped") dropped = value;
+  EXPECT_GE(dropped, 2u);
+}
+
+TEST(Softtile, TheSineShortcutCostsAccuracyAtLargeDisks) {
+  // At 30 degrees the post's sin(a) normalization sees the disk of tangent radius sin(a) instead
+  // of tan(a), missing a share sin^2(a) = 1/4 of it: its error shows against the cone-exact tan(a).
+  const ShadowLight light = sun_disk({0.2f, 1.0f, 0.1f}, 30.0);
+  testing::HandBuiltCase h = testing::make_hand_built_case(light);
+  h.add_triangle({-4, 1, -4}, {4, 1, -4}, {0.0f, 1, 0.0f});
+  for (int i = 0; i < 400; ++i)
+    h.add_ground_sample(
+        {-1.0f + 2.0f * float(i % 20) / 19.0f, 0.0f, -1.0f + 2.0f * float(i / 20) / 19.0f});
+  const SoftShadowComparison post = compare_on(h, "post");
+  const SoftShadowComparison exact_scale = compare_on(h, "grid16+rot");
+  EXPECT_GT(post.mean_abs_error, exact_scale.mean_abs_error);
+}
+
+TEST(Softtile, DeterministicForAnyThreadCount) {
+  testing::HandBuiltCase h =
+      testing::make_random_case(23, 8, 100, 1.0f, 600, sun_disk({0.3f, 1.0f, 0.2f}, 3.0));
+  h.samples.width = 30;
+  h.samples.height = std::uint32_t(h.samples.samples.size() + 29) / 30;
+  h.samples.samples.resize(std::size_t(h.samples.width) * h.samples.height, ViewSample{});
+  for (std::size_t i = 0; i < h.samples.samples.size(); ++i) {
+    h.samples.samples[i].pixel_x = std::uint32_t(i % 30);
+    h.samples.samples[i].pixel_y = std::uint32_t(i / 30);
+  }
+  const auto algorithm = make_softtile();
+  for (const char* variant : {"grid16+rot", "rows31+rot"}) {
+    h.c.parameters.threads = 1;
+    const AlgorithmOutput one = algorithm->run(h.c, h.samples, variant);
+    h.c.parameters.threads = 2;
+    const AlgorithmOutput two = algorithm->run(h.c, h.samples, variant);
+    EXPECT_EQ(one.visible_fraction, two.visible_fraction) << variant;
+    EXPECT_EQ(one.counters, two.counters) << variant;
+  }
+}
+
+TEST(Softtile, OnlySunDisks) {
+  const auto algorithm = make_softtile();
+  testing::HandBuiltCase h =
+      testing::make_hand_built_case(testing::directional_light({0.0f, 1.0f, 0.0f}));
+  h.add_ground_sample({0, 0, 0});
+  EXPECT_TRUE(algorithm->unsupported_reason(h.c, h.samples, "grid16").has_value());
+  h.c.light = sun_disk({0.0f, 1.0f, 0.0f}, 1.0);
+  EXPECT_FALSE(algorithm->unsupported_reason(h.c, h.samples, "grid16").has_value());
+  EXPECT_THROW(algorithm->run(h.c, h.samples, "grid17"), std::invalid_argument);
+  EXPECT_THROW(softtile_error_budget("grid17"), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace shadowcts
