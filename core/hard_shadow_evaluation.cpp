@@ -19,7 +19,7 @@ class HardShadowEvaluation : public CaseEvaluation {
  public:
   HardShadowEvaluation(const Case& c, const ViewSamples& samples, bool exact,
                        const std::filesystem::path& out_dir)
-      : case_name_(c.name), samples_(samples), out_dir_(out_dir) {
+      : samples_(samples), out_dir_(out_dir) {
     const auto start = std::chrono::steady_clock::now();
     truth_ = exact ? exact_hard_shadow_oracle(c, samples) : embree_hard_shadow_oracle(c, samples);
     oracle_.time_ms =
@@ -73,12 +73,10 @@ class HardShadowEvaluation : public CaseEvaluation {
                       std::to_string(h.false_shadows) + ", ambiguous " +
                       std::to_string(h.ambiguous_disagreements) + "/" +
                       std::to_string(h.ambiguous) + " differ";
-    record.images =
-        write_algorithm_images(out_dir_, case_name_, record, samples_, output.shadowed, truth_);
+    record.images = write_algorithm_images(out_dir_, record, samples_, output.shadowed, truth_);
   }
 
  private:
-  std::string case_name_;
   const ViewSamples& samples_;
   std::filesystem::path out_dir_;
   HardShadowTruth truth_;

@@ -1,6 +1,6 @@
 #include "hard_shadow_images.h"
 
-#include <cctype>
+#include "image_paths.h"
 
 namespace shadowcts {
 namespace {
@@ -38,23 +38,6 @@ RgbImage paint(const ViewSamples& samples, ColourOf colour_of) {
   return image;
 }
 
-// Case names may hold characters that are awkward in paths; dots and dashes stay readable.
-std::string path_safe(const std::string& name) {
-  std::string s = name;
-  for (char& ch : s)
-    if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '.' || ch == '-' || ch == '_'))
-      ch = '_';
-  return s;
-}
-
-std::string write_both(const std::filesystem::path& out_dir, const std::string& relative_stem,
-                       const RgbImage& image) {
-  std::filesystem::create_directories((out_dir / relative_stem).parent_path());
-  write_image((out_dir / (relative_stem + ".png")).string(), image);
-  write_image((out_dir / (relative_stem + ".exr")).string(), image);
-  return relative_stem + ".png";
-}
-
 }  // namespace
 
 RgbImage shadow_mask_image(const ViewSamples& samples, const std::vector<std::uint8_t>& shadowed) {
@@ -79,20 +62,17 @@ RgbImage mismatch_image(const ViewSamples& samples, const std::vector<std::uint8
 
 std::string write_oracle_images(const std::filesystem::path& out_dir, const std::string& case_name,
                                 const ViewSamples& samples, const HardShadowTruth& truth) {
-  return write_both(out_dir, "images/" + path_safe(case_name) + "/oracle.mask",
-                    shadow_mask_image(samples, truth.shadowed));
+  return write_png_and_exr(out_dir, case_image_stem(case_name) + "/oracle.mask",
+                           shadow_mask_image(samples, truth.shadowed));
 }
 
 std::vector<std::string> write_algorithm_images(const std::filesystem::path& out_dir,
-                                                const std::string& case_name,
                                                 const RunRecord& record, const ViewSamples& samples,
                                                 const std::vector<std::uint8_t>& shadowed,
                                                 const HardShadowTruth& truth) {
-  const std::string stem =
-      "images/" + path_safe(case_name) + "/" +
-      path_safe(record.algorithm + "." + record.variant + "." + record.backend);
-  return {write_both(out_dir, stem + ".mask", shadow_mask_image(samples, shadowed)),
-          write_both(out_dir, stem + ".mismatch", mismatch_image(samples, shadowed, truth))};
+  const std::string stem = algorithm_image_stem(record);
+  return {write_png_and_exr(out_dir, stem + ".mask", shadow_mask_image(samples, shadowed)),
+          write_png_and_exr(out_dir, stem + ".mismatch", mismatch_image(samples, shadowed, truth))};
 }
 
 }  // namespace shadowcts

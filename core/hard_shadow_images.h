@@ -28,7 +28,6 @@ std::string write_oracle_images(const std::filesystem::path& out_dir, const std:
 // Writes images/<case>/<algorithm>.<variant>.<backend>.{mask,mismatch}.{png,exr}; returns the
 // paths relative to out_dir.
 std::vector<std::string> write_algorithm_images(const std::filesystem::path& out_dir,
-                                                const std::string& case_name,
                                                 const RunRecord& record, const ViewSamples& samples,
                                                 const std::vector<std::uint8_t>& shadowed,
                                                 const HardShadowTruth& truth);

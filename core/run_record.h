@@ -28,7 +28,8 @@ struct RunRecord {
   std::string test_name;  // dotted: <output>.<algorithm>.<variant>.<backend>.<case>
   std::string algorithm, variant, backend;
   OutputKind output = OutputKind::hard_shadow;
-  bool approximate = false;  // Capabilities::approximate
+  bool approximate = false;     // Capabilities::approximate
+  SoftErrorBudget soft_budget;  // soft_shadow outputs: what the variant declares
   Verdict verdict = Verdict::pass;
   std::string reason;
   std::vector<double> run_ms;  // every timed repeat

@@ -24,6 +24,7 @@
 #include "shadowcts/fixtures.h"
 #include "shadowcts/gbuffer_exr.h"
 #include "shadowcts/registry.h"
+#include "soft_shadow_evaluation.h"
 
 namespace shadowcts {
 namespace {
@@ -133,7 +134,8 @@ class Progress {
   std::ostream& err_;
 };
 
-RunRecord new_record(const Case& c, const AlgorithmInfo& meta, const std::string& variant) {
+RunRecord new_record(const Case& c, const Algorithm& algorithm, const std::string& variant) {
+  const AlgorithmInfo& meta = algorithm.info();
   RunRecord record;
   record.case_name = c.name;
   record.algorithm = meta.id;
@@ -141,6 +143,8 @@ RunRecord new_record(const Case& c, const AlgorithmInfo& meta, const std::string
   record.backend = meta.backend;
   record.output = meta.capabilities.output;
   record.approximate = meta.capabilities.approximate;
+  if (record.output == OutputKind::soft_shadow)
+    record.soft_budget = algorithm.soft_error_budget(variant);
   record.test_name = output_kind_name(record.output) + "." + meta.id + "." + variant + "." +
                      meta.backend + "." + c.name;
   return record;
@@ -152,9 +156,7 @@ bool same_results(const AlgorithmOutput& a, const AlgorithmOutput& b) {
          x.offsets == y.offsets && x.lights == y.lights && x.list_of_sample == y.list_of_sample;
 }
 
-bool can_evaluate(OutputKind kind) {
-  return kind == OutputKind::hard_shadow;
-}
+bool can_evaluate(OutputKind kind) { return kind != OutputKind::light_lists; }
 
 std::unique_ptr<CaseEvaluation> evaluate(OutputKind kind, const Case& c, const ViewSamples& samples,
                                          OracleChoice choice, const std::filesystem::path& out_dir,
@@ -163,6 +165,7 @@ std::unique_ptr<CaseEvaluation> evaluate(OutputKind kind, const Case& c, const V
     case OutputKind::hard_shadow:
       return evaluate_hard_shadows(c, samples, choice, out_dir, left_out);
     case OutputKind::soft_shadow:
+      return evaluate_soft_shadows(c, samples, choice, out_dir, left_out);
     case OutputKind::light_lists:
       break;
   }
@@ -171,11 +174,11 @@ std::unique_ptr<CaseEvaluation> evaluate(OutputKind kind, const Case& c, const V
 
 void print_summary(std::ostream& out, const std::vector<RunRecord>& records) {
   out << "\nsummary\n";
-  out << std::left << std::setw(26) << "case" << std::setw(30) << "algorithm" << std::setw(15)
+  out << std::left << std::setw(26) << "case" << std::setw(38) << "algorithm" << std::setw(15)
       << "verdict" << std::right << std::setw(11) << "median ms"
       << "   figures\n";
   for (const RunRecord& r : records) {
-    out << std::left << std::setw(26) << r.case_name << std::setw(30)
+    out << std::left << std::setw(26) << r.case_name << std::setw(38)
         << (r.algorithm + ":" + r.variant + " [" + r.backend + "]") << std::setw(15)
         << verdict_name(r.verdict) << std::right;
     if (r.verdict == Verdict::not_supported || r.verdict == Verdict::crash) {
@@ -274,7 +277,7 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
           why = "the runner has no oracle comparison for " + output_kind_name(kind) +
                 " outputs yet";  // never a verdict without a comparison
         if (why) {
-          RunRecord record = new_record(c, meta, variant);
+          RunRecord record = new_record(c, *a, variant);
           record.verdict = Verdict::not_supported;
           record.reason = *why;
           summary.left_out.push_back(meta.id + ":" + variant + " [" + meta.backend + "]: " + *why);
@@ -285,10 +288,13 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
         planned.push_back({a.get(), variant});
       }
     }
-    if (c.light && c.light->kind == ShadowLightKind::sun_disk)
+    if (c.light && c.light->kind == ShadowLightKind::sun_disk &&
+        kinds.count(OutputKind::hard_shadow))
       summary.left_out.push_back(
-          "soft-shadow comparison: no registered algorithm computes sun-disk visibility yet; hard "
-          "shadows use the disk's centre direction");
+          "penumbrae in hard-shadow comparisons: hard-shadow algorithms see the sun disk's centre "
+          "direction");
+    if (c.light && c.light->kind != ShadowLightKind::sun_disk)
+      summary.left_out.push_back("soft-shadow oracle: the light is not a sun disk");
     if (!c.light) summary.left_out.push_back("hard-shadow oracle: the case has no shadow light");
     if (c.ranged_lights.empty())
       summary.left_out.push_back("light-assignment oracle: the case has no ranged lights");
@@ -321,7 +327,7 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
 
     for (const PlannedRun& p : planned) {
       const AlgorithmInfo& meta = p.algorithm->info();
-      RunRecord record = new_record(c, meta, p.variant);
+      RunRecord record = new_record(c, *p.algorithm, p.variant);
       progress.show(step + meta.id + ":" + p.variant + " [" + meta.backend + "]");
       const Case& view = record.output == OutputKind::hard_shadow ? hard_case : c;
       try {

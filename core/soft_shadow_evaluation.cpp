@@ -1,0 +1,164 @@
+#include "soft_shadow_evaluation.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "image_paths.h"
+#include "oracles/soft_shadow/soft_shadow_comparison.h"
+#include "shadowcts/image_file.h"
+#include "shadowcts/soft_shadow_oracle.h"
+
+namespace shadowcts {
+namespace {
+
+// The exact oracle costs about a millisecond per sample on one core (CGAL Boolean operations over
+// exact rationals); above this many compared samples the automatic choice is the sampled oracle.
+constexpr std::size_t exact_oracle_sample_limit = 300'000;
+// 1024 stratified rays: error bound 0.102 per sample at failure probability 1e-9.
+constexpr std::uint32_t sampled_rays_per_sample = 1024;
+
+std::uint8_t to_byte(double v) {
+  return std::uint8_t(std::lround(std::clamp(v, 0.0, 1.0) * 255));
+}
+
+// Visible fraction as grey (black: umbra, white: fully lit); sky and back-facing as in the hard
+// masks.
+template <class Fraction>
+RgbImage visibility_image(const ViewSamples& samples, const SoftShadowTruth& truth,
+                          Fraction fraction) {
+  RgbImage image{samples.width, samples.height,
+                 std::vector<std::uint8_t>(samples.samples.size() * 3)};
+  for (std::size_t i = 0; i < samples.samples.size(); ++i) {
+    const SampleClass cls = samples.samples[i].sample_class;
+    std::uint8_t rgb[3];
+    if (cls == SampleClass::sky) {
+      rgb[0] = 110, rgb[1] = 150, rgb[2] = 200;
+    } else if (!truth.compared[i]) {
+      rgb[0] = 45, rgb[1] = 50, rgb[2] = 70;
+    } else {
+      rgb[0] = rgb[1] = rgb[2] = to_byte(fraction(i));
+    }
+    std::copy(rgb, rgb + 3, image.rgb.begin() + std::ptrdiff_t(3 * i));
+  }
+  return image;
+}
+
+// Signed error e = f_alg - f_exact: red where too bright (light leaking into shadow), blue where
+// too dark, saturated at |e| = 0.25; ambiguous samples drawn yellow-tinted.
+RgbImage error_image(const ViewSamples& samples, const SoftShadowTruth& truth,
+                     const std::vector<float>& fraction) {
+  RgbImage image = visibility_image(samples, truth, [&](std::size_t) { return 0.8; });
+  for (std::size_t i = 0; i < samples.samples.size(); ++i) {
+    if (!truth.compared[i]) continue;
+    const double e = double(fraction[i]) - truth.visible_fraction[i];
+    const double s = std::clamp(std::fabs(e) / 0.25, 0.0, 1.0);
+    const std::uint8_t keep = to_byte(0.8 * (1.0 - s));
+    std::uint8_t* px = &image.rgb[3 * i];
+    px[0] = e > 0 ? 255 : keep;
+    px[1] = keep;
+    px[2] = e < 0 ? 255 : keep;
+    if (!truth.robust[i] && s == 0.0) px[0] = 220, px[1] = 200, px[2] = 90;
+  }
+  return image;
+}
+
+class SoftShadowEvaluation : public CaseEvaluation {
+ public:
+  SoftShadowEvaluation(const Case& c, const ViewSamples& samples, bool exact,
+                       const std::filesystem::path& out_dir)
+      : samples_(samples), out_dir_(out_dir) {
+    const auto start = std::chrono::steady_clock::now();
+    truth_ = exact ? exact_soft_shadow_oracle(c, samples)
+                   : sampled_soft_shadow_oracle(c, samples, sampled_rays_per_sample);
+    oracle_.time_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    oracle_.method = truth_.method;
+    oracle_.exact = truth_.exact;
+    std::uint64_t compared = 0, robust = 0;
+    double max_bound = 0;
+    for (std::size_t i = 0; i < truth_.compared.size(); ++i) {
+      compared += truth_.compared[i];
+      robust += truth_.robust[i];
+      if (truth_.compared[i]) max_bound = std::max(max_bound, truth_.error_bound[i]);
+    }
+    std::ostringstream line;
+    line << truth_.method << ": " << robust << " robust, " << compared - robust << " ambiguous";
+    if (!truth_.exact) line << ", error bound " << max_bound;
+    oracle_.plan_line = line.str();
+    const std::string stem = case_image_stem(c.name) + "/oracle.visibility";
+    write_png_and_exr(out_dir, stem, visibility_image(samples, truth_, [&](std::size_t i) {
+                        return truth_.visible_fraction[i];
+                      }));
+    oracle_.details = {{"eps_rel", truth_.eps_rel},
+                       {"tau", truth_.tau},
+                       {"compared", compared},
+                       {"robust", robust},
+                       {"ambiguous", compared - robust},
+                       {"max_error_bound", max_bound},
+                       {"visibility_image", stem + ".png"}};
+  }
+
+  void judge(const AlgorithmOutput& output, RunRecord& record) const override {
+    const SoftShadowComparison s =
+        compare_soft_shadows(output.visible_fraction, truth_, record.soft_budget);
+    if (record.verdict != Verdict::fail) {
+      record.verdict = s.verdict;
+      record.reason = s.reason;
+    }
+    record.error = {
+        {"compared", s.compared},
+        {"robust", s.robust},
+        {"ambiguous", s.ambiguous},
+        {"mean_abs_error", s.mean_abs_error},
+        {"rms_error", s.rms_error},
+        {"p99_abs_error", s.p99_abs_error},
+        {"max_abs_error", s.max_abs_error},
+        {"mean_signed_error", s.mean_signed_error},
+        {"umbra_leaks", s.umbra_leaks},
+        {"lit_occlusions", s.lit_occlusions},
+        {"over_budget", s.over_budget},
+        {"invalid_outputs", s.invalid_outputs},
+        {"budget",
+         {{"per_sample", record.soft_budget.per_sample}, {"mean", record.soft_budget.mean}}}};
+    std::ostringstream headline;
+    headline << "mean |e| " << s.mean_abs_error << ", max " << s.max_abs_error << ", leaks "
+             << s.umbra_leaks;
+    record.headline = headline.str();
+    const std::string stem = algorithm_image_stem(record);
+    record.images = {write_png_and_exr(out_dir_, stem + ".visibility",
+                                       visibility_image(samples_, truth_,
+                                                        [&](std::size_t i) {
+                                                          return double(output.visible_fraction[i]);
+                                                        })),
+                     write_png_and_exr(out_dir_, stem + ".error",
+                                       error_image(samples_, truth_, output.visible_fraction))};
+  }
+
+ private:
+  const ViewSamples& samples_;
+  std::filesystem::path out_dir_;
+  SoftShadowTruth truth_;
+};
+
+}  // namespace
+
+std::unique_ptr<CaseEvaluation> evaluate_soft_shadows(const Case& c, const ViewSamples& samples,
+                                                      OracleChoice choice,
+                                                      const std::filesystem::path& out_dir,
+                                                      std::vector<std::string>& left_out) {
+  const std::size_t regular = samples.count(SampleClass::regular);
+  const bool exact = choice == OracleChoice::exact ||
+                     (choice == OracleChoice::automatic && regular <= exact_oracle_sample_limit);
+  if (!exact)
+    left_out.push_back("exact soft-shadow oracle: " +
+                       (choice == OracleChoice::embree
+                            ? std::string("--oracle embree asked for the sampled one")
+                            : std::to_string(regular) + " samples exceed its limit of " +
+                                  std::to_string(exact_oracle_sample_limit)) +
+                       "; figures carry the sampled oracle's error bound");
+  return std::make_unique<SoftShadowEvaluation>(c, samples, exact, out_dir);
+}
+
+}  // namespace shadowcts

@@ -1,0 +1,22 @@
+#pragma once
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "case_evaluation.h"
+#include "shadowcts/case.h"
+#include "shadowcts/runner.h"
+#include "shadowcts/view_samples.h"
+
+namespace shadowcts {
+
+// Computes the sun-disk visibility truth of `c` with the exact oracle, or the sampled one above
+// its size limit or on request (noted in `left_out`), and writes the oracle's visibility image.
+// Runs are judged against the error budget their algorithm declares for the variant.
+std::unique_ptr<CaseEvaluation> evaluate_soft_shadows(const Case& c, const ViewSamples& samples,
+                                                      OracleChoice choice,
+                                                      const std::filesystem::path& out_dir,
+                                                      std::vector<std::string>& left_out);
+
+}  // namespace shadowcts
