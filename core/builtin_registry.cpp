@@ -1,24 +1,13 @@
-// The built-in algorithms of this build. An algorithm folder is registered once its factory
-// header exists, so each reference algorithm lands with its own folder.
+// The built-in algorithms of this build, in the order `shadowcts list` shows them.
 #include "reference/bruteforce/hard_shadow_bruteforce.h"
 #include "reference/embree/hard_shadow_embree.h"
-#include "shadowcts/registry.h"
-#if __has_include("reference/ptsv/ptsv_algorithm.h")
-#include "reference/ptsv/ptsv_algorithm.h"
-#define SHADOWCTS_HAVE_PTSV 1
-#endif
-#if __has_include("reference/psv/psv_algorithm.h")
-#include "reference/psv/psv_algorithm.h"
-#define SHADOWCTS_HAVE_PSV 1
-#endif
-#if __has_include("reference/metric/metric_algorithm.h")
 #include "reference/metric/metric_algorithm.h"
-#define SHADOWCTS_HAVE_METRIC 1
-#endif
-#if __has_include("reference/softtile/softtile_algorithm.h")
+#include "reference/psv/psv_algorithm.h"
+#include "reference/ptsv/ptsv_algorithm.h"
+#include "reference/shadowmap/shadowmap_algorithm.h"
 #include "reference/softtile/softtile_algorithm.h"
-#define SHADOWCTS_HAVE_SOFTTILE 1
-#endif
+#include "reference/stencil/stencil_algorithm.h"
+#include "shadowcts/registry.h"
 #if __has_include("reference/lightassign/lightassign_algorithm.h")
 #include "reference/lightassign/lightassign_algorithm.h"
 #define SHADOWCTS_HAVE_LIGHTASSIGN 1
@@ -34,18 +23,12 @@ const Registry& builtin_registry() {
     Registry r;
     r.add(make_bruteforce_hard_shadow());
     r.add(make_embree_hard_shadow());
-#if SHADOWCTS_HAVE_PTSV
     r.add(make_ptsv());
-#endif
-#if SHADOWCTS_HAVE_PSV
     r.add(make_psv());
-#endif
-#if SHADOWCTS_HAVE_METRIC
     r.add(make_metric());
-#endif
-#if SHADOWCTS_HAVE_SOFTTILE
+    r.add(make_shadowmap());
+    r.add(make_stencil());
     r.add(make_softtile());
-#endif
 #if SHADOWCTS_HAVE_LIGHTASSIGN
     r.add(make_lightassign());
 #endif

@@ -67,6 +67,15 @@ TEST_P(Conformance, PassesOrIsNotSupported) {
     // Shown as skipped, with the reason, so CI logs say what was not certified.
     GTEST_SKIP() << "NotSupported: " << record["reason"].get<std::string>();
   }
+  // Approximate algorithms (shadow maps) report their robust mismatches as QualityWarning: their
+  // error figures, not a failure.
+  const Algorithm* algorithm = builtin_registry().find(c.algorithm, c.backend);
+  ASSERT_NE(algorithm, nullptr);
+  if (algorithm->info().capabilities.approximate && verdict == "QualityWarning") {
+    EXPECT_EQ(code, exit_pass) << record["reason"];
+    fs::remove_all(out);
+    return;
+  }
   EXPECT_EQ(verdict, "Pass") << record["reason"] << "\n" << log.str();
   EXPECT_EQ(code, exit_pass);
   fs::remove_all(out);

@@ -1,0 +1,143 @@
+#include "reference/shadowmap/shadowmap_algorithm.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <glm/geometric.hpp>
+
+#include "oracles/hard_shadow_inputs.h"
+#include "oracles/thread_limit.h"
+#include "reference/shadowmap/bias.h"
+#include "reference/shadowmap/cube_map.h"
+#include "reference/shadowmap/depth_map.h"
+#include "reference/shadowmap/orthographic_map.h"
+#include "reference/shadowmap/rasterizer.h"
+
+namespace shadowcts {
+namespace {
+
+using namespace shadowmap;
+
+struct ShadowMapVariant {
+  std::uint32_t resolution;
+  DepthBias bias;
+};
+
+ShadowMapVariant parse_variant(const std::string& variant) {
+  if (variant == "1k") return {1024, DepthBias{}};
+  if (variant == "2k") return {2048, DepthBias{}};
+  if (variant == "4k") return {4096, DepthBias{}};
+  if (variant == "8k") return {8192, DepthBias{}};
+  if (variant == "2k+nobias") return {2048, no_bias};
+  throw std::invalid_argument("shadowmap: unknown variant '" + variant + "'");
+}
+
+// Near plane of the cube faces, as a fraction of the case scale: casters closer than that to the
+// light are clipped away (a real renderer has the same blind spot).
+constexpr double cube_near_fraction = 1e-4;
+
+// Compares the samples listed in `indices` against one rasterized map.
+void look_up(const LightView& view, const DepthMap& map, const DepthBias& bias,
+             const HardShadowLight& light, const ViewSamples& samples,
+             const std::vector<std::size_t>& indices, std::vector<std::uint8_t>& shadowed) {
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, indices.size(), 1024),
+      [&](const tbb::blocked_range<std::size_t>& range) {
+        for (std::size_t k = range.begin(); k != range.end(); ++k) {
+          const ViewSample& s = samples.samples[indices[k]];
+          const glm::dvec3 p(s.position);
+          const glm::dvec3 q = view.to_view(p);
+          if (view.perspective && !(q.z > 0.0)) continue;  // at the light itself
+          const glm::dvec2 r = view.to_raster(q);
+          const auto last = double(view.resolution - 1);
+          const auto column = std::uint32_t(std::clamp(std::floor(r.x), 0.0, last));
+          const auto row = std::uint32_t(std::clamp(std::floor(r.y), 0.0, last));
+          const glm::dvec3 to_light =
+              glm::normalize(light.directional ? light.direction : light.position - p);
+          const double cos_theta = std::fabs(glm::dot(glm::dvec3(s.normal), to_light));
+          const double b = depth_bias(bias, view.texel_size(q.z), cos_theta);
+          shadowed[indices[k]] = q.z - b > double(map.at(column, row)) ? 1 : 0;
+        }
+      });
+}
+
+class ShadowMapAlgorithm final : public Algorithm {
+ public:
+  ShadowMapAlgorithm() {
+    info_.id = "shadowmap";
+    info_.backend = "reference";
+    info_.variants = {"1k", "2k", "4k", "8k", "2k+nobias"};
+    info_.summary =
+        "software shadow map: cube map (point) or fitted orthographic map (directional), "
+        "top-left-rule rasterizer, nearest texel, constant + slope-scaled bias";
+    info_.capabilities.output = OutputKind::hard_shadow;
+    info_.capabilities.point_light = true;
+    info_.capabilities.directional_light = true;
+    info_.capabilities.approximate = true;
+  }
+
+  const AlgorithmInfo& info() const override { return info_; }
+
+  AlgorithmOutput run(const Case& c, const ViewSamples& samples,
+                      const std::string& variant) const override {
+    const ShadowMapVariant v = parse_variant(variant);
+    const HardShadowLight light = hard_shadow_light(c);
+    std::vector<Triangle> casters;
+    for (std::size_t i = 0; i < c.triangles.size(); ++i)
+      if (casts_shadow(c, i)) casters.push_back(c.triangles[i]);
+
+    AlgorithmOutput output;
+    output.shadowed.assign(samples.samples.size(), 0);
+    RasterCounters totals;
+    std::uint64_t maps = 0;
+    run_with_thread_limit(c.parameters.threads, [&] {
+      const auto draw_and_look_up = [&](const LightView& view,
+                                        const std::vector<std::size_t>& indices) {
+        DepthMap map;
+        const RasterCounters counters = rasterize_depth(view, casters, map);
+        totals.triangles_rasterized += counters.triangles_rasterized;
+        totals.texels_written += counters.texels_written;
+        ++maps;
+        look_up(view, map, v.bias, light, samples, indices, output.shadowed);
+      };
+      if (light.directional) {
+        std::vector<std::size_t> regular;
+        for (std::size_t i = 0; i < samples.samples.size(); ++i)
+          if (samples.samples[i].sample_class == SampleClass::regular) regular.push_back(i);
+        if (!regular.empty())
+          draw_and_look_up(orthographic_view(light.direction, samples, v.resolution), regular);
+      } else {
+        std::array<std::vector<std::size_t>, cube_faces> by_face;
+        for (std::size_t i = 0; i < samples.samples.size(); ++i)
+          if (samples.samples[i].sample_class == SampleClass::regular)
+            by_face[cube_face_of(glm::dvec3(samples.samples[i].position) - light.position)]
+                .push_back(i);
+        const double near = cube_near_fraction * c.scale();
+        // One face at a time: only one map is alive.
+        for (int face = 0; face < cube_faces; ++face)
+          if (!by_face[face].empty())
+            draw_and_look_up(cube_face_view(light.position, face, v.resolution, near),
+                             by_face[face]);
+      }
+    });
+    output.counters = {{"texels_written", totals.texels_written},
+                       {"triangles_rasterized", totals.triangles_rasterized},
+                       {"depth_maps", maps}};
+    return output;
+  }
+
+ private:
+  AlgorithmInfo info_;
+};
+
+}  // namespace
+
+std::unique_ptr<Algorithm> make_shadowmap() {
+  return std::make_unique<ShadowMapAlgorithm>();
+}
+
+}  // namespace shadowcts

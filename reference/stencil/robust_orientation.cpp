@@ -1,0 +1,66 @@
+#include "reference/stencil/robust_orientation.h"
+
+#include <cmath>
+#include <limits>
+
+#include <boost/multiprecision/cpp_int.hpp>
+
+namespace shadowcts::stencil {
+namespace {
+
+using Rational = boost::multiprecision::cpp_rational;
+
+int exact_sign(const glm::dvec3& a1, const glm::dvec3& a0, const glm::dvec3& b1,
+               const glm::dvec3& b0, const glm::dvec3& c1, const glm::dvec3& c0) {
+  Rational a[3], b[3], c[3];
+  for (int k = 0; k < 3; ++k) {
+    // Conversion from double is exact; so are the differences and products below.
+    a[k] = Rational(a1[k]) - Rational(a0[k]);
+    b[k] = Rational(b1[k]) - Rational(b0[k]);
+    c[k] = Rational(c1[k]) - Rational(c0[k]);
+  }
+  const Rational det = a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+                       a[2] * (b[0] * c[1] - b[1] * c[0]);
+  return det > 0 ? 1 : (det < 0 ? -1 : 0);
+}
+
+}  // namespace
+
+int sign_of_determinant(const glm::dvec3& a1, const glm::dvec3& a0, const glm::dvec3& b1,
+                        const glm::dvec3& b0, const glm::dvec3& c1, const glm::dvec3& c0) {
+  const glm::dvec3 a = a1 - a0, b = b1 - b0, c = c1 - c0;
+  const double bc_x = b.y * c.z - b.z * c.y;
+  const double bc_y = b.z * c.x - b.x * c.z;
+  const double bc_z = b.x * c.y - b.y * c.x;
+  const double det = a.x * bc_x + a.y * bc_y + a.z * bc_z;
+  const double permanent = std::fabs(a.x) * (std::fabs(b.y * c.z) + std::fabs(b.z * c.y)) +
+                           std::fabs(a.y) * (std::fabs(b.z * c.x) + std::fabs(b.x * c.z)) +
+                           std::fabs(a.z) * (std::fabs(b.x * c.y) + std::fabs(b.y * c.x));
+  // Shewchuk's o3derrboundA, valid when the differences are themselves rounded.
+  constexpr double epsilon = std::numeric_limits<double>::epsilon() / 2.0;
+  constexpr double bound = (7.0 + 56.0 * epsilon) * epsilon;
+  if (det > bound * permanent) return 1;
+  if (-det > bound * permanent) return -1;
+  // Every product term vanished: a rounded difference is zero only when it is exactly zero.
+  if (permanent == 0.0 && std::isfinite(det)) return 0;
+  return exact_sign(a1, a0, b1, b0, c1, c0);
+}
+
+int edge_side(const glm::dvec3& l0, const glm::dvec3& l1, const glm::dvec3& a,
+              const glm::dvec3& b) {
+  const int side = sign_of_determinant(l1, l0, a, l0, b, l0);
+  if (side != 0) return side;
+  const glm::dvec3 w = l1 - l0;
+  const glm::dvec3 aw(std::fabs(w.x), std::fabs(w.y), std::fabs(w.z));
+  const int largest = aw.x >= aw.y && aw.x >= aw.z ? 0 : (aw.y >= aw.z ? 1 : 2);
+  const glm::dvec3 zero(0.0);
+  for (int step = 1; step <= 2; ++step) {
+    glm::dvec3 axis(0.0);
+    axis[(largest + step) % 3] = 1.0;
+    const int tie = sign_of_determinant(l1, l0, axis, zero, a, b);
+    if (tie != 0) return tie;
+  }
+  return 0;
+}
+
+}  // namespace shadowcts::stencil

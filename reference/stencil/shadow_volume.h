@@ -1,0 +1,54 @@
+#pragma once
+// Shadow-volume faces: light caps, side quads extruded from the silhouette edges away from the
+// light, and dark caps (the light caps moved away with the same extrusion), together a closed
+// boundary (every edge is used once in each direction) of the union of the caps' shadows.
+//
+// The volumes are cut off far away instead of reaching infinity, but provably beyond every point
+// that matters (the eye and the view samples, within distance R of a point light): point light:
+// x' = L + k (x - L) with k = 2 R / d_min, d_min the smallest distance from L to a cap, so every
+// point of a dark cap is at least 2R from L; directional light: x' = x - K d/|d| with K twice the
+// depth range along d from the highest cap to the deepest sample or the eye. One k (or K) for all
+// vertices keeps a vertex shared by several quads and caps at one extruded position, so the
+// boundary stays closed in double arithmetic too.
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "oracles/hard_shadow_inputs.h"
+#include "reference/stencil/silhouette.h"
+#include "shadowcts/view_samples.h"
+
+namespace shadowcts::stencil {
+
+enum class FaceKind : std::uint8_t { light_cap, side_quad, dark_cap };
+
+inline constexpr std::uint32_t no_triangle = 0xFFFFFFFFu;
+
+// A triangle, or a quad (v0, v1, v2, v3) split into the triangles (v0, v1, v2) and (v0, v2, v3).
+// Oriented so that (v1 - v0) x (v2 - v0) points out of the volume.
+struct VolumeFace {
+  glm::dvec3 v[4];
+  FaceKind kind = FaceKind::light_cap;
+  std::uint32_t triangle = no_triangle;  // light caps: the caster triangle (to know receivers)
+  bool is_quad() const { return kind == FaceKind::side_quad; }
+};
+
+struct ShadowVolumes {
+  std::vector<VolumeFace> faces;
+  std::uint64_t silhouette_edges = 0;
+};
+
+// Smallest distance from the point light to any caster triangle of the case (0 when it touches
+// one: every shadow segment then ends on that caster).
+double light_to_casters_distance(const Case& c, const glm::dvec3& light);
+
+// Smallest distance from the point light to any cap.
+double light_to_caps_distance(const Occluders& occluders, const glm::dvec3& light);
+
+// `eye` and the regular samples fix how far the volumes must reach. The point light must not touch
+// a cap (light_to_caps_distance > 0).
+ShadowVolumes build_shadow_volumes(const Occluders& occluders, const HardShadowLight& light,
+                                   const glm::dvec3& eye, const ViewSamples& samples);
+
+}  // namespace shadowcts::stencil

@@ -1,0 +1,40 @@
+#pragma once
+// Counting shadow-volume crossings along a view sample's eye line: the software stencil buffer.
+//
+// Both variants evaluate the point p- just in front of the sample towards the eye (the depth test
+// of a stencil pass: a volume face exactly at the sample's depth is "behind" for z-pass and counted
+// by z-fail). A face is crossed by the line through the eye e and the sample p when its three edge
+// sides (edge_side, exact with simulation of simplicity) agree; their common sign is the direction
+// of the crossing relative to the face's outward normal. Where along the line it is crossed follows
+// from the exact sides of e and p relative to the face's plane (a zero side is decided by the
+// perturbation: p- lies on the eye side of anything through p, e+ on the sample side).
+//  - z-pass: winding(p-) = winding(e) + (entries - exits) on the segment (e+, p-), with
+//    winding(e) taken to be 0: wrong exactly when the eye is inside a shadow volume. Side quads
+//    only: the segment cannot cross a light cap (the sample is the first surface seen) nor a far
+//    dark cap.
+//  - z-fail: winding(p-) = (exits - entries) on the ray from p- away from the eye, which leaves
+//    every (bounded) volume: no assumption about the eye; light caps, side quads and dark caps.
+// The receiver's own light cap is treated as passing exactly through p (the sample lies on it by
+// definition; its float position may be a rounding off the plane, which would otherwise shadow it
+// by its own volume).
+#include <cstdint>
+
+#include <glm/vec3.hpp>
+
+#include "reference/stencil/shadow_volume.h"
+
+namespace shadowcts::stencil {
+
+enum class CountingMode { z_pass, z_fail };
+
+// The eye's exact side of each face triangle, computed once per run (quads: both triangles).
+struct FaceEyeSides {
+  std::int8_t side[2] = {0, 0};
+};
+FaceEyeSides eye_sides(const VolumeFace& face, const glm::dvec3& eye);
+
+// The face's contribution to the sample's winding number (a quad counts as its two triangles).
+int count_crossings(const VolumeFace& face, const FaceEyeSides& eye_side, CountingMode mode,
+                    const glm::dvec3& eye, const glm::dvec3& sample, std::uint32_t receiver);
+
+}  // namespace shadowcts::stencil

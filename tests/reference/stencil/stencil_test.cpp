@@ -1,0 +1,254 @@
+// The stencil shadow-volume baseline: exact, consistent crossing decisions, silhouettes from
+// connectivity, and the eye-in-shadow failure of z-pass that z-fail does not have.
+#include "reference/stencil/stencil_algorithm.h"
+
+#include <gtest/gtest.h>
+
+#include "reference/stencil/robust_orientation.h"
+#include "reference/stencil/silhouette.h"
+#include "shadowcts/fixtures.h"
+#include "shadowcts/hard_shadow_comparison.h"
+#include "shadowcts/hard_shadow_oracle.h"
+
+namespace shadowcts {
+namespace {
+
+using namespace stencil;
+
+TEST(Stencil, DescribesItself) {
+  const auto algorithm = make_stencil();
+  const AlgorithmInfo& info = algorithm->info();
+  EXPECT_EQ(info.id, "stencil");
+  EXPECT_EQ(info.backend, "reference");
+  EXPECT_EQ(info.variants, (std::vector<std::string>{"zfail", "zpass"}));
+  EXPECT_FALSE(info.capabilities.approximate);
+  EXPECT_FALSE(info.capabilities.needs_closed_meshes);
+}
+
+// How many of the fan's triangles the line crosses, with the direction of each.
+int crossings(const glm::dvec3& l0, const glm::dvec3& l1, const std::vector<glm::dvec3>& fan_rim,
+              const glm::dvec3& apex, int& net) {
+  int crossed = 0;
+  net = 0;
+  for (std::size_t i = 0; i < fan_rim.size(); ++i) {
+    const glm::dvec3 &a = apex, &b = fan_rim[i], &c = fan_rim[(i + 1) % fan_rim.size()];
+    const int s = edge_side(l0, l1, a, b);
+    if (s != 0 && edge_side(l0, l1, b, c) == s && edge_side(l0, l1, c, a) == s) {
+      ++crossed;
+      net += s;
+    }
+  }
+  return crossed;
+}
+
+TEST(StencilOrientation, LinesThroughSharedVerticesAndEdgesCountConsistently) {
+  // A square pyramid fan around the apex (0, 3, 0); lines through the apex and along shared edges
+  // are exactly the ties simulation of simplicity has to break.
+  const glm::dvec3 apex{0, 3, 0};
+  const std::vector<glm::dvec3> rim = {{-1, 2, -1}, {1, 2, -1}, {1, 2, 1}, {-1, 2, 1}};
+  for (const glm::dvec3& below : {glm::dvec3(0, 0, 0), glm::dvec3(0.5, 0, 0),
+                                  glm::dvec3(0, 0, -0.25), glm::dvec3(0.25, 0, 0.25)}) {
+    int net = 0;
+    EXPECT_EQ(crossings(below, apex, rim, apex, net), 1) << below.x << " " << below.z;
+    EXPECT_EQ(std::abs(net), 1);
+  }
+  // A closed octahedron: an infinite line through its interior crosses it exactly twice, once
+  // each way, also where it passes exactly through shared vertices and edges; a line touching it
+  // from outside crosses it an even number of times, net zero.
+  const std::vector<glm::dvec3> ring = {{1, 0, 0}, {0, 0, 1}, {-1, 0, 0}, {0, 0, -1}};
+  const glm::dvec3 top{0, 1, 0}, bottom{0, -1, 0};
+  const auto octahedron_crossings = [&](const glm::dvec3& l0, const glm::dvec3& l1, int& net) {
+    int up_net = 0, down_net = 0;
+    std::vector<glm::dvec3> reversed(ring.rbegin(), ring.rend());
+    const int count =
+        crossings(l0, l1, ring, top, up_net) + crossings(l0, l1, reversed, bottom, down_net);
+    net = up_net + down_net;
+    return count;
+  };
+  const glm::dvec3 centre{0, 0, 0};
+  for (const glm::dvec3& through : {top, ring[0], glm::dvec3(0.5, 0.5, 0), glm::dvec3(0.5, 0, 0.5),
+                                    glm::dvec3(0, 0.5, -0.5), glm::dvec3(0.25, 0.5, 0.25)}) {
+    int net = 0;
+    EXPECT_EQ(octahedron_crossings(centre, through, net), 2)
+        << through.x << " " << through.y << " " << through.z;
+    EXPECT_EQ(net, 0);
+  }
+  for (const glm::dvec3& direction : {glm::dvec3(0, 1, 1), glm::dvec3(0, 1, -1)}) {
+    int net = 0;
+    const int count = octahedron_crossings(ring[0], ring[0] + direction, net);  // touches a vertex
+    EXPECT_EQ(count % 2, 0);
+    EXPECT_EQ(net, 0);
+  }
+  // Antisymmetry, also in a tie.
+  EXPECT_EQ(edge_side({0, 0, 0}, apex, apex, rim[1]), -edge_side({0, 0, 0}, apex, rim[1], apex));
+  EXPECT_NE(edge_side({0, 0, 0}, apex, apex, rim[1]), 0);
+}
+
+Case base_case(const ShadowLight& light) {
+  Case c;
+  c.name = "stencil_hand_built";
+  c.source = "stencil_test.cpp";
+  c.light = light;
+  return c;
+}
+
+void add_ground(Case& c, float half) {
+  c.meshes.push_back(Mesh{"ground", false, true});  // open, and a caster
+  const auto m = std::uint32_t(c.meshes.size() - 1);
+  const glm::vec3 a{-half, 0, -half}, b{-half, 0, half}, d{half, 0, half}, e{half, 0, -half};
+  c.triangles.push_back({a, b, d, m});
+  c.triangles.push_back({a, d, e, m});
+}
+
+// A closed axis-aligned box with outward-facing triangles.
+void add_box(Case& c, const glm::vec3& lo, const glm::vec3& hi) {
+  c.meshes.push_back(Mesh{"box", true, true});
+  const auto m = std::uint32_t(c.meshes.size() - 1);
+  const glm::vec3 centre = 0.5f * (lo + hi), half = 0.5f * (hi - lo);
+  for (int axis = 0; axis < 3; ++axis)
+    for (const float sign : {1.0f, -1.0f}) {
+      glm::vec3 u(0.0f), v(0.0f), n(0.0f);
+      n[axis] = sign * half[axis];
+      u[(axis + 1) % 3] = half[(axis + 1) % 3];
+      v[(axis + 2) % 3] = half[(axis + 2) % 3];
+      if (sign < 0) std::swap(u, v);  // keep u x v pointing out
+      const glm::vec3 p00 = centre + n - u - v, p10 = centre + n + u - v, p11 = centre + n + u + v,
+                      p01 = centre + n - u + v;
+      c.triangles.push_back({p00, p10, p11, m});
+      c.triangles.push_back({p00, p11, p01, m});
+    }
+}
+
+TEST(StencilSilhouette, ClosedBoxUnderAnOverheadLightHasTheTopRimAsSilhouette) {
+  ShadowLight light;
+  light.kind = ShadowLightKind::directional;
+  light.direction = {0, 1, 0};
+  Case c = base_case(light);
+  add_box(c, {-1, 3, -1}, {1, 4, 1});
+  const Occluders box = find_occluders(c, hard_shadow_light(c));
+  EXPECT_EQ(box.closed_meshes, 1u);
+  EXPECT_EQ(box.caps.size(), 2u);        // the top; the sides are edge-on, the bottom faces away
+  EXPECT_EQ(box.silhouette.size(), 4u);  // its rim; the diagonal is shared and cancels
+  // An open ground: both triangles are caps, only its 4 boundary edges are silhouettes.
+  add_ground(c, 8);
+  const Occluders both = find_occluders(c, hard_shadow_light(c));
+  EXPECT_EQ(both.closed_meshes, 1u);
+  EXPECT_EQ(both.caps.size(), 4u);
+  EXPECT_EQ(both.silhouette.size(), 8u);
+}
+
+// The stiff case for stencil shadows: the camera sits under a closed box, inside its shadow
+// volume, and looks at a ground plane that is partly in the box's shadow.
+Case eye_in_shadow_case(const ShadowLight& light) {
+  Case c = base_case(light);
+  c.name = "stencil_eye_in_shadow";
+  add_ground(c, 40);
+  add_box(c, {-1, 3, -1}, {1, 4, 1});
+  c.camera.position = {0.0625f, 1.5f, 0.03125f};
+  c.camera.target = {3.0f, 0.0f, 0.5f};
+  c.camera.vertical_fov_degrees = 70.0f;
+  c.camera.width = 96;
+  c.camera.height = 96;
+  validate(c);
+  return c;
+}
+
+void expect_eye_in_shadow_results(const Case& c) {
+  const ViewSamples samples = generate_view_samples(c);
+  const HardShadowTruth truth = exact_hard_shadow_oracle(c, samples);
+  std::size_t robust_shadowed = 0, robust_lit = 0;
+  for (BandClass b : truth.band) {
+    robust_shadowed += b == BandClass::robust_shadowed;
+    robust_lit += b == BandClass::robust_lit;
+  }
+  ASSERT_GT(robust_shadowed, 100u);  // the view sees both sides of the shadow boundary
+  ASSERT_GT(robust_lit, 100u);
+  const auto algorithm = make_stencil();
+  ASSERT_FALSE(algorithm->unsupported_reason(c, samples, "zpass"));
+  const HardShadowComparison zpass =
+      compare_hard_shadows(algorithm->run(c, samples, "zpass").shadowed, truth);
+  const HardShadowComparison zfail =
+      compare_hard_shadows(algorithm->run(c, samples, "zfail").shadowed, truth);
+  // z-pass starts counting at 0 in the eye, which is really inside one volume: every robust
+  // answer flips.
+  EXPECT_EQ(zpass.verdict, Verdict::fail);
+  EXPECT_EQ(zpass.leaks, robust_shadowed);
+  EXPECT_EQ(zpass.false_shadows, robust_lit);
+  EXPECT_EQ(zfail.verdict, Verdict::pass) << zfail.reason;
+  EXPECT_EQ(zfail.leaks + zfail.false_shadows, 0u);
+}
+
+TEST(StencilEyeInShadow, ZPassFailsAndZFailPassesUnderAPointLight) {
+  ShadowLight light;
+  light.kind = ShadowLightKind::point;
+  light.position = {0.25f, 10.0f, 0.125f};
+  expect_eye_in_shadow_results(eye_in_shadow_case(light));
+}
+
+TEST(StencilEyeInShadow, ZPassFailsAndZFailPassesUnderADirectionalLight) {
+  ShadowLight light;
+  light.kind = ShadowLightKind::directional;
+  light.direction = {-0.25f, 1.0f, 0.0625f};  // the shadow falls towards +x, into the view
+  expect_eye_in_shadow_results(eye_in_shadow_case(light));
+}
+
+Case hard_view(Case c) {
+  if (c.light && c.light->kind == ShadowLightKind::sun_disk) {
+    c.light->kind = ShadowLightKind::directional;
+    c.light->angular_radius = 0.0f;
+  }
+  return c;
+}
+
+TEST(StencilAgainstExactOracle, ZFailIsRightOnEveryRobustSampleOfTheDefaultFixtures) {
+  const auto algorithm = make_stencil();
+  int fixtures = 0;
+  for (const std::string& name : default_fixtures()) {
+    const Case c = hard_view(make_fixture(name));
+    if (!c.light) continue;
+    const ViewSamples samples = generate_view_samples(c);
+    ASSERT_FALSE(algorithm->unsupported_reason(c, samples, "zfail")) << name;
+    const HardShadowTruth truth = exact_hard_shadow_oracle(c, samples);
+    const AlgorithmOutput output = algorithm->run(c, samples, "zfail");
+    const HardShadowComparison h = compare_hard_shadows(output.shadowed, truth);
+    EXPECT_EQ(h.leaks, 0u) << name;
+    EXPECT_EQ(h.false_shadows, 0u) << name;
+    EXPECT_GT(h.robust, 0u) << name;
+    ASSERT_EQ(output.counters.size(), 4u);
+    EXPECT_EQ(output.counters[0].first, "silhouette_edges");
+    EXPECT_GT(output.counters[0].second, 0u) << name;
+    EXPECT_EQ(output.counters[2].first, "quads_tested");
+    ASSERT_EQ(output.per_sample_counters.size(), 1u);
+    EXPECT_EQ(output.per_sample_counters[0].second.size(), samples.samples.size());
+    ++fixtures;
+  }
+  EXPECT_GE(fixtures, 5);
+}
+
+TEST(Stencil, SameResultForAnyThreadCount) {
+  Case c = make_fixture("ground_blockers.10k");
+  const ViewSamples samples = generate_view_samples(c);
+  const auto algorithm = make_stencil();
+  for (const char* variant : {"zfail", "zpass"}) {
+    c.parameters.threads = 2;
+    const AlgorithmOutput many = algorithm->run(c, samples, variant);
+    c.parameters.threads = 1;
+    const AlgorithmOutput one = algorithm->run(c, samples, variant);
+    EXPECT_EQ(one.shadowed, many.shadowed) << variant;
+    EXPECT_EQ(one.counters, many.counters) << variant;
+  }
+}
+
+TEST(Stencil, DeclinesAPointLightOnACaster) {
+  ShadowLight light;
+  light.kind = ShadowLightKind::point;
+  light.position = {0.0f, 4.0f, 0.0f};  // on the box's top face
+  Case c = eye_in_shadow_case(light);
+  const ViewSamples samples = generate_view_samples(c);
+  const auto reason = make_stencil()->unsupported_reason(c, samples, "zfail");
+  ASSERT_TRUE(reason);
+  EXPECT_NE(reason->find("touches a caster"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace shadowcts
