@@ -1,6 +1,7 @@
 // The built-in algorithms of this build, in the order `shadowcts list` shows them.
 #include "reference/bruteforce/hard_shadow_bruteforce.h"
 #include "reference/embree/hard_shadow_embree.h"
+#include "reference/lightassign/lightassign_algorithm.h"
 #include "reference/metric/metric_algorithm.h"
 #include "reference/psv/psv_algorithm.h"
 #include "reference/ptsv/ptsv_algorithm.h"
@@ -8,10 +9,6 @@
 #include "reference/softtile/softtile_algorithm.h"
 #include "reference/stencil/stencil_algorithm.h"
 #include "shadowcts/registry.h"
-#if __has_include("reference/lightassign/lightassign_algorithm.h")
-#include "reference/lightassign/lightassign_algorithm.h"
-#define SHADOWCTS_HAVE_LIGHTASSIGN 1
-#endif
 #if SHADOWCTS_HAVE_CUDA
 #include "gpu/bruteforce/hard_shadow_bruteforce_cuda.h"
 #endif
@@ -29,9 +26,7 @@ const Registry& builtin_registry() {
     r.add(make_shadowmap());
     r.add(make_stencil());
     r.add(make_softtile());
-#if SHADOWCTS_HAVE_LIGHTASSIGN
     r.add(make_lightassign());
-#endif
 #if SHADOWCTS_HAVE_CUDA
     r.add(make_bruteforce_hard_shadow_cuda());
 #endif

@@ -17,6 +17,7 @@
 #include "case_evaluation.h"
 #include "hard_shadow_evaluation.h"
 #include "junit_xml.h"
+#include "light_assignment_evaluation.h"
 #include "results_json.h"
 #include "run_record.h"
 #include "shadowcts/case_manifest.h"
@@ -156,8 +157,6 @@ bool same_results(const AlgorithmOutput& a, const AlgorithmOutput& b) {
          x.offsets == y.offsets && x.lights == y.lights && x.list_of_sample == y.list_of_sample;
 }
 
-bool can_evaluate(OutputKind kind) { return kind != OutputKind::light_lists; }
-
 std::unique_ptr<CaseEvaluation> evaluate(OutputKind kind, const Case& c, const ViewSamples& samples,
                                          OracleChoice choice, const std::filesystem::path& out_dir,
                                          std::vector<std::string>& left_out) {
@@ -167,7 +166,7 @@ std::unique_ptr<CaseEvaluation> evaluate(OutputKind kind, const Case& c, const V
     case OutputKind::soft_shadow:
       return evaluate_soft_shadows(c, samples, choice, out_dir, left_out);
     case OutputKind::light_lists:
-      break;
+      return evaluate_light_assignment(c, samples, out_dir);
   }
   throw std::logic_error("no evaluation for " + output_kind_name(kind) + " outputs");
 }
@@ -178,11 +177,12 @@ void print_summary(std::ostream& out, const std::vector<RunRecord>& records) {
       << "verdict" << std::right << std::setw(11) << "median ms"
       << "   figures\n";
   for (const RunRecord& r : records) {
+    if (r.verdict == Verdict::not_supported) continue;  // the plan's "left out" lines say why
     out << std::left << std::setw(26) << r.case_name << std::setw(38)
         << (r.algorithm + ":" + r.variant + " [" + r.backend + "]") << std::setw(15)
         << verdict_name(r.verdict) << std::right;
-    if (r.verdict == Verdict::not_supported || r.verdict == Verdict::crash) {
-      out << "\n";
+    if (r.verdict == Verdict::crash) {
+      out << "   " << r.reason << "\n";
       continue;
     }
     out << std::setw(11) << std::fixed << std::setprecision(2) << r.median_ms << "   " << r.headline
@@ -273,9 +273,6 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
         const OutputKind kind = meta.capabilities.output;
         std::optional<std::string> why = a->unsupported_reason(
             kind == OutputKind::hard_shadow ? hard_case : c, samples, variant);
-        if (!why && !can_evaluate(kind))
-          why = "the runner has no oracle comparison for " + output_kind_name(kind) +
-                " outputs yet";  // never a verdict without a comparison
         if (why) {
           RunRecord record = new_record(c, *a, variant);
           record.verdict = Verdict::not_supported;

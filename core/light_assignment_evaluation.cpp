@@ -1,0 +1,129 @@
+#include "light_assignment_evaluation.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "image_paths.h"
+#include "oracles/light_assignment/light_assignment_comparison.h"
+#include "shadowcts/image_file.h"
+#include "shadowcts/light_assignment_oracle.h"
+
+namespace shadowcts {
+namespace {
+
+// A count per sample as a heat map: black 0, then through red and orange to white at `full`;
+// sky and back-facing as in the shadow masks.
+RgbImage count_image(const ViewSamples& samples, const std::vector<std::uint32_t>& count,
+                     std::uint32_t full) {
+  RgbImage image{samples.width, samples.height,
+                 std::vector<std::uint8_t>(samples.samples.size() * 3)};
+  for (std::size_t i = 0; i < samples.samples.size(); ++i) {
+    std::uint8_t* px = &image.rgb[3 * i];
+    const SampleClass cls = samples.samples[i].sample_class;
+    if (cls == SampleClass::sky) {
+      px[0] = 110, px[1] = 150, px[2] = 200;
+    } else if (cls == SampleClass::back_facing) {
+      px[0] = 45, px[1] = 50, px[2] = 70;
+    } else {
+      const double t = full ? std::min(1.0, double(count[i]) / full) : 0.0;
+      px[0] = std::uint8_t(std::lround(255 * std::min(1.0, 3 * t)));
+      px[1] = std::uint8_t(std::lround(255 * std::clamp(3 * t - 1, 0.0, 1.0)));
+      px[2] = std::uint8_t(std::lround(255 * std::clamp(3 * t - 2, 0.0, 1.0)));
+    }
+  }
+  return image;
+}
+
+class LightAssignmentEvaluation : public CaseEvaluation {
+ public:
+  LightAssignmentEvaluation(const Case& c, const ViewSamples& samples,
+                            const std::filesystem::path& out_dir)
+      : case_(c), samples_(samples), out_dir_(out_dir) {
+    const auto start = std::chrono::steady_clock::now();
+    plain_ = exact_light_assignment_oracle(c, samples, false);
+    with_normals_ = exact_light_assignment_oracle(c, samples, true);
+    oracle_.time_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    oracle_.method = plain_.method;
+    oracle_.exact = plain_.exact;
+    std::ostringstream line;
+    line << plain_.method << ": exact minimum " << plain_.exact_minimum()
+         << " lighting computations (" << with_normals_.exact_minimum()
+         << " with the normal rule), " << plain_.ambiguous_lights.size()
+         << " ambiguous sample-light pairs";
+    oracle_.plan_line = line.str();
+    // The exact set size per sample, on the same scale as the algorithms' list lengths.
+    exact_count_.resize(samples.samples.size());
+    for (std::size_t s = 0; s < samples.samples.size(); ++s)
+      exact_count_[s] = std::uint32_t(plain_.set_size(s));
+    scale_ =
+        std::max<std::uint32_t>(1, 4 * *std::max_element(exact_count_.begin(), exact_count_.end()));
+    const std::string stem = case_image_stem(c.name) + "/oracle.lights";
+    write_png_and_exr(out_dir, stem, count_image(samples, exact_count_, scale_));
+    oracle_.details = {{"eps_rel", plain_.eps_rel},
+                       {"tau", plain_.tau},
+                       {"exact_minimum", plain_.exact_minimum()},
+                       {"exact_minimum_normal_rule", with_normals_.exact_minimum()},
+                       {"ambiguous_pairs", plain_.ambiguous_lights.size()},
+                       {"heat_map_full_scale", scale_},
+                       {"lights_image", stem + ".png"}};
+  }
+
+  void judge(const AlgorithmOutput& output, RunRecord& record) const override {
+    const bool normals = light_lists_use_normal_rule(record.variant);
+    const LightAssignmentComparison cmp =
+        compare_light_lists(output.light_lists, case_, samples_, normals ? with_normals_ : plain_);
+    if (record.verdict != Verdict::fail) {
+      record.verdict = cmp.verdict;
+      record.reason = cmp.reason;
+    }
+    nlohmann::ordered_json misses = nlohmann::ordered_json::array();
+    for (const LightListMiss& m : cmp.first_misses)
+      misses.push_back({{"sample", m.sample}, {"light", m.light}, {"list", m.list}});
+    record.error = {{"compared", cmp.compared},
+                    {"normal_rule", normals},
+                    {"lists", cmp.lists},
+                    {"completeness_misses", cmp.completeness_misses},
+                    {"first_misses", misses},
+                    {"unsound_listings", cmp.unsound_listings},
+                    {"samples_outside_bounds", cmp.samples_outside_bounds},
+                    {"ambiguous_unlisted", cmp.ambiguous_unlisted},
+                    {"listed_lights", cmp.listed_lights},
+                    {"lighting_computations", cmp.lighting_computations},
+                    {"exact_minimum", cmp.exact_minimum},
+                    {"lighting_ratio", cmp.lighting_ratio}};
+    std::ostringstream headline;
+    headline << "misses " << cmp.completeness_misses << ", unsound "
+             << cmp.unsound_listings + cmp.samples_outside_bounds << ", lighting x"
+             << cmp.lighting_ratio;
+    record.headline = headline.str();
+    if (!cmp.structure_error.empty()) return;  // no per-sample list lengths to draw
+    const LightLists& lists = output.light_lists;
+    std::vector<std::uint32_t> length(samples_.samples.size(), 0);
+    for (std::size_t s = 0; s < length.size(); ++s) {
+      const std::uint32_t list = lists.list_of_sample[s];
+      if (list != LightLists::no_list) length[s] = lists.offsets[list + 1] - lists.offsets[list];
+    }
+    record.images = {write_png_and_exr(out_dir_, algorithm_image_stem(record) + ".lights",
+                                       count_image(samples_, length, scale_))};
+  }
+
+ private:
+  const Case& case_;
+  const ViewSamples& samples_;
+  std::filesystem::path out_dir_;
+  LightAssignmentTruth plain_, with_normals_;
+  std::vector<std::uint32_t> exact_count_;
+  std::uint32_t scale_ = 1;
+};
+
+}  // namespace
+
+std::unique_ptr<CaseEvaluation> evaluate_light_assignment(const Case& c, const ViewSamples& samples,
+                                                          const std::filesystem::path& out_dir) {
+  return std::make_unique<LightAssignmentEvaluation>(c, samples, out_dir);
+}
+
+}  // namespace shadowcts

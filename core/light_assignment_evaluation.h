@@ -1,0 +1,19 @@
+#pragma once
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "case_evaluation.h"
+#include "shadowcts/case.h"
+#include "shadowcts/view_samples.h"
+
+namespace shadowcts {
+
+// Computes the exact light sets of every regular sample (with and without the normal rule) and
+// judges light lists for completeness, soundness and efficiency; writes per-sample list-length
+// images.
+std::unique_ptr<CaseEvaluation> evaluate_light_assignment(const Case& c, const ViewSamples& samples,
+                                                          const std::filesystem::path& out_dir);
+
+}  // namespace shadowcts

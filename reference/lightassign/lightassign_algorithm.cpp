@@ -1,0 +1,106 @@
+#include "reference/lightassign/lightassign_algorithm.h"
+
+#include <stdexcept>
+#include <string>
+
+#include "oracles/thread_limit.h"
+#include "reference/lightassign/brute_assignment.h"
+#include "reference/lightassign/cluster_key.h"
+#include "reference/lightassign/clustered_assignment.h"
+#include "reference/lightassign/tiled_assignment.h"
+#include "reference/lightassign/view_frustum.h"
+
+namespace shadowcts {
+namespace {
+
+// Paper I's tile size, also Paper II's screen-space tiling of the clusters.
+constexpr std::uint32_t tile_size = 32;
+
+std::optional<ClusteredSettings> clustered_settings(const std::string& variant) {
+  ClusteredSettings s;
+  s.tile_size = tile_size;
+  if (variant == "clustered") return s;
+  if (variant == "clustered+eb") {
+    s.explicit_bounds = true;
+    return s;
+  }
+  if (variant == "clustered+en") {
+    s.explicit_normal_cones = true;
+    return s;
+  }
+  if (variant == "clustered+nk3") {
+    s.normal_divisions = 3;
+    return s;
+  }
+  return std::nullopt;
+}
+
+class LightAssign final : public Algorithm {
+ public:
+  LightAssign() {
+    info_.id = "lightassign";
+    info_.backend = "reference";
+    info_.variants = {"tiled",        "clustered",     "clustered+eb",
+                      "clustered+en", "clustered+nk3", "brute"};
+    info_.summary =
+        "tiled (Paper I) and clustered (Paper II) light assignment: tiles with min/max depth, "
+        "exponential depth slices, explicit bounds, normal cones, 32-wide light BVH; brute: "
+        "per-sample exact sets";
+    info_.capabilities.output = OutputKind::light_lists;
+    info_.capabilities.ranged_lights = true;
+  }
+
+  const AlgorithmInfo& info() const override { return info_; }
+
+  std::optional<std::string> unsupported_reason(const Case& c, const ViewSamples& samples,
+                                                const std::string& variant) const override {
+    if (auto why = Algorithm::unsupported_reason(c, samples, variant)) return why;
+    if (c.ranged_lights.size() > 0xFFFFFFFEull) return "more than 2^32 - 2 ranged lights";
+    if (variant == "brute") return std::nullopt;
+    // Tiles and slices need every regular sample in front of the eye.
+    const ViewFrustum frustum(c.camera);
+    double deepest = 0.0;
+    for (const ViewSample& s : samples.samples) {
+      if (s.sample_class != SampleClass::regular) continue;
+      const double d = frustum.depth(glm::dvec3(s.position));
+      if (!(d > 0.0))
+        return "sample at pixel (" + std::to_string(s.pixel_x) + ", " + std::to_string(s.pixel_y) +
+               ") lies behind the camera plane";
+      deepest = std::max(deepest, d);
+    }
+    if (const auto settings = clustered_settings(variant)) {
+      const ClusterGrid grid(c.camera, settings->tile_size, settings->normal_divisions, deepest);
+      if (auto why = grid.overflow_reason()) return why;
+    }
+    return std::nullopt;
+  }
+
+  AlgorithmOutput run(const Case& c, const ViewSamples& samples,
+                      const std::string& variant) const override {
+    if (samples.samples.size() != std::size_t(samples.width) * samples.height)
+      throw std::invalid_argument("lightassign: sample count is not width x height");
+    AlgorithmOutput output;
+    run_with_thread_limit(c.parameters.threads, [&] {
+      if (variant == "tiled")
+        output = assign_lights_tiled(c, samples, tile_size);
+      else if (variant == "brute")
+        output = assign_lights_brute(c, samples);
+      else if (const auto settings = clustered_settings(variant))
+        output = assign_lights_clustered(c, samples, *settings);
+      else
+        throw std::invalid_argument("lightassign: unknown variant '" + variant + "'");
+    });
+    return output;
+  }
+
+ private:
+  AlgorithmInfo info_;
+};
+
+}  // namespace
+
+std::unique_ptr<Algorithm> make_lightassign() {
+  return std::make_unique<LightAssign>();
+}
+
+}  // namespace shadowcts

@@ -1,0 +1,17 @@
+#pragma once
+// Tiled light assignment (Paper I): 32 x 32 (a parameter) screen tiles; each tile's sub-frustum
+// spans its pixels and the min/max view depth of its samples (Section 6.3's depth range
+// optimization); every light is inserted into the tiles its screen-space bounding rectangle
+// covers (Section 6.1), then tested against the tile's sub-frustum planes and, exactly, against
+// the tile's declared box. Deferred and forward (with a depth pre-pass) read the same depths
+// here, so they produce the same lists.
+#include <cstdint>
+
+#include "shadowcts/algorithm.h"
+
+namespace shadowcts {
+
+AlgorithmOutput assign_lights_tiled(const Case& c, const ViewSamples& samples,
+                                    std::uint32_t tile_size);
+
+}  // namespace shadowcts

@@ -1,0 +1,133 @@
+// Stiff inputs for the light assignment: lights larger than the scene, centres behind the camera,
+// on the near plane and at the eye, a near/far ratio of 1e-7, key-bit overflow, samples behind the
+// camera, zero-range lights.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "lightassign_test_support.h"
+#include "shadowcts/errors.h"
+#include "shadowcts/fixtures.h"
+
+namespace shadowcts {
+namespace {
+
+using testing::counter;
+using testing::lightassign;
+using testing::run_and_compare;
+
+void expect_every_variant_passes(const Case& c, const ViewSamples& samples) {
+  const LightAssignmentTruth plain = exact_light_assignment_oracle(c, samples, false);
+  const LightAssignmentTruth normals = exact_light_assignment_oracle(c, samples, true);
+  for (const std::string& variant : lightassign().info().variants) {
+    SCOPED_TRACE(variant);
+    ASSERT_EQ(lightassign().unsupported_reason(c, samples, variant), std::nullopt);
+    const auto run = run_and_compare(c, samples, variant, plain, normals);
+    EXPECT_EQ(run.comparison.verdict, Verdict::pass) << run.comparison.reason;
+  }
+}
+
+Case small_city() {
+  Case c = make_fixture("many_lights.2k");
+  c.camera.width = c.camera.height = 64;
+  return c;
+}
+
+TEST(LightAssignStiff, LightsLargerThanTheSceneAndAroundTheCamera) {
+  Case c = small_city();
+  const glm::vec3 eye = c.camera.position;
+  const glm::vec3 forward = glm::vec3(c.camera.target) - eye;
+  const glm::vec3 ahead =
+      forward / std::sqrt(forward.x * forward.x + forward.y * forward.y + forward.z * forward.z);
+  RangedLight huge;
+  huge.centre = {0, 3, 0};
+  huge.range = 1e6f;
+  c.ranged_lights.push_back(huge);
+  RangedLight behind;
+  behind.centre = eye - 5.0f * ahead;
+  behind.range = 40.0f;  // reaches into the view from behind the camera
+  c.ranged_lights.push_back(behind);
+  behind.range = 2.0f;  // does not
+  c.ranged_lights.push_back(behind);
+  RangedLight near_plane;
+  near_plane.centre = eye + c.camera.near_plane * ahead;
+  near_plane.range = 30.0f;
+  c.ranged_lights.push_back(near_plane);
+  RangedLight at_eye;
+  at_eye.kind = RangedLightKind::spot;
+  at_eye.centre = eye;
+  at_eye.range = 60.0f;
+  at_eye.direction = ahead;
+  at_eye.cone_half_angle = 0.2f;
+  c.ranged_lights.push_back(at_eye);
+  validate(c);
+  const ViewSamples samples = generate_view_samples(c);
+  expect_every_variant_passes(c, samples);
+}
+
+TEST(LightAssignStiff, NearFarRatio1e7) {
+  Case c = small_city();
+  c.camera.near_plane = 1e-5f;
+  c.camera.far_plane = 100.0f;
+  validate(c);
+  const ViewSamples samples = generate_view_samples(c);
+  expect_every_variant_passes(c, samples);
+  // 64 px: 2 x 2 tiles (1 + 1 bits); base 1 + 2 tan(27.5 deg) / 2 = 1.5206, so
+  // floor(ln(100 / 1e-5) / ln(1.5206)) + 1 = 39 slices (6 bits).
+  const AlgorithmOutput clustered = lightassign().run(c, samples, "clustered");
+  EXPECT_EQ(counter(clustered, "key_bits"), 1u + 1u + 6u);
+}
+
+TEST(LightAssignStiff, KeyBitOverflowIsNotSupportedWithTheReason) {
+  Case c = small_city();
+  c.camera.width = c.camera.height = 16384;
+  c.camera.vertical_fov_degrees = 1.0f;
+  c.camera.near_plane = 1e-5f;
+  const ViewSamples no_samples;
+  for (const std::string variant : {"clustered", "clustered+eb", "clustered+en", "clustered+nk3"}) {
+    const auto why = lightassign().unsupported_reason(c, no_samples, variant);
+    ASSERT_TRUE(why.has_value()) << variant;
+    EXPECT_NE(why->find("more than the 32-bit key"), std::string::npos) << *why;
+  }
+  EXPECT_EQ(lightassign().unsupported_reason(c, no_samples, "tiled"), std::nullopt);
+  EXPECT_EQ(lightassign().unsupported_reason(c, no_samples, "brute"), std::nullopt);
+}
+
+TEST(LightAssignStiff, SamplesBehindTheCameraAreNotSupportedByTilesAndClusters) {
+  Case c = small_city();
+  ViewSamples samples = generate_view_samples(c);
+  std::size_t k = 0;
+  while (samples.samples[k].sample_class != SampleClass::regular) ++k;
+  ViewSample& s = samples.samples[k];
+  s.position = glm::vec3(c.camera.position) * 2.0f - glm::vec3(c.camera.target);
+  for (const std::string variant : {"tiled", "clustered", "clustered+nk3"}) {
+    const auto why = lightassign().unsupported_reason(c, samples, variant);
+    ASSERT_TRUE(why.has_value()) << variant;
+    EXPECT_NE(why->find("behind the camera"), std::string::npos) << *why;
+  }
+  EXPECT_EQ(lightassign().unsupported_reason(c, samples, "brute"), std::nullopt);
+}
+
+TEST(LightAssignStiff, ZeroRangeLightsAreRejectedByValidation) {
+  Case c = small_city();
+  c.ranged_lights[3].range = 0.0f;
+  EXPECT_THROW(validate(c), InputError);
+}
+
+TEST(LightAssignStiff, ReportsItsInfo) {
+  const AlgorithmInfo& info = lightassign().info();
+  EXPECT_EQ(info.id, "lightassign");
+  EXPECT_EQ(info.backend, "reference");
+  EXPECT_EQ(info.capabilities.output, OutputKind::light_lists);
+  EXPECT_TRUE(info.capabilities.ranged_lights);
+  EXPECT_EQ(info.variants, (std::vector<std::string>{"tiled", "clustered", "clustered+eb",
+                                                     "clustered+en", "clustered+nk3", "brute"}));
+  Case c = small_city();
+  c.ranged_lights.clear();
+  c.light = ShadowLight{};
+  EXPECT_TRUE(lightassign().unsupported_reason(c, ViewSamples{}, "tiled").has_value());
+}
+
+}  // namespace
+}  // namespace shadowcts
