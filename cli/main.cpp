@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "list_command.h"
+#include "report_command.h"
 #include "shadowcts/case_manifest.h"
 #include "shadowcts/errors.h"
 #include "shadowcts/fixtures.h"
@@ -63,6 +64,8 @@ int main(int argc, char** argv) {
   CLI::App* run = app.add_subcommand(
       "run", "Run algorithms on cases, diff them against the oracles, write results");
   run->add_option("--fixture", options.fixtures, "Built-in fixture (repeatable); see `list`");
+  run->add_option("--suite", options.suite, "Named case suite: stiff (the numerical traps)")
+      ->check(CLI::IsMember({"stiff"}));
   run->add_option("--case", options.case_files, "JSON case manifest (repeatable)")
       ->check(CLI::ExistingFile);
   run->add_option("--algorithm", algorithm_texts, "ID or ID:VARIANT (repeatable); default all");
@@ -90,6 +93,15 @@ int main(int argc, char** argv) {
   gbuffer->add_option("--fixture", gbuffer_fixture, "Built-in fixture");
   gbuffer->add_option("--out", gbuffer_out, "Output EXR file")->required();
 
+  std::vector<std::string> report_dirs;
+  std::string report_out;
+  CLI::App* report = app.add_subcommand(
+      "report", "Rebuild the HTML report from result directories (shards merge; runs compare)");
+  report->add_option("dirs", report_dirs, "Result directories (each with results.json)")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  report->add_option("--out", report_out, "Output HTML file (default DIR/report.html for one DIR)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -103,6 +115,7 @@ int main(int argc, char** argv) {
       return exit_pass;
     }
     if (*gbuffer) return write_gbuffer(gbuffer_case, gbuffer_fixture, gbuffer_out);
+    if (*report) return write_report_command(report_dirs, report_out, std::cout);
 
     for (const std::string& text : algorithm_texts)
       options.algorithms.push_back(parse_selection(text));

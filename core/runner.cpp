@@ -18,6 +18,7 @@
 #include "hard_shadow_evaluation.h"
 #include "junit_xml.h"
 #include "light_assignment_evaluation.h"
+#include "report/html_report.h"
 #include "results_json.h"
 #include "run_record.h"
 #include "shadowcts/case_manifest.h"
@@ -58,6 +59,12 @@ std::string light_name(const Case& c) {
 std::vector<Case> load_cases(const RunOptions& options) {
   std::vector<Case> cases;
   std::vector<std::string> fixtures = options.fixtures;
+  if (options.suite == "stiff") {
+    const std::vector<std::string> stiff = stiff_fixtures();
+    fixtures.insert(fixtures.end(), stiff.begin(), stiff.end());
+  } else if (!options.suite.empty()) {
+    throw UsageError("--suite " + options.suite + ": unknown suite (known: stiff)");
+  }
   if (fixtures.empty() && options.case_files.empty()) fixtures = default_fixtures();
   // Shards take every n-th case of the whole list, fixtures first, so that shards of one run
   // partition it the same way on every machine. Only this shard's cases are built.
@@ -173,12 +180,12 @@ std::unique_ptr<CaseEvaluation> evaluate(OutputKind kind, const Case& c, const V
 
 void print_summary(std::ostream& out, const std::vector<RunRecord>& records) {
   out << "\nsummary\n";
-  out << std::left << std::setw(26) << "case" << std::setw(38) << "algorithm" << std::setw(15)
+  out << std::left << std::setw(34) << "case" << std::setw(38) << "algorithm" << std::setw(15)
       << "verdict" << std::right << std::setw(11) << "median ms"
       << "   figures\n";
   for (const RunRecord& r : records) {
     if (r.verdict == Verdict::not_supported) continue;  // the plan's "left out" lines say why
-    out << std::left << std::setw(26) << r.case_name << std::setw(38)
+    out << std::left << std::setw(34) << r.case_name << std::setw(38)
         << (r.algorithm + ":" + r.variant + " [" + r.backend + "]") << std::setw(15)
         << verdict_name(r.verdict) << std::right;
     if (r.verdict == Verdict::crash) {
@@ -359,8 +366,10 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
 
   write_results_json(out_dir / "results.json", summaries, records, threads);
   write_junit_xml(out_dir / "junit.xml", records);
+  write_html_report({out_dir}, out_dir / "report.html");  // reads results.json back
   print_summary(out, records);
-  out << "wrote " << (out_dir / "results.json").string() << ", " << (out_dir / "junit.xml").string()
+  out << "wrote " << (out_dir / "report.html").string() << ", "
+      << (out_dir / "results.json").string() << ", " << (out_dir / "junit.xml").string()
       << " and images under " << (out_dir / "images").string() << "\n";
 
   const bool any_failure = std::any_of(records.begin(), records.end(), [](const RunRecord& r) {

@@ -21,6 +21,7 @@ enum class OracleChoice { automatic, exact, embree };
 struct RunOptions {
   std::vector<std::string> fixtures;    // fixture names; with case_files empty too: the default set
   std::vector<std::string> case_files;  // JSON case manifests
+  std::string suite;                    // "stiff": every case of the stiff-case suite
   std::vector<AlgorithmSelection> algorithms;  // empty: every registered algorithm
   std::string backend;                         // empty: every backend
   std::string out_dir = "shadowcts-out";

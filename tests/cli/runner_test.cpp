@@ -49,6 +49,8 @@ RunOptions small_run(const fs::path& out, std::uint32_t threads) {
   o.out_dir = out.string();
   o.repeats = 1;
   o.threads = threads;
+  // Exact algorithms and one approximate baseline: enough to exercise every output path fast.
+  o.algorithms = {{"bruteforce", ""}, {"embree", ""}, {"ptsv", "twopass"}, {"shadowmap", "1k"}};
   return o;
 }
 
@@ -62,10 +64,15 @@ TEST(Runner, WritesResultsJunitAndImagesAndPasses) {
   ASSERT_EQ(results["cases"].size(), 2u);
   bool ran_bruteforce = false;
   for (const auto& r : results["results"]) {
-    EXPECT_TRUE(r["verdict"] == "Pass" || r["verdict"] == "NotSupported") << r.dump();
     if (r["verdict"] == "NotSupported") continue;
+    if (r["algorithm"] == "shadowmap") {
+      // Approximate by design: its mismatches are figures, never a Fail.
+      EXPECT_TRUE(r["verdict"] == "Pass" || r["verdict"] == "QualityWarning") << r.dump();
+    } else {
+      EXPECT_EQ(r["verdict"], "Pass") << r.dump();
+      EXPECT_EQ(r["error"]["leaks"], 0);
+    }
     ran_bruteforce |= r["algorithm"] == "bruteforce";
-    EXPECT_EQ(r["error"]["leaks"], 0);
     for (const auto& image : r["images"]) EXPECT_TRUE(fs::exists(out / image.get<std::string>()));
   }
   EXPECT_TRUE(ran_bruteforce);

@@ -1,0 +1,137 @@
+#include "report_data.h"
+
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "shadowcts/errors.h"
+
+namespace shadowcts {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::ordered_json;
+
+fs::path normal_absolute(const fs::path& p) {
+  return fs::absolute(p).lexically_normal();
+}
+
+std::string label_of(const fs::path& dir, const fs::path& page_dir) {
+  fs::path relative = normal_absolute(dir).lexically_relative(normal_absolute(page_dir));
+  if (relative.empty()) return normal_absolute(dir).string();  // no relative path exists
+  std::string text = relative.string();
+  while (text.size() > 1 && text.back() == '/') text.pop_back();
+  return text;
+}
+
+ordered_json read_results(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(file.string(), "file", "cannot be read (is this a result directory?)");
+  std::ostringstream text;
+  text << in.rdbuf();
+  try {
+    return ordered_json::parse(text.str());
+  } catch (const ordered_json::parse_error& e) {
+    throw InputError(file.string(), "JSON", e.what());
+  }
+}
+
+std::string required_string(const ordered_json& object, const char* key, const std::string& source,
+                            const std::string& where) {
+  const auto it = object.find(key);
+  if (it == object.end() || !it->is_string())
+    throw InputError(source, where, std::string("\"") + key + "\" is missing or not a string");
+  return it->get<std::string>();
+}
+
+const ordered_json& required_array(const ordered_json& object, const char* key,
+                                   const std::string& source) {
+  const auto it = object.find(key);
+  if (it == object.end() || !it->is_array())
+    throw InputError(source, "top level", std::string("\"") + key + "\" is missing or not a list");
+  return *it;
+}
+
+}  // namespace
+
+std::string ReportRecord::label() const {
+  return algorithm + ":" + variant + " [" + backend + "]";
+}
+
+bool ReportData::has_comparisons() const {
+  for (const ReportCase& c : cases)
+    for (const ReportRecord& r : c.records)
+      if (r.versions.size() > 1) return true;
+  return false;
+}
+
+std::string ReportData::page_relative(std::size_t dir, const std::string& path_in_dir) const {
+  return (normal_absolute(dirs[dir].dir) / path_in_dir)
+      .lexically_normal()
+      .lexically_relative(normal_absolute(page_dir))
+      .string();
+}
+
+ReportData load_report_data(const std::vector<fs::path>& result_dirs, const fs::path& page_dir) {
+  if (result_dirs.empty()) throw UsageError("report: no result directory given");
+  ReportData data;
+  data.page_dir = page_dir;
+  std::map<std::string, std::size_t> case_index;
+  // (case index, record index) per record name, so records merge across directories.
+  std::map<std::string, std::pair<std::size_t, std::size_t>> record_index;
+  for (std::size_t d = 0; d < result_dirs.size(); ++d) {
+    const fs::path file = result_dirs[d] / "results.json";
+    const std::string source = file.string();
+    ordered_json root = read_results(file);
+    if (!root.is_object()) throw InputError(source, "top level", "not an object");
+    const std::string schema = required_string(root, "schema", source, "top level");
+    // Version 1 only ever grows by added fields; a later major version may change meanings.
+    if (schema != "shadowcts.results/1")
+      throw InputError(source, "schema", "'" + schema + "' is not shadowcts.results/1");
+    const ordered_json& cases = required_array(root, "cases", source);
+    const ordered_json& results = required_array(root, "results", source);
+
+    for (const ordered_json& c : cases) {
+      const std::string name = required_string(c, "name", source, "cases[]");
+      auto [it, inserted] = case_index.try_emplace(name, data.cases.size());
+      if (inserted) data.cases.push_back(ReportCase{name, {}, {}});
+      ReportCase& target = data.cases[it->second];
+      if (!target.summaries.empty() && target.summaries.back().dir == d)
+        throw InputError(source, "cases[] " + name, "appears twice");
+      target.summaries.push_back(Version{d, c});
+    }
+    for (const ordered_json& r : results) {
+      const std::string name = required_string(r, "name", source, "results[]");
+      const std::string where = "results[] " + name;
+      const std::string case_name = required_string(r, "case", source, where);
+      const auto c = case_index.find(case_name);
+      // The case must be listed by this directory, not only by an earlier one.
+      if (c == case_index.end() || data.cases[c->second].summaries.back().dir != d)
+        throw InputError(source, where, "its case '" + case_name + "' is not in \"cases\"");
+      auto [it, inserted] = record_index.try_emplace(
+          name, std::pair{c->second, data.cases[c->second].records.size()});
+      if (inserted) {
+        ReportRecord record;
+        record.name = name;
+        record.output = required_string(r, "output", source, where);
+        record.algorithm = required_string(r, "algorithm", source, where);
+        record.variant = required_string(r, "variant", source, where);
+        record.backend = required_string(r, "backend", source, where);
+        data.cases[c->second].records.push_back(std::move(record));
+      } else if (it->second.first != c->second) {
+        throw InputError(source, where, "belongs to another case in an earlier directory");
+      }
+      ReportRecord& target = data.cases[it->second.first].records[it->second.second];
+      if (!target.versions.empty() && target.versions.back().dir == d)
+        throw InputError(source, where, "appears twice");
+      required_string(r, "verdict", source, where);
+      target.versions.push_back(Version{d, r});
+    }
+    root.erase("cases");
+    root.erase("results");
+    data.dirs.push_back(ResultDirectory{result_dirs[d], label_of(result_dirs[d], page_dir), root});
+  }
+  return data;
+}
+
+}  // namespace shadowcts
