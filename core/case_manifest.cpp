@@ -61,8 +61,9 @@ class ManifestObject {
       throw InputError(source_, path_.empty() ? "(root)" : path_,
                        "must be an object, is " + describe(value_));
     }
-    for (const auto& [key, ignored] : value_.items()) {
-      (void)ignored;
+    // Not a structured binding: clang 14 (the fuzz build) cannot capture one in a lambda.
+    for (const auto& item : value_.items()) {
+      const std::string& key = item.key();
       if (std::none_of(allowed_keys.begin(), allowed_keys.end(),
                        [&](const char* allowed) { return key == allowed; })) {
         std::string problem = "unknown key";

@@ -5,39 +5,10 @@
 #include <sstream>
 
 #include "atomic_file.h"
+#include "report/html_text.h"
 
 namespace shadowcts {
 namespace {
-
-std::string xml_escape(const std::string& s) {
-  std::string out;
-  for (char ch : s) {
-    switch (ch) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
-      default:
-        // XML 1.0 has no representation for most control characters.
-        if (static_cast<unsigned char>(ch) < 0x20 && ch != '\n' && ch != '\t')
-          out += ' ';
-        else
-          out += ch;
-    }
-  }
-  return out;
-}
 
 std::string seconds(double ms) {
   char buffer[32];
@@ -67,13 +38,13 @@ void write_junit_xml(const std::filesystem::path& path, const std::vector<RunRec
       skipped += r->verdict == Verdict::not_supported;
       total_ms += r->median_ms;
     }
-    xml << "  <testsuite name=\"" << xml_escape(name) << "\" tests=\"" << members.size()
+    xml << "  <testsuite name=\"" << html_escape(name) << "\" tests=\"" << members.size()
         << "\" failures=\"" << failures << "\" errors=\"" << errors << "\" skipped=\"" << skipped
         << "\" time=\"" << seconds(total_ms) << "\">\n";
     for (const RunRecord* r : members) {
-      xml << "    <testcase classname=\"" << xml_escape(name) << "\" name=\""
-          << xml_escape(r->test_name) << "\" time=\"" << seconds(r->median_ms) << "\">";
-      const std::string reason = xml_escape(r->reason);
+      xml << "    <testcase classname=\"" << html_escape(name) << "\" name=\""
+          << html_escape(r->test_name) << "\" time=\"" << seconds(r->median_ms) << "\">";
+      const std::string reason = html_escape(r->reason);
       switch (r->verdict) {
         case Verdict::fail:
           xml << "<failure message=\"" << reason << "\" type=\"Fail\"/>";

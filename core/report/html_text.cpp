@@ -25,7 +25,11 @@ std::string html_escape(const std::string& text) {
         out += "&#39;";
         break;
       default:
-        out += ch;
+        // XML 1.0 (and so XHTML, SVG and JUnit files) cannot represent most control characters.
+        if (static_cast<unsigned char>(ch) < 0x20 && ch != '\n' && ch != '\t')
+          out += ' ';
+        else
+          out += ch;
     }
   }
   return out;

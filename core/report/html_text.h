@@ -5,7 +5,8 @@
 
 namespace shadowcts {
 
-// Escapes & < > " ' for element text and quoted attribute values alike (HTML and inline SVG).
+// Escapes & < > " ' for element text and quoted attribute values alike (HTML, inline SVG and the
+// JUnit XML), and replaces control characters XML cannot represent by spaces.
 std::string html_escape(const std::string& text);
 
 // A relative file path as a URL path: bytes other than unreserved characters and '/' are

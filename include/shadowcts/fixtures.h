@@ -41,4 +41,8 @@ Case make_fixture(const std::string& fixture_name);
 // 256x256 samples so that exact oracles finish the whole set in under a minute.
 std::vector<std::string> default_fixtures();
 
+// The stiff-case suite (`shadowcts run --suite stiff`): fixed cases named "stiff.<trap>", each a
+// deliberate numerical trap (fixtures/stiff/); make_fixture() builds them by name.
+std::vector<std::string> stiff_fixtures();
+
 }  // namespace shadowcts

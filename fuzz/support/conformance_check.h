@@ -1,0 +1,18 @@
+#pragma once
+// The property the geometry fuzzers check: every registered algorithm that supports a case
+// agrees with the exact hard-shadow oracle on every sample the oracle calls robust (approximate
+// algorithms, whose mismatches are QualityWarnings, are exempt from that part), never
+// throws, and (soft output) never answers NaN or a fraction outside [0, 1]. A violation is
+// shrunk to a minimal case, written as a reproducer and ends the process with abort(), so
+// libFuzzer stores the input too.
+#include <string>
+
+#include "sample_case.h"
+
+namespace shadowcts::fuzzing {
+
+// `target` names the fuzz target in messages and in the reproducer's folder name. Reproducers go
+// to $SHADOWCTS_FUZZ_REPRODUCERS (default: ./fuzz-reproducers).
+void check_every_algorithm(const SampleCase& sample_case, const std::string& target);
+
+}  // namespace shadowcts::fuzzing
