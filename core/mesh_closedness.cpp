@@ -63,22 +63,33 @@ std::recursive_mutex& openmesh_error_stream_mutex() {
   static std::recursive_mutex mutex;
   return mutex;
 }
+
+// OpenMesh's error stream is redirected once per process, into one buffer: its disconnect()
+// never frees what connect() allocated, so connecting per load would leak every time.
+std::ostringstream& openmesh_error_buffer() {
+  static std::ostringstream* buffer = [] {
+    auto* b = new std::ostringstream;  // lives as long as OpenMesh's stream refers to it
+    omerr().disconnect(std::cerr);
+    omerr().connect(*b);
+    return b;
+  }();
+  return *buffer;
+}
 }  // namespace
 
 OpenMeshErrorCapture::OpenMeshErrorCapture() : lock_(openmesh_error_stream_mutex()) {
-  stderr_was_connected_ = omerr().disconnect(std::cerr);
-  omerr().connect(captured_);
+  omerr().flush();
+  openmesh_error_buffer().str("");
 }
 
 OpenMeshErrorCapture::~OpenMeshErrorCapture() {
   omerr().flush();
-  omerr().disconnect(captured_);
-  if (stderr_was_connected_) omerr().connect(std::cerr);
+  openmesh_error_buffer().str("");
 }
 
 std::string OpenMeshErrorCapture::text() {
   omerr().flush();
-  return captured_.str();
+  return openmesh_error_buffer().str();
 }
 
 }  // namespace shadowcts

@@ -20,8 +20,10 @@ namespace shadowcts {
 // answer (it only disables front-face culling).
 bool is_closed_surface(std::span<const Triangle> triangles);
 
-// While alive, OpenMesh's error stream (omerr) goes into text() instead of stderr. omerr is
-// process-global: the capture holds a process-wide lock, so concurrent loads serialize here.
+// While alive, what OpenMesh reports on its error stream (omerr) is collected for text(). omerr is
+// process-global: the first capture redirects it from stderr into one process-wide buffer for
+// good (OpenMesh leaks on every reconnect), and each capture holds a process-wide lock, so
+// concurrent loads serialize here.
 class OpenMeshErrorCapture {
  public:
   OpenMeshErrorCapture();
@@ -34,8 +36,6 @@ class OpenMeshErrorCapture {
 
  private:
   std::unique_lock<std::recursive_mutex> lock_;
-  std::ostringstream captured_;
-  bool stderr_was_connected_ = false;
 };
 
 }  // namespace shadowcts

@@ -238,7 +238,9 @@ DeclaredCounts scan_ply(const std::string& path, std::istream& in) {
   std::vector<std::string> vertex_properties;
   for (;;) {
     std::string line;
-    if (!std::getline(in, line)) return {};
+    // OpenMesh's PLY reader loops forever on a header without end_header: refuse it here.
+    if (!std::getline(in, line))
+      throw InputError(path, "header", "the PLY header has no end_header line");
     ++line_number;
     const auto tokens = split_whitespace(line);
     if (tokens.empty()) continue;

@@ -627,3 +627,19 @@ TEST(MeshFiles, UnknownExtensionAndMissingFileAreInputErrors) {
 
 }  // namespace
 }  // namespace shadowcts
+
+namespace shadowcts {
+namespace {
+
+// Found by the PLY fuzz target: OpenMesh's reader loops forever on a header without end_header.
+TEST(MeshFiles, PlyHeaderWithoutEndHeaderIsAnInputErrorNotAHang) {
+  const TempDir dir;
+  const fs::path file =
+      dir.write("no_end.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n");
+  const std::string message = load_error(file);
+  EXPECT_NE(message.find("end_header"), std::string::npos) << message;
+  EXPECT_NE(message.find("no_end.ply"), std::string::npos) << message;
+}
+
+}  // namespace
+}  // namespace shadowcts
