@@ -44,7 +44,8 @@ void write_junit_xml(const std::filesystem::path& path, const std::vector<RunRec
     for (const RunRecord* r : members) {
       xml << "    <testcase classname=\"" << html_escape(name) << "\" name=\""
           << html_escape(r->test_name) << "\" time=\"" << seconds(r->median_ms) << "\">";
-      const std::string reason = html_escape(r->reason);
+      // Failures carry the command that reruns just this record.
+      const std::string reason = html_escape(r->reason + " (reproduce: " + r->reproduce + ")");
       switch (r->verdict) {
         case Verdict::fail:
           xml << "<failure message=\"" << reason << "\" type=\"Fail\"/>";

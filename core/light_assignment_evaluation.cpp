@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "heat_map.h"
 #include "image_paths.h"
 #include "oracles/light_assignment/light_assignment_comparison.h"
 #include "shadowcts/image_file.h"
@@ -12,29 +13,6 @@
 
 namespace shadowcts {
 namespace {
-
-// A count per sample as a heat map: black 0, then through red and orange to white at `full`;
-// sky and back-facing as in the shadow masks.
-RgbImage count_image(const ViewSamples& samples, const std::vector<std::uint32_t>& count,
-                     std::uint32_t full) {
-  RgbImage image{samples.width, samples.height,
-                 std::vector<std::uint8_t>(samples.samples.size() * 3)};
-  for (std::size_t i = 0; i < samples.samples.size(); ++i) {
-    std::uint8_t* px = &image.rgb[3 * i];
-    const SampleClass cls = samples.samples[i].sample_class;
-    if (cls == SampleClass::sky) {
-      px[0] = 110, px[1] = 150, px[2] = 200;
-    } else if (cls == SampleClass::back_facing) {
-      px[0] = 45, px[1] = 50, px[2] = 70;
-    } else {
-      const double t = full ? std::min(1.0, double(count[i]) / full) : 0.0;
-      px[0] = std::uint8_t(std::lround(255 * std::min(1.0, 3 * t)));
-      px[1] = std::uint8_t(std::lround(255 * std::clamp(3 * t - 1, 0.0, 1.0)));
-      px[2] = std::uint8_t(std::lround(255 * std::clamp(3 * t - 2, 0.0, 1.0)));
-    }
-  }
-  return image;
-}
 
 class LightAssignmentEvaluation : public CaseEvaluation {
  public:
@@ -61,7 +39,7 @@ class LightAssignmentEvaluation : public CaseEvaluation {
     scale_ =
         std::max<std::uint32_t>(1, 4 * *std::max_element(exact_count_.begin(), exact_count_.end()));
     const std::string stem = case_image_stem(c.name) + "/oracle.lights";
-    write_png_and_exr(out_dir, stem, count_image(samples, exact_count_, scale_));
+    write_png_and_exr(out_dir, stem, count_heat_map(samples, exact_count_, scale_));
     oracle_.details = {{"eps_rel", plain_.eps_rel},
                        {"tau", plain_.tau},
                        {"exact_minimum", plain_.exact_minimum()},
@@ -107,7 +85,7 @@ class LightAssignmentEvaluation : public CaseEvaluation {
       if (list != LightLists::no_list) length[s] = lists.offsets[list + 1] - lists.offsets[list];
     }
     record.images = {write_png_and_exr(out_dir_, algorithm_image_stem(record) + ".lights",
-                                       count_image(samples_, length, scale_))};
+                                       count_heat_map(samples_, length, scale_))};
   }
 
  private:

@@ -37,6 +37,7 @@ ordered_json record_json(const RunRecord& r) {
   j["backend"] = r.backend;
   j["verdict"] = verdict_name(r.verdict);
   j["reason"] = r.reason;
+  j["reproduce"] = r.reproduce;
   if (r.verdict == Verdict::not_supported) return j;
   j["time_ms"] = {{"median", r.median_ms}, {"runs", r.run_ms}};
   ordered_json counters = ordered_json::object();

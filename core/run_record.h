@@ -38,6 +38,7 @@ struct RunRecord {
   nlohmann::ordered_json error;     // the comparison's figures (results.json "error")
   std::string headline;             // the key figures in a few words, for the terminal
   std::vector<std::string> images;  // relative to the output folder
+  std::string reproduce;            // the command that reruns just this record
 };
 
 std::string output_kind_name(OutputKind kind);

@@ -16,6 +16,8 @@
 
 #include "case_evaluation.h"
 #include "hard_shadow_evaluation.h"
+#include "heat_map.h"
+#include "image_paths.h"
 #include "junit_xml.h"
 #include "light_assignment_evaluation.h"
 #include "report/html_report.h"
@@ -56,7 +58,9 @@ std::string light_name(const Case& c) {
   return "none";
 }
 
-std::vector<Case> load_cases(const RunOptions& options) {
+// `selectors` receives, per case, the option that selects it again ("--fixture NAME" or
+// "--case FILE"), for the reproducer command of each record.
+std::vector<Case> load_cases(const RunOptions& options, std::vector<std::string>& selectors) {
   std::vector<Case> cases;
   std::vector<std::string> fixtures = options.fixtures;
   if (options.suite == "stiff") {
@@ -71,9 +75,15 @@ std::vector<Case> load_cases(const RunOptions& options) {
   std::size_t position = 0;
   auto in_shard = [&] { return position++ % options.shard_count == options.shard_index; };
   for (const std::string& name : fixtures)
-    if (in_shard()) cases.push_back(make_fixture(name));
+    if (in_shard()) {
+      cases.push_back(make_fixture(name));
+      selectors.push_back("--fixture " + name);
+    }
   for (const std::string& file : options.case_files)
-    if (in_shard()) cases.push_back(load_case_manifest(file));
+    if (in_shard()) {
+      cases.push_back(load_case_manifest(file));
+      selectors.push_back("--case " + file);
+    }
   for (Case& c : cases) {
     if (options.eps_rel) c.parameters.eps_rel = *options.eps_rel;
     if (options.repeats) c.parameters.repeats = *options.repeats;
@@ -142,7 +152,8 @@ class Progress {
   std::ostream& err_;
 };
 
-RunRecord new_record(const Case& c, const Algorithm& algorithm, const std::string& variant) {
+RunRecord new_record(const Case& c, const std::string& selector, const Algorithm& algorithm,
+                     const std::string& variant) {
   const AlgorithmInfo& meta = algorithm.info();
   RunRecord record;
   record.case_name = c.name;
@@ -153,9 +164,23 @@ RunRecord new_record(const Case& c, const Algorithm& algorithm, const std::strin
   record.approximate = meta.capabilities.approximate;
   if (record.output == OutputKind::soft_shadow)
     record.soft_budget = algorithm.soft_error_budget(variant);
+  record.reproduce = "shadowcts run " + selector + " --algorithm " + meta.id + ":" + variant +
+                     " --backend " + meta.backend;
   record.test_name = output_kind_name(record.output) + "." + meta.id + "." + variant + "." +
                      meta.backend + "." + c.name;
   return record;
+}
+
+// A work counter per sample (the papers' figures), full scale at its largest value.
+std::string write_counter_heat_map(const std::filesystem::path& out_dir, const RunRecord& record,
+                                   const ViewSamples& samples, const std::string& counter,
+                                   const std::vector<std::uint32_t>& per_sample) {
+  if (per_sample.size() != samples.samples.size())
+    throw std::runtime_error("per-sample counter '" + counter + "' has " +
+                             std::to_string(per_sample.size()) + " entries, not one per sample");
+  const std::uint32_t full = *std::max_element(per_sample.begin(), per_sample.end());
+  return write_png_and_exr(out_dir, algorithm_image_stem(record) + "." + counter,
+                           count_heat_map(samples, per_sample, full));
 }
 
 bool same_results(const AlgorithmOutput& a, const AlgorithmOutput& b) {
@@ -221,7 +246,8 @@ std::string output_kind_name(OutputKind kind) {
 int run_suite(const RunOptions& options, const Registry& registry, std::ostream& out,
               std::ostream& err) {
   check_selection(options, registry);
-  const std::vector<Case> cases = load_cases(options);  // all input is checked before any work
+  std::vector<std::string> selectors;
+  const std::vector<Case> cases = load_cases(options, selectors);  // input checked before any work
 
   const std::uint32_t threads = options.threads.value_or(0)
                                     ? *options.threads
@@ -281,7 +307,7 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
         std::optional<std::string> why = a->unsupported_reason(
             kind == OutputKind::hard_shadow ? hard_case : c, samples, variant);
         if (why) {
-          RunRecord record = new_record(c, *a, variant);
+          RunRecord record = new_record(c, selectors[case_index], *a, variant);
           record.verdict = Verdict::not_supported;
           record.reason = *why;
           summary.left_out.push_back(meta.id + ":" + variant + " [" + meta.backend + "]: " + *why);
@@ -331,7 +357,7 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
 
     for (const PlannedRun& p : planned) {
       const AlgorithmInfo& meta = p.algorithm->info();
-      RunRecord record = new_record(c, *p.algorithm, p.variant);
+      RunRecord record = new_record(c, selectors[case_index], *p.algorithm, p.variant);
       progress.show(step + meta.id + ":" + p.variant + " [" + meta.backend + "]");
       const Case& view = record.output == OutputKind::hard_shadow ? hard_case : c;
       try {
@@ -351,6 +377,9 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
         record.median_ms = median(record.run_ms);
         record.counters = first.counters;
         evaluations.at(record.output)->judge(first, record);
+        for (const auto& [name, per_sample] : first.per_sample_counters)
+          record.images.push_back(
+              write_counter_heat_map(out_dir, record, samples, name, per_sample));
       } catch (const std::exception& e) {
         record.verdict = Verdict::crash;
         record.reason = std::string("exception: ") + e.what();
