@@ -65,10 +65,10 @@ class StencilAlgorithm final : public Algorithm {
     run_with_thread_limit(c.parameters.threads, [&] {
       occluders = find_occluders(c, light);
       volumes = build_shadow_volumes(occluders, light, eye, samples);
-      // z-pass never needs the caps (see volume_counting.h): leave them out of its grid.
+      // z-pass never needs the dark caps (see volume_counting.h): leave them out of its grid.
       std::vector<VolumeFace> faces;
       for (const VolumeFace& f : volumes.faces)
-        if (mode == CountingMode::z_fail || f.kind == FaceKind::side_quad) faces.push_back(f);
+        if (mode == CountingMode::z_fail || f.kind != FaceKind::dark_cap) faces.push_back(f);
       std::vector<FaceEyeSides> sides(faces.size());
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, faces.size(), 1024),
                         [&](const tbb::blocked_range<std::size_t>& range) {

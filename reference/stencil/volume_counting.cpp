@@ -5,12 +5,13 @@
 namespace shadowcts::stencil {
 namespace {
 
-// One oriented triangle of a face.
+// One oriented triangle of a face. `on_receiver`: the triangle is the receiver's own light cap,
+// which passes through the sample by definition and is taken to leave it on its outer (lit) side.
 int triangle_crossing(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, int eye_side,
-                      bool sample_on_plane, CountingMode mode, const glm::dvec3& eye,
+                      bool on_receiver, CountingMode mode, const glm::dvec3& eye,
                       const glm::dvec3& sample) {
-  int sample_side = 0;
-  if (!sample_on_plane) {
+  int sample_side = 1;
+  if (!on_receiver) {
     sample_side = orientation(a, b, c, sample);
     // z-pass prefilter: e and p strictly on one side, the segment cannot cross.
     if (mode == CountingMode::z_pass && sample_side != 0 && sample_side == eye_side) return 0;
@@ -20,7 +21,8 @@ int triangle_crossing(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3
       edge_side(eye, sample, c, a) != direction)
     return 0;
   // The line crosses the triangle, moving to its outer side when direction > 0.
-  const int p_side = sample_side != 0 ? sample_side : -direction;  // p- is before the plane
+  // p- is before the plane; the receiver's own cap leaves the sample on its lit side.
+  const int p_side = sample_side != 0 ? sample_side : -direction;
   if (mode == CountingMode::z_fail) return p_side == -direction ? direction : 0;
   const int e_side = eye_side != 0 ? eye_side : direction;  // e+ is past the plane
   // Entering the volume (direction < 0) adds one.

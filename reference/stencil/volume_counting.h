@@ -10,13 +10,15 @@
 // perturbation: p- lies on the eye side of anything through p, e+ on the sample side).
 //  - z-pass: winding(p-) = winding(e) + (entries - exits) on the segment (e+, p-), with
 //    winding(e) taken to be 0: wrong exactly when the eye is inside a shadow volume. Side quads
-//    only: the segment cannot cross a light cap (the sample is the first surface seen) nor a far
-//    dark cap.
+//    and light caps (a sample need not be the first surface seen from the eye: the segment may
+//    pass through a caster in front of it), never the dark caps, which the extrusion puts beyond
+//    the eye and every sample (shadow_volume.h), hence beyond every point of the segment.
 //  - z-fail: winding(p-) = (exits - entries) on the ray from p- away from the eye, which leaves
 //    every (bounded) volume: no assumption about the eye; light caps, side quads and dark caps.
-// The receiver's own light cap is treated as passing exactly through p (the sample lies on it by
-// definition; its float position may be a rounding off the plane, which would otherwise shadow it
-// by its own volume).
+// The receiver's own light cap is treated as passing exactly through p, with the sample on its
+// outer (lit) side whichever side the eye sees it from: the sample lies on it by definition (its
+// float position may be a rounding off the plane), and a receiver never shadows itself (the
+// oracle's rule), also when the eye looks at the side facing away from the light.
 #include <cstdint>
 
 #include <glm/vec3.hpp>

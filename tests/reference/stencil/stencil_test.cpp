@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "oracles/exact_segment_triangle.h"
 #include "reference/stencil/robust_orientation.h"
 #include "reference/stencil/silhouette.h"
 #include "shadowcts/fixtures.h"
@@ -248,6 +249,143 @@ TEST(Stencil, DeclinesAPointLightOnACaster) {
   const auto reason = make_stencil()->unsupported_reason(c, samples, "zfail");
   ASSERT_TRUE(reason);
   EXPECT_NE(reason->find("touches a caster"), std::string::npos);
+}
+
+// Minimal fuzz reproducers (one sample each), rebuilt in code. Each checks first that the eye
+// is lit (no caster meets its segment to the point light or its ray towards the directional
+// light), where z-pass must be exact too, and that the exact oracle calls the sample robust.
+struct Reproducer {
+  Case c;
+  ViewSample sample;
+};
+
+Case reproducer_case(const ShadowLight& light, const glm::vec3& eye, const glm::vec3& target,
+                     float near_plane, float far_plane) {
+  Case c = base_case(light);
+  c.name = "stencil_fuzz_reproducer";
+  c.meshes = {Mesh{"part0", false, false}, Mesh{"part1", false, true}};
+  c.camera.position = eye;
+  c.camera.target = target;
+  c.camera.near_plane = near_plane;
+  c.camera.far_plane = far_plane;
+  c.camera.width = 1;
+  c.camera.height = 1;
+  return c;
+}
+
+void expect_both_variants_exact(const Reproducer& r, bool shadowed) {
+  validate(r.c);
+  ViewSamples samples;
+  samples.width = samples.height = 1;
+  samples.samples = {r.sample};
+  samples.samples[0].sample_class = SampleClass::regular;  // re-derived just below
+  classify_samples(r.c, samples, r.c.name);
+  ASSERT_EQ(samples.samples[0].sample_class, SampleClass::regular);
+
+  const HardShadowLight light = hard_shadow_light(r.c);
+  const ExactShadowPredicate predicate(light, 2.0 * r.c.scale());
+  MovedPoint eye;
+  eye.base = glm::dvec3(r.c.camera.position);
+  for (std::size_t i = 0; i < r.c.triangles.size(); ++i)
+    ASSERT_FALSE(casts_shadow(r.c, i) && predicate.blocks(r.c.triangles[i], eye))
+        << "the eye is in the shadow of triangle " << i;
+
+  const HardShadowTruth truth = exact_hard_shadow_oracle(r.c, samples);
+  ASSERT_TRUE(truth.band[0] == BandClass::robust_lit ||
+              truth.band[0] == BandClass::robust_shadowed);
+  ASSERT_EQ(truth.shadowed[0] != 0, shadowed);
+  const auto algorithm = make_stencil();
+  for (const char* variant : {"zfail", "zpass"}) {
+    ASSERT_FALSE(algorithm->unsupported_reason(r.c, samples, variant));
+    EXPECT_EQ(algorithm->run(r.c, samples, variant).shadowed[0], truth.shadowed[0]) << variant;
+  }
+}
+
+// fuzz_differential-a39721c4cf38ab7a: the sample (on a small caster) is hidden from the eye
+// behind the ground triangle, itself a caster: z-pass has to count the light cap that its eye
+// segment enters.
+TEST(StencilFuzzReproducer, ZPassCountsALightCapInFrontOfTheSample) {
+  ShadowLight light;
+  light.kind = ShadowLightKind::directional;
+  light.direction = {-0.6360863447189331f, 0.1380854845046997f, -0.7591617703437805f};
+  Reproducer r{reproducer_case(light, {-12.70687198638916f, 4.215230464935303f, -22.7977352142334f},
+                               {4.0f, 0.5884010791778564f, -2.8582754135131836f},
+                               1.3132550520822406e-05f, 13132.55078125f),
+               {}};
+  r.c.meshes[0].caster = true;
+  r.c.triangles = {{{0, 0, -8}, {0, 0, 0}, {8, 0, 0}, 0},
+                   {{1.0624275207519531f, -0.23539441823959351f, 0.87627381086349487f},
+                    {1.4709442853927612f, 1.4121966361999512f, 0.65556478500366211f},
+                    {1.8331978321075439f, -0.22112375497817993f, 2.2834491729736328f},
+                    1}};
+  r.sample.position = {1.0719585418701172f, -0.19698430597782135f, 0.87114191055297852f};
+  r.sample.normal = {0, 0, -1};
+  r.sample.receiver = 1;
+  expect_both_variants_exact(r, true);
+}
+
+// fuzz_watertight-f86d8fd9b34c69eb: a point light; the eye segment of a far sample passes
+// through a caster of an open three-triangle fan.
+TEST(StencilFuzzReproducer, ZPassCountsALightCapOfAnOpenFan) {
+  ShadowLight light;
+  light.kind = ShadowLightKind::point;
+  light.position = {24, -24, 15};
+  Reproducer r{
+      reproducer_case(light, {15.653000831604004f, -11.27051830291748f, 7.933642864227295f},
+                      {-5.702150344848633f, 21.296873092651367f, -10.145084381103516f},
+                      6.947140354895964e-05f, 69471.3984375f),
+      {}};
+  r.c.triangles = {
+      {{-1, -8, -1}, {1, -8, -1}, {0, -8, 1}, 0},
+      {{7.5f, 3.125f, 0.5f}, {7.5f, 2.5625f, 2}, {7.21875f, 2.875f, 0.9833984375f}, 1},
+      {{7.5f, 3.125f, 0.5f}, {8.466796875f, 2.5625f, 1.0625f}, {8.125f, 3.125f, 1.57421875f}, 1},
+      {{7.5f, 3.125f, 0.5f}, {8.125f, 3.125f, 1.57421875f}, {7.5f, 2.5625f, 2}, 1}};
+  r.sample.position = {-19.871097564697266f, 50.593746185302734f, -22.290168762207031f};
+  r.sample.normal = {0, -1, 0};
+  r.sample.receiver = 0;
+  expect_both_variants_exact(r, true);
+}
+
+// fuzz_degenerate-66673e5b68a0975e: the same at a 2^40 scale.
+TEST(StencilFuzzReproducer, ZPassCountsALightCapAtAHugeScale) {
+  ShadowLight light;
+  light.kind = ShadowLightKind::point;
+  light.position = {-2147483648000.0f, 2869038153728.0f, 1297080123392.0f};
+  Reproducer r{reproducer_case(light, {-1495385767936.0f, 1892195500032.0f, 903212957696.0f},
+                               {0.0f, -347892350976.0f, 0.0f}, 3989957.5f, 3989957509120000.0f),
+               {}};
+  const float s = 1099511627776.0f;  // 2^40
+  r.c.triangles = {{{-s, -s, -s}, {s, -s, -s}, {0, -s, s}, 0},
+                   {{506806140928.0f, -893353197568.0f, 592705486848.0f},
+                    {68719476736.0f, 901943132160.0f, -377957122048.0f},
+                    {-816043786240.0f, 154618822656.0f, 42949672960.0f},
+                    1}};
+  r.sample.position = {481036337152.0f, -1597727834112.0f, -755914244096.0f};
+  r.sample.normal = {0, 1, 0};
+  r.sample.receiver = 0;
+  expect_both_variants_exact(r, true);
+}
+
+// fuzz_degenerate-eb863e8a83fbe68d: the sample lies exactly in the plane of its receiver (a
+// caster), which the eye sees from the side facing away from the light while the sample's normal
+// faces the light. A receiver never shadows itself: both variants must leave the sample on the lit
+// side of its own cap, not on the eye's side of it (which is inside the receiver's own volume).
+TEST(StencilFuzzReproducer, TheReceiversOwnCapLeavesTheSampleLitWhenSeenFromBehind) {
+  ShadowLight light;
+  light.kind = ShadowLightKind::point;
+  light.position = {-2147483648000.0f, 2869038153728.0f, 1297080123392.0f};
+  const float s = 1099511627776.0f;  // 2^40
+  Reproducer r{reproducer_case(light, {-s, -s, -s}, {-s, -s, -3558094405632.0f}, 0.001f, 1000.0f),
+               {}};
+  r.c.triangles = {{{-s, -s, -s}, {s, -s, -s}, {0, -s, s}, 0},
+                   {{377957122048.0f, -644245094400.0f, -111669149696.0f},
+                    {506806140928.0f, 111669149696.0f, -773094113280.0f},
+                    {-618475290624.0f, -386547056640.0f, -335007449088.0f},
+                    1}};
+  r.sample.position = {122943438848.0f, -233001975808.0f, -470835789824.0f};
+  r.sample.normal = {0, 1, 0};
+  r.sample.receiver = 1;
+  expect_both_variants_exact(r, false);
 }
 
 }  // namespace
