@@ -1,5 +1,7 @@
 #include "reference/psv/psv_shadows.h"
 
+#include "reference/closed_mesh_culling.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -39,7 +41,8 @@ PsvResult psv_hard_shadows(const Case& c, const ViewSamples& samples, const PsvO
   check_receivers(c, samples);
   const PlaneSide planes(light, c.triangles, coordinate_bound(c, samples));
   BuildStatistics build;
-  const std::vector<std::uint32_t> order = insertion_order(c, planes, options.seed, build);
+  const std::vector<std::uint32_t> order =
+      insertion_order(c, planes, meshes_safe_for_face_culling(c, samples), options.seed, build);
   const TopTree tree = build_top_tree(c, planes, order, build);
   const bool depth_test = options.query != QueryKind::stack;
   const QueryContext context(tree, planes, depth_test);

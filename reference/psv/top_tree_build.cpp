@@ -36,6 +36,7 @@ float triangle_wedge(const PlaneSide& planes, const TopNode& node, const Triangl
 }  // namespace
 
 std::vector<std::uint32_t> insertion_order(const Case& c, const PlaneSide& planes,
+                                           const std::vector<bool>& face_culling,
                                            std::uint64_t seed, BuildStatistics& statistics) {
   std::vector<std::uint32_t> order;
   for (std::size_t i = 0; i < c.triangles.size(); ++i) {
@@ -50,7 +51,8 @@ std::vector<std::uint32_t> insertion_order(const Case& c, const PlaneSide& plane
     // Front-face culling (Mora 2016, section 4): in a closed mesh every segment that crosses the
     // solid enters it through a face turned away from the light, so those faces alone cast the
     // mesh's shadow. Which winding is "front" does not matter: the exit faces would do as well.
-    if (c.meshes[t.mesh].closed && light_side > 0) {
+    // Only where no sample and no light can be inside the solid (face_culling).
+    if (face_culling[t.mesh] && light_side > 0) {
       ++statistics.culled_front_facing;
       continue;
     }

@@ -112,8 +112,8 @@ class Ptsv final : public Algorithm {
     setup.extra_planes = !config.depth_buffer_2011 && config.extra_planes;
     setup.silhouette_planes = config.depth_buffer_2011;
     SetupCounts setup_counts;
-    const std::vector<ShadowVolume> volumes = set_up_shadow_volumes(
-        c, front_face_culling_meshes(c, samples.width, samples.height), setup, bound, setup_counts);
+    const std::vector<ShadowVolume> volumes =
+        set_up_shadow_volumes(c, front_face_culling_meshes(c, samples), setup, bound, setup_counts);
 
     AlgorithmOutput output;
     output.shadowed.assign(samples.samples.size(), 0);

@@ -1,5 +1,7 @@
 #include "reference/ptsv/triangle_setup.h"
 
+#include "reference/closed_mesh_culling.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -78,8 +80,9 @@ double trivial_accept_bias(double scene_bound) {
   return scene_bound * 0x1p-20;
 }
 
-std::vector<bool> front_face_culling_meshes(const Case& c, std::uint32_t width,
-                                            std::uint32_t height) {
+std::vector<bool> front_face_culling_meshes(const Case& c, const ViewSamples& samples) {
+  const std::uint32_t width = samples.width, height = samples.height;
+  const std::vector<bool> safe = meshes_safe_for_face_culling(c, samples);
   std::vector<bool> culled(c.meshes.size(), false);
   const double tan_half_fov =
       std::tan(double(c.camera.vertical_fov_degrees) * 3.14159265358979323846 / 360.0);
@@ -99,7 +102,7 @@ std::vector<bool> front_face_culling_meshes(const Case& c, std::uint32_t width,
     }
   }
   for (std::size_t m = 0; m < c.meshes.size(); ++m) {
-    if (!c.meshes[m].closed || !c.meshes[m].caster) continue;
+    if (!safe[m]) continue;  // a sample or the light may be inside the solid
     bool clear = false;
     for (int k = 0; k < 3; ++k)
       clear = clear || eye[k] + reach < lo[m][k] || eye[k] - reach > hi[m][k];

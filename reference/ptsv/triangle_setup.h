@@ -29,6 +29,7 @@
 #include <glm/vec3.hpp>
 
 #include "shadowcts/case.h"
+#include "shadowcts/view_samples.h"
 
 namespace shadowcts::ptsv {
 
@@ -68,13 +69,13 @@ struct SetupCounts {
 };
 
 // Which meshes may drop their light-facing triangles (Sintorn 2011, Section 3.5; 2014, Section
-// 3): closed meshes only, and only when no view sample can lie inside one. A sample inside a
-// closed mesh is visible only from a camera whose near region (between the eye and the near
-// plane, where primary rays start) reaches into the mesh, so meshes whose bounding box keeps clear
-// of that region qualify; light inside or outside does not matter (a segment that crosses a closed
-// surface from outside crosses one face of each orientation).
-std::vector<bool> front_face_culling_meshes(const Case& c, std::uint32_t width,
-                                            std::uint32_t height);
+// 3): closed meshes only, and only when neither a view sample nor a point light can lie inside one
+// (meshes_safe_for_face_culling: no regular sample and no point light in the mesh's bounding box —
+// samples come from G-buffers too, so the camera alone does not decide), and whose bounding box
+// keeps clear of the camera's near region. A segment from outside a closed surface to a light
+// outside it crosses one face of each orientation; one from inside leaves only through faces
+// turned towards the light.
+std::vector<bool> front_face_culling_meshes(const Case& c, const ViewSamples& samples);
 
 // The volumes of every caster triangle in index order. scene_bound: >= every |coordinate| of
 // every sample (it bounds how far the volume's edge rays need to be followed).
