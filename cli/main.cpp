@@ -74,9 +74,10 @@ int main(int argc, char** argv) {
   auto* eps_option = run->add_option("--eps-rel", eps_rel,
                                      "Relative half-width of the ambiguity band (default 2^-16)")
                          ->check(CLI::Range(0x1p-24, 0x1p-4));
-  auto* repeat_option =
-      run->add_option("--repeat", repeats, "Timed repeats per algorithm (median reported)")
-          ->check(CLI::Range(1, 1000));
+  auto* repeat_option = run->add_option("--repeat", repeats,
+                                        "Timed repeats per algorithm after one warm-up run "
+                                        "(default 2; median and min-max reported)")
+                            ->check(CLI::Range(1, 1000));
   auto* threads_option =
       run->add_option("--threads", threads, "Worker threads (default: all cores)")
           ->check(CLI::Range(1, 4096));

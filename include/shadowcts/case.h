@@ -56,7 +56,7 @@ struct Camera {
 
 struct RunParameters {
   double eps_rel = 1.0 / 65536.0;  // ambiguity band: tau = eps_rel * largest |coordinate|
-  std::uint32_t repeats = 3;       // timed repeats; the median is reported
+  std::uint32_t repeats = 2;       // timed repeats after a warm-up run; median and min-max reported
   std::uint32_t threads = 0;       // 0: all hardware threads
   std::uint64_t seed = 1;
 };
