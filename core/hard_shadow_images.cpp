@@ -1,16 +1,11 @@
 #include "hard_shadow_images.h"
 
 #include "image_paths.h"
+#include "sample_colours.h"
 
 namespace shadowcts {
 namespace {
 
-struct Rgb {
-  std::uint8_t r, g, b;
-};
-
-constexpr Rgb sky_colour{110, 150, 200};
-constexpr Rgb back_facing_colour{45, 50, 70};
 constexpr Rgb lit_colour{235, 235, 235};
 constexpr Rgb shadowed_colour{40, 40, 40};
 constexpr Rgb agree_lit_colour{200, 200, 200};

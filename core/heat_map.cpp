@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sample_colours.h"
+
 namespace shadowcts {
 
 RgbImage count_heat_map(const ViewSamples& samples, const std::vector<std::uint32_t>& count,
@@ -13,9 +15,9 @@ RgbImage count_heat_map(const ViewSamples& samples, const std::vector<std::uint3
     std::uint8_t* px = &image.rgb[3 * i];
     const SampleClass cls = samples.samples[i].sample_class;
     if (cls == SampleClass::sky) {
-      px[0] = 110, px[1] = 150, px[2] = 200;
+      put_rgb(px, sky_colour);
     } else if (cls == SampleClass::back_facing) {
-      px[0] = 45, px[1] = 50, px[2] = 70;
+      put_rgb(px, back_facing_colour);
     } else {
       const double t = full ? std::min(1.0, double(count[i]) / full) : 0.0;
       px[0] = std::uint8_t(std::lround(255 * std::min(1.0, 3 * t)));

@@ -33,13 +33,13 @@ class LightAssignmentEvaluation : public CaseEvaluation {
          << " ambiguous sample-light pairs";
     oracle_.plan_line = line.str();
     // The exact set size per sample, on the same scale as the algorithms' list lengths.
-    exact_count_.resize(samples.samples.size());
+    std::vector<std::uint32_t> exact_count(samples.samples.size());
     for (std::size_t s = 0; s < samples.samples.size(); ++s)
-      exact_count_[s] = std::uint32_t(plain_.set_size(s));
+      exact_count[s] = std::uint32_t(plain_.set_size(s));
     scale_ =
-        std::max<std::uint32_t>(1, 4 * *std::max_element(exact_count_.begin(), exact_count_.end()));
+        std::max<std::uint32_t>(1, 4 * *std::max_element(exact_count.begin(), exact_count.end()));
     const std::string stem = case_image_stem(c.name) + "/oracle.lights";
-    write_png_and_exr(out_dir, stem, count_heat_map(samples, exact_count_, scale_));
+    write_png_and_exr(out_dir, stem, count_heat_map(samples, exact_count, scale_));
     oracle_.details = {{"eps_rel", plain_.eps_rel},
                        {"tau", plain_.tau},
                        {"exact_minimum", plain_.exact_minimum()},
@@ -93,7 +93,6 @@ class LightAssignmentEvaluation : public CaseEvaluation {
   const ViewSamples& samples_;
   std::filesystem::path out_dir_;
   LightAssignmentTruth plain_, with_normals_;
-  std::vector<std::uint32_t> exact_count_;
   std::uint32_t scale_ = 1;
 };
 

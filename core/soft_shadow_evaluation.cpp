@@ -7,6 +7,7 @@
 
 #include "image_paths.h"
 #include "oracles/soft_shadow/soft_shadow_comparison.h"
+#include "sample_colours.h"
 #include "shadowcts/image_file.h"
 #include "shadowcts/soft_shadow_oracle.h"
 
@@ -31,16 +32,15 @@ RgbImage visibility_image(const ViewSamples& samples, const SoftShadowTruth& tru
   RgbImage image{samples.width, samples.height,
                  std::vector<std::uint8_t>(samples.samples.size() * 3)};
   for (std::size_t i = 0; i < samples.samples.size(); ++i) {
-    const SampleClass cls = samples.samples[i].sample_class;
-    std::uint8_t rgb[3];
-    if (cls == SampleClass::sky) {
-      rgb[0] = 110, rgb[1] = 150, rgb[2] = 200;
+    std::uint8_t* px = &image.rgb[3 * i];
+    if (samples.samples[i].sample_class == SampleClass::sky) {
+      put_rgb(px, sky_colour);
     } else if (!truth.compared[i]) {
-      rgb[0] = 45, rgb[1] = 50, rgb[2] = 70;
+      put_rgb(px, back_facing_colour);
     } else {
-      rgb[0] = rgb[1] = rgb[2] = to_byte(fraction(i));
+      const std::uint8_t grey = to_byte(fraction(i));
+      put_rgb(px, {grey, grey, grey});
     }
-    std::copy(rgb, rgb + 3, image.rgb.begin() + std::ptrdiff_t(3 * i));
   }
   return image;
 }
