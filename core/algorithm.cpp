@@ -46,6 +46,10 @@ std::optional<std::string> Algorithm::unsupported_reason(const Case& c, const Vi
   return std::nullopt;
 }
 
+std::vector<std::string> Algorithm::timed_phases(const std::string&) const {
+  return {};
+}
+
 SoftErrorBudget Algorithm::soft_error_budget(const std::string&) const {
   return {};
 }

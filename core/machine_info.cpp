@@ -1,7 +1,10 @@
 #include "machine_info.h"
 
+#include <cstdint>
 #include <fstream>
 #include <thread>
+
+#include <hwy/targets.h>
 
 namespace shadowcts {
 
@@ -16,6 +19,13 @@ MachineInfo machine_info() {
     if (colon != std::string::npos && colon + 2 <= line.size()) m.cpu = line.substr(colon + 2);
     break;
   }
+  // HWY_DYNAMIC_DISPATCH calls the best of the targets that the CPU supports and that a
+  // translation unit compiled with the default flags generates (HWY_TARGETS); a lower bit is a
+  // better target.
+  const std::int64_t targets = hwy::SupportedTargets() & HWY_TARGETS;
+  for (std::int64_t rest = targets; rest != 0; rest &= rest - 1)
+    m.isa_targets.push_back(hwy::TargetName(rest & -rest));
+  m.isa = m.isa_targets.empty() ? hwy::TargetName(HWY_STATIC_TARGET) : m.isa_targets.front();
   return m;
 }
 

@@ -1,5 +1,7 @@
 #include "results_json.h"
 
+#include <algorithm>
+
 #include <nlohmann/json.hpp>
 
 #include "atomic_file.h"
@@ -27,6 +29,19 @@ ordered_json case_json(const CaseSummary& c) {
   return j;
 }
 
+// Median, min, max and every run of one time (the whole call, or a phase); min and max are
+// absent when nothing was timed (a crash before the first repeat).
+ordered_json timing_json(double median_ms, const std::vector<double>& runs) {
+  ordered_json j;
+  j["median"] = median_ms;
+  if (!runs.empty()) {
+    j["min"] = *std::min_element(runs.begin(), runs.end());
+    j["max"] = *std::max_element(runs.begin(), runs.end());
+  }
+  j["runs"] = runs;
+  return j;
+}
+
 ordered_json record_json(const RunRecord& r) {
   ordered_json j;
   j["name"] = r.test_name;
@@ -39,7 +54,13 @@ ordered_json record_json(const RunRecord& r) {
   j["reason"] = r.reason;
   j["reproduce"] = r.reproduce;
   if (r.verdict == Verdict::not_supported) return j;
-  j["time_ms"] = {{"median", r.median_ms}, {"runs", r.run_ms}};
+  j["time_ms"] = timing_json(r.median_ms, r.run_ms);
+  if (!r.phases.empty()) {
+    ordered_json phases = ordered_json::object();
+    for (const PhaseRuns& phase : r.phases)
+      phases[phase.name] = timing_json(phase.median_ms, phase.run_ms);
+    j["time_ms"]["phases"] = phases;
+  }
   ordered_json counters = ordered_json::object();
   for (const auto& [name, value] : r.counters) counters[name] = value;
   j["counters"] = counters;
@@ -51,14 +72,18 @@ ordered_json record_json(const RunRecord& r) {
 }  // namespace
 
 void write_results_json(const std::filesystem::path& path, const std::vector<CaseSummary>& cases,
-                        const std::vector<RunRecord>& records, std::uint32_t threads) {
+                        const std::vector<RunRecord>& records, std::uint32_t threads,
+                        const MachineInfo& machine) {
   ordered_json root;
-  root["schema"] = "shadowcts.results/1";
-  const MachineInfo machine = machine_info();
-  root["machine"] = {{"cpu", machine.cpu}, {"hardware_threads", machine.hardware_threads}};
+  root["schema"] = results_schema;
+  root["machine"] = {{"cpu", machine.cpu},
+                     {"hardware_threads", machine.hardware_threads},
+                     {"isa", machine.isa},
+                     {"isa_targets", machine.isa_targets}};
   root["threads"] = threads;
   root["timing"] =
-      "one untimed warm-up run per record, then time_ms.runs timed repeats; median reported";
+      "one untimed warm-up run per record, then time_ms.runs timed repeats; median, min and max "
+      "over them; time_ms.phases: the same for the phases the algorithm times inside each run";
   root["cases"] = ordered_json::array();
   for (const CaseSummary& c : cases) root["cases"].push_back(case_json(c));
   root["results"] = ordered_json::array();

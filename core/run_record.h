@@ -23,6 +23,13 @@ struct CaseSummary {
   std::vector<std::string> left_out;  // "what: why"
 };
 
+// One phase's times over the timed repeats (AlgorithmOutput::phase_ms).
+struct PhaseRuns {
+  std::string name;            // "build", "query", ...
+  std::vector<double> run_ms;  // one per timed repeat, in the order of RunRecord::run_ms
+  double median_ms = 0;
+};
+
 struct RunRecord {
   std::string case_name;
   std::string test_name;  // dotted: <output>.<algorithm>.<variant>.<backend>.<case>
@@ -34,6 +41,9 @@ struct RunRecord {
   std::string reason;
   std::vector<double> run_ms;  // every timed repeat
   double median_ms = 0;
+  // The phases the algorithm declares for the variant (Algorithm::timed_phases), in its order;
+  // empty when it declares none.
+  std::vector<PhaseRuns> phases;
   Counters counters;
   nlohmann::ordered_json error;     // the comparison's figures (results.json "error")
   std::string headline;             // the key figures in a few words, for the terminal

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iomanip>
@@ -20,6 +21,7 @@
 #include "image_paths.h"
 #include "junit_xml.h"
 #include "light_assignment_evaluation.h"
+#include "machine_info.h"
 #include "report/html_report.h"
 #include "results_json.h"
 #include "run_record.h"
@@ -183,6 +185,35 @@ std::string write_counter_heat_map(const std::filesystem::path& out_dir, const R
                            count_heat_map(samples, per_sample, full));
 }
 
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& name : names) out += (out.empty() ? "" : ", ") + name;
+  return "{" + out + "}";
+}
+
+// An output reports exactly the phases its algorithm declares for the variant, each a time.
+void check_phases(const std::vector<std::string>& declared, const AlgorithmOutput& output) {
+  std::vector<std::string> reported;
+  for (const auto& [name, ms] : output.phase_ms) {
+    reported.push_back(name);
+    if (!std::isfinite(ms) || ms < 0)
+      throw std::logic_error("phase '" + name + "' reports " + std::to_string(ms) + " ms");
+  }
+  if (reported != declared)
+    throw std::logic_error("the output reports phases " + joined(reported) +
+                           " but the algorithm declares " + joined(declared));
+}
+
+// " (build 1.23 + query 4.56 ms)" for the phases' medians, or "".
+std::string phases_text(const RunRecord& r) {
+  if (r.phases.empty() || r.run_ms.empty() || r.verdict == Verdict::crash) return "";
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(2);
+  for (std::size_t k = 0; k < r.phases.size(); ++k)
+    text << (k ? " + " : "") << r.phases[k].name << " " << r.phases[k].median_ms;
+  return " (" + text.str() + " ms)";
+}
+
 bool same_results(const AlgorithmOutput& a, const AlgorithmOutput& b) {
   const LightLists &x = a.light_lists, &y = b.light_lists;
   return a.shadowed == b.shadowed && a.visible_fraction == b.visible_fraction &&
@@ -203,8 +234,11 @@ std::unique_ptr<CaseEvaluation> evaluate(OutputKind kind, const Case& c, const V
   throw std::logic_error("no evaluation for " + output_kind_name(kind) + " outputs");
 }
 
-void print_summary(std::ostream& out, const std::vector<RunRecord>& records) {
-  out << "\nsummary\n";
+void print_summary(std::ostream& out, const std::vector<RunRecord>& records,
+                   const MachineInfo& machine, std::uint32_t threads) {
+  out << "\nsummary  (" << machine.cpu << ", " << machine.hardware_threads
+      << " hardware threads, Highway ISA " << machine.isa << "; " << threads
+      << " worker threads)\n";
   out << std::left << std::setw(34) << "case" << std::setw(38) << "algorithm" << std::setw(15)
       << "verdict" << std::right << std::setw(11) << "median ms"
       << "   figures\n";
@@ -218,7 +252,7 @@ void print_summary(std::ostream& out, const std::vector<RunRecord>& records) {
       continue;
     }
     out << std::setw(11) << std::fixed << std::setprecision(2) << r.median_ms << "   " << r.headline
-        << "\n";
+        << phases_text(r) << "\n";
   }
   std::size_t counts[5] = {};
   for (const RunRecord& r : records) ++counts[int(r.verdict)];
@@ -361,13 +395,19 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
       progress.show(step + meta.id + ":" + p.variant + " [" + meta.backend + "]");
       const Case& view = record.output == OutputKind::hard_shadow ? hard_case : c;
       try {
+        const std::vector<std::string> declared = p.algorithm->timed_phases(p.variant);
+        for (const std::string& name : declared) record.phases.push_back({name, {}, 0});
         // An untimed warm-up run gives the output that is judged; the timed repeats after it
-        // must reproduce it exactly.
+        // must reproduce it exactly. Phases are timed inside run(), so within each repeat.
         const AlgorithmOutput first = p.algorithm->run(view, samples, p.variant);
+        check_phases(declared, first);
         for (std::uint32_t r = 0; r < c.parameters.repeats; ++r) {
           const auto start = Clock::now();
           const AlgorithmOutput again = p.algorithm->run(view, samples, p.variant);
           record.run_ms.push_back(elapsed_ms(start));
+          check_phases(declared, again);
+          for (std::size_t k = 0; k < declared.size(); ++k)
+            record.phases[k].run_ms.push_back(again.phase_ms[k].second);
           if (record.verdict != Verdict::fail && !same_results(again, first)) {
             record.verdict = Verdict::fail;
             record.reason = "nondeterministic: timed repeat " + std::to_string(r + 1) +
@@ -375,6 +415,7 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
           }
         }
         record.median_ms = median(record.run_ms);
+        for (PhaseRuns& phase : record.phases) phase.median_ms = median(phase.run_ms);
         record.counters = first.counters;
         evaluations.at(record.output)->judge(first, record);
         for (const auto& [name, per_sample] : first.per_sample_counters)
@@ -386,17 +427,18 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
       }
       out << "  " << std::left << std::setw(15) << verdict_name(record.verdict) << std::right
           << record.test_name << "  " << std::fixed << std::setprecision(2) << record.median_ms
-          << " ms  " << std::defaultfloat << record.reason << "\n";
+          << " ms" << phases_text(record) << "  " << std::defaultfloat << record.reason << "\n";
       records.push_back(std::move(record));
     }
     out << std::flush;
     summaries.push_back(std::move(summary));
   }
 
-  write_results_json(out_dir / "results.json", summaries, records, threads);
+  const MachineInfo machine = machine_info();
+  write_results_json(out_dir / "results.json", summaries, records, threads, machine);
   write_junit_xml(out_dir / "junit.xml", records);
   write_html_report({out_dir}, out_dir / "report.html");  // reads results.json back
-  print_summary(out, records);
+  print_summary(out, records, machine, threads);
   out << "wrote " << (out_dir / "report.html").string() << ", "
       << (out_dir / "results.json").string() << ", " << (out_dir / "junit.xml").string()
       << " and images under " << (out_dir / "images").string() << "\n";

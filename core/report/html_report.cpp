@@ -28,6 +28,9 @@ table.summary th:nth-child(2) { width: 14%; }
 tr.record td { font-size: 13px; }
 .range, .reason { color: #666; font-size: 12px; }
 .range { display: block; }
+.phase { display: block; font-size: 12px; margin-top: 2px; white-space: normal; }
+.phase .k { color: #666; }
+.phase .range { display: inline; }
 .fig { display: inline-block; margin: 0 10px 2px 0; white-space: nowrap; }
 .fig .k { color: #666; }
 .verdict { font-weight: 600; }
@@ -69,8 +72,11 @@ std::string sources_html(const ReportData& data) {
   std::string out = "<table class=\"sources\"><tr><th>directory</th><th>run</th></tr>\n";
   for (std::size_t d = 0; d < data.dirs.size(); ++d) {
     out += "<tr><td>" + html_escape(data.dirs[d].label) + "</td><td>";
+    // Machine (CPU, threads, the ISA Highway dispatches to), threads, timing: as recorded.
     for (const auto& [key, value] : flatten_fields(data.dirs[d].run))
-      out += "<span class=\"fig\"><span class=\"k\">" + html_escape(key) + "</span> " +
+      out += "<span class=\"fig\" data-dir=\"" + std::to_string(d) + "\" data-run-field=\"" +
+             html_escape(key) + "\" data-value=\"" + html_escape(exact_text(*value)) +
+             "\"><span class=\"k\">" + html_escape(key) + "</span> " +
              html_escape(display_value(*value)) + "</span>";
     out += "</td></tr>\n";
   }

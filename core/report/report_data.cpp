@@ -85,9 +85,11 @@ ReportData load_report_data(const std::vector<fs::path>& result_dirs, const fs::
     ordered_json root = read_results(file);
     if (!root.is_object()) throw InputError(source, "top level", "not an object");
     const std::string schema = required_string(root, "schema", source, "top level");
-    // Version 1 only ever grows by added fields; a later major version may change meanings.
-    if (schema != "shadowcts.results/1")
-      throw InputError(source, "schema", "'" + schema + "' is not shadowcts.results/1");
+    // Version 2 is version 1 with phase times and the Highway ISA added, so older result
+    // directories still compare with newer ones; a later version may change meanings.
+    if (schema != "shadowcts.results/1" && schema != "shadowcts.results/2")
+      throw InputError(source, "schema",
+                       "'" + schema + "' is neither shadowcts.results/1 nor shadowcts.results/2");
     const ordered_json& cases = required_array(root, "cases", source);
     const ordered_json& results = required_array(root, "results", source);
 

@@ -74,54 +74,61 @@ std::string figures_html(const Cell& cell, const std::string& group) {
   return out;
 }
 
+// One time of a record, the whole call (field "time_ms") or a phase ("time_ms.phases.build"):
+// its median, min–max over the runs and, in a later version, the ratio against the first.
+std::string timing_html(const Cell& cell, const ordered_json& timing, const std::string& field,
+                        const std::string& css_class, const std::string& label) {
+  const auto median = timing.find("median");
+  if (median == timing.end() || !median->is_number()) return "";
+  std::string range_attributes, range_text;
+  const auto runs = timing.find("runs");
+  if (runs != timing.end() && runs->is_array() && !runs->empty()) {
+    const ordered_json *lo = nullptr, *hi = nullptr;
+    for (const ordered_json& run : *runs) {
+      if (!run.is_number()) continue;
+      if (!lo || run.get<double>() < lo->get<double>()) lo = &run;
+      if (!hi || run.get<double>() > hi->get<double>()) hi = &run;
+    }
+    if (lo) {
+      range_attributes = " data-min=\"" + html_escape(exact_text(*lo)) + "\" data-max=\"" +
+                         html_escape(exact_text(*hi)) + "\" data-runs=\"" +
+                         std::to_string(runs->size()) + "\"";
+      range_text = " <span class=\"range\">(" + display_ms(lo->get<double>()) + "–" +
+                   display_ms(hi->get<double>()) + ")</span>";
+    }
+  }
+  // Times are noisy: a later version is marked only when it is more than 10% off.
+  std::string ratio;
+  if (cell.baseline) {
+    const ordered_json* before = field_of(cell.baseline->json, field + ".median");
+    if (before && before->is_number() && before->get<double>() > 0) {
+      const double r = median->get<double>() / before->get<double>();
+      char buffer[32];
+      std::snprintf(buffer, sizeof buffer, "×%.2f", r);
+      const char* trend = r < 0.9 ? " faster" : r > 1.1 ? " slower" : "";
+      ratio = std::string(" <span class=\"ratio") + trend + "\" title=\"" +
+              html_escape((label.empty() ? "" : label + " ") + "median against " +
+                          cell.data.dirs[cell.baseline->dir].label) +
+              "\">" + buffer + "</span>";
+    }
+  }
+  const std::string name =
+      label.empty() ? "" : "<span class=\"k\">" + html_escape(label) + "</span> ";
+  return "<span class=\"" + css_class + "\"" +
+         data_attributes(cell, field + ".median", exact_text(*median)) + range_attributes + ">" +
+         name + display_ms(median->get<double>()) + range_text + ratio + "</span>";
+}
+
 std::string time_html(const Cell& cell) {
   const auto t = cell.version.json.find("time_ms");
   if (t == cell.version.json.end() || !t->is_object()) return "";
-  std::string out;
-  const auto median = t->find("median");
-  if (median != t->end() && median->is_number()) {
-    std::string range_attributes, range_text;
-    const auto runs = t->find("runs");
-    if (runs != t->end() && runs->is_array() && !runs->empty()) {
-      const ordered_json *lo = nullptr, *hi = nullptr;
-      for (const ordered_json& run : *runs) {
-        if (!run.is_number()) continue;
-        if (!lo || run.get<double>() < lo->get<double>()) lo = &run;
-        if (!hi || run.get<double>() > hi->get<double>()) hi = &run;
-      }
-      if (lo) {
-        range_attributes = " data-min=\"" + html_escape(exact_text(*lo)) + "\" data-max=\"" +
-                           html_escape(exact_text(*hi)) + "\" data-runs=\"" +
-                           std::to_string(runs->size()) + "\"";
-        range_text = " <span class=\"range\">(" + display_ms(lo->get<double>()) + "–" +
-                     display_ms(hi->get<double>()) + ")</span>";
-      }
-    }
-    // Times are noisy: a later version is marked only when it is more than 10% off.
-    std::string ratio;
-    if (cell.baseline) {
-      const ordered_json* before = field_of(cell.baseline->json, "time_ms.median");
-      if (before && before->is_number() && before->get<double>() > 0) {
-        const double r = median->get<double>() / before->get<double>();
-        char buffer[32];
-        std::snprintf(buffer, sizeof buffer, "×%.2f", r);
-        const char* trend = r < 0.9 ? " faster" : r > 1.1 ? " slower" : "";
-        ratio = std::string(" <span class=\"ratio") + trend + "\" title=\"" +
-                html_escape("median against " + cell.data.dirs[cell.baseline->dir].label) + "\">" +
-                buffer + "</span>";
-      }
-    }
-    out += "<span class=\"time\"" + data_attributes(cell, "time_ms.median", exact_text(*median)) +
-           range_attributes + ">" + display_ms(median->get<double>()) + range_text + "</span>" +
-           ratio;
-  }
-  // Further phases (build, query, ...) as the run records them.
-  for (const auto& [key, value] : flatten_fields(*t)) {
-    if (key == "median" || key == "runs" || value->is_array()) continue;
-    out += "<span class=\"fig\"" + data_attributes(cell, "time_ms." + key, exact_text(*value)) +
-           "><span class=\"k\">" + html_escape(key) + "</span> " +
-           html_escape(display_value(*value)) + "</span>";
-  }
+  std::string out = timing_html(cell, *t, "time_ms", "time", "");
+  // The phases the algorithm times inside each run (build, query, ...), one line each.
+  const auto phases = t->find("phases");
+  if (phases != t->end() && phases->is_object())
+    for (auto it = phases->begin(); it != phases->end(); ++it)
+      if (it->is_object())
+        out += timing_html(cell, *it, "time_ms.phases." + it.key(), "phase", it.key());
   return out;
 }
 
@@ -140,7 +147,8 @@ std::string summary_table_html(const ReportData& data) {
       "<table class=\"summary\">\n<thead><tr><th>case</th><th>algorithm:variant "
       "[backend]</th>" +
       std::string(several_dirs ? "<th style=\"width: 8%\">directory</th>" : "") +
-      "<th style=\"width: 9%\">verdict</th><th style=\"width: 11%\">median ms (min–max)</th>"
+      "<th style=\"width: 9%\">verdict</th><th style=\"width: 13%\">median ms (min–max); "
+      "build, query</th>"
       "<th style=\"width: 22%\">error</th><th>counters</th></tr></thead>\n"
       "<tbody>\n";
   for (std::size_t ci = 0; ci < data.cases.size(); ++ci) {

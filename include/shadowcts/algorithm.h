@@ -66,6 +66,12 @@ struct SoftErrorBudget {
 // Work counters, in the order the algorithm reports them (deterministic).
 using Counters = std::vector<std::pair<std::string, std::uint64_t>>;
 
+// Wall-clock milliseconds of named phases of one run() call, in the order the algorithm declares
+// them (Algorithm::timed_phases); measured inside run() with a steady clock (PhaseClock,
+// shadowcts/phase_clock.h), so each phase, and their sum, lies within the runner's time of the
+// whole call.
+using PhaseTimes = std::vector<std::pair<std::string, double>>;
+
 struct AlgorithmOutput {
   // hard_shadow: one entry per view sample, 1 = shadowed; entries of non-regular samples are 0.
   std::vector<std::uint8_t> shadowed;
@@ -77,6 +83,8 @@ struct AlgorithmOutput {
   // Optional per-sample work counters (e.g. test-and-set operations, nodes visited), one vector
   // of samples.size() entries per named counter: the report draws them as heat maps.
   std::vector<std::pair<std::string, std::vector<std::uint32_t>>> per_sample_counters;
+  // Exactly the phases timed_phases(variant) declares, in that order; empty when it declares none.
+  PhaseTimes phase_ms;
 };
 
 class Algorithm {
@@ -92,7 +100,15 @@ class Algorithm {
   // soft_shadow outputs: the variant's declared error budget. The default claims exactness.
   virtual SoftErrorBudget soft_error_budget(const std::string& variant) const;
 
-  // Runs on every regular sample. Deterministic for any thread count.
+  // The phases run() times separately for this variant, e.g. {"build", "query"}: "build" makes
+  // the structure the samples are answered with (acceleration structure, hierarchy, tree,
+  // clustering, shadow-map rasterization, light BVH), "query" answers the samples with it. The
+  // default declares none: only the whole call is timed. The runner checks that every output
+  // reports exactly these.
+  virtual std::vector<std::string> timed_phases(const std::string& variant) const;
+
+  // Runs on every regular sample. Deterministic for any thread count (the outputs; phase_ms are
+  // times).
   virtual AlgorithmOutput run(const Case& c, const ViewSamples& samples,
                               const std::string& variant) const = 0;
 };

@@ -9,6 +9,7 @@
 #include "oracles/embree_shadow_rays.h"
 #include "oracles/hard_shadow_inputs.h"
 #include "oracles/thread_limit.h"
+#include "shadowcts/phase_clock.h"
 
 namespace shadowcts {
 namespace {
@@ -27,6 +28,11 @@ class EmbreeHardShadow final : public Algorithm {
 
   const AlgorithmInfo& info() const override { return info_; }
 
+  // build: the Embree device and scene (geometry, BVH build, commit); query: the shadow rays.
+  std::vector<std::string> timed_phases(const std::string&) const override {
+    return build_and_query_phases();
+  }
+
   AlgorithmOutput run(const Case& c, const ViewSamples& samples,
                       const std::string& variant) const override {
     if (variant != "robust")
@@ -35,8 +41,11 @@ class EmbreeHardShadow final : public Algorithm {
     AlgorithmOutput output;
     output.shadowed.assign(samples.samples.size(), 0);
     std::atomic<std::uint64_t> rays{0};
+    PhaseClock clock;
     run_with_thread_limit(c.parameters.threads, [&] {
+      clock.restart();
       const EmbreeShadowRays tracer(c);
+      clock.lap(build_phase);
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.samples.size(), 256),
                         [&](const tbb::blocked_range<std::size_t>& range) {
                           std::uint64_t traced = 0;
@@ -49,8 +58,10 @@ class EmbreeHardShadow final : public Algorithm {
                           }
                           rays += traced;
                         });
+      clock.lap(query_phase);
     });
     output.counters = {{"rays", rays.load()}};
+    output.phase_ms = clock.times();
     return output;
   }
 

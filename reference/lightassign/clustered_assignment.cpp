@@ -15,11 +15,13 @@
 #include "reference/lightassign/normal_cone.h"
 #include "reference/lightassign/unique_clusters.h"
 #include "reference/lightassign/view_frustum.h"
+#include "shadowcts/phase_clock.h"
 
 namespace shadowcts {
 
 AlgorithmOutput assign_lights_clustered(const Case& c, const ViewSamples& samples,
                                         const ClusteredSettings& settings) {
+  PhaseClock clock;
   const ViewFrustum frustum(c.camera);
   const std::size_t n = samples.samples.size();
 
@@ -91,6 +93,7 @@ AlgorithmOutput assign_lights_clustered(const Case& c, const ViewSamples& sample
   // Light assignment: the BVH per cluster, exact sphere/box at the leaves, then the back-face
   // rule (Section 3.3).
   const LightBvh bvh(c.ranged_lights);
+  clock.lap(build_phase);
   const ListWork work = build_light_lists(lists, out, [&](std::size_t k, auto& list) {
     ListWork w;
     w.nodes_tested = bvh.traverse(out.bounds[k], [&](std::uint32_t index) {
@@ -106,6 +109,7 @@ AlgorithmOutput assign_lights_clustered(const Case& c, const ViewSamples& sample
     return w;
   });
   out.list_of_sample = clusters.cluster_of_sample;
+  clock.lap(query_phase);
 
   std::uint64_t grown_total = 0;
   for (const std::uint32_t g : grown) grown_total += g;
@@ -113,6 +117,7 @@ AlgorithmOutput assign_lights_clustered(const Case& c, const ViewSamples& sample
   output.counters =
       light_assignment_counters(out, samples, work, std::uint64_t(grid.bits()), grown_total);
   output.light_lists = std::move(out);
+  output.phase_ms = clock.times();
   return output;
 }
 

@@ -9,6 +9,7 @@
 #include "reference/lightassign/clustered_assignment.h"
 #include "reference/lightassign/tiled_assignment.h"
 #include "reference/lightassign/view_frustum.h"
+#include "shadowcts/phase_clock.h"
 
 namespace shadowcts {
 namespace {
@@ -51,6 +52,13 @@ class LightAssign final : public Algorithm {
   }
 
   const AlgorithmInfo& info() const override { return info_; }
+
+  // build: tiles/clusters with their bounds (and cones), clustered: the light BVH; query: the
+  // assignment of lights to the lists. brute has no structure to build: only the whole call.
+  std::vector<std::string> timed_phases(const std::string& variant) const override {
+    if (variant == "brute") return {};
+    return build_and_query_phases();
+  }
 
   std::optional<std::string> unsupported_reason(const Case& c, const ViewSamples& samples,
                                                 const std::string& variant) const override {

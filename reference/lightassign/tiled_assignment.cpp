@@ -13,6 +13,7 @@
 #include "reference/lightassign/light_list_builder.h"
 #include "reference/lightassign/unique_clusters.h"
 #include "reference/lightassign/view_frustum.h"
+#include "shadowcts/phase_clock.h"
 
 namespace shadowcts {
 namespace {
@@ -65,6 +66,7 @@ TileRect covered_tiles(const ViewFrustum& frustum, const RangedLight& light,
 
 AlgorithmOutput assign_lights_tiled(const Case& c, const ViewSamples& samples,
                                     std::uint32_t tile_size) {
+  PhaseClock clock;
   const ViewFrustum frustum(c.camera);
   const std::uint32_t tiles_x = (samples.width + tile_size - 1) / tile_size;
   const std::uint32_t tiles_y = (samples.height + tile_size - 1) / tile_size;
@@ -112,6 +114,8 @@ AlgorithmOutput assign_lights_tiled(const Case& c, const ViewSamples& samples,
     }
   });
 
+  clock.lap(build_phase);
+
   // Light insertion into the covered tiles' candidate lists, in light order.
   std::vector<TileRect> rects(c.ranged_lights.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rects.size(), 4096), [&](const auto& r) {
@@ -151,6 +155,7 @@ AlgorithmOutput assign_lights_tiled(const Case& c, const ViewSamples& samples,
     return w;
   });
   out.list_of_sample = tiles.cluster_of_sample;
+  clock.lap(query_phase);
 
   std::uint64_t grown_total = 0;
   for (const std::uint32_t g : grown) grown_total += g;
@@ -160,6 +165,7 @@ AlgorithmOutput assign_lights_tiled(const Case& c, const ViewSamples& samples,
   output.counters =
       light_assignment_counters(out, samples, work, std::uint64_t(tile_bits), grown_total);
   output.light_lists = std::move(out);
+  output.phase_ms = clock.times();
   return output;
 }
 

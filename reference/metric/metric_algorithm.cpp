@@ -1,6 +1,7 @@
 #include "reference/metric/metric_algorithm.h"
 
 #include "reference/metric/metric_shadows.h"
+#include "shadowcts/phase_clock.h"
 
 namespace shadowcts {
 namespace {
@@ -21,9 +22,18 @@ class MetricAlgorithm final : public Algorithm {
 
   const AlgorithmInfo& info() const override { return info_; }
 
+  // build: clustering, bounding volumes, light-space elements and the metric tree; query: the
+  // per-sample traversals. run_metric times its steps itself.
+  std::vector<std::string> timed_phases(const std::string&) const override {
+    return build_and_query_phases();
+  }
+
   AlgorithmOutput run(const Case& c, const ViewSamples& samples,
                       const std::string& variant) const override {
-    return metric::run_metric(c, samples, metric::parse_metric_variant(variant)).output;
+    metric::MetricRun run = metric::run_metric(c, samples, metric::parse_metric_variant(variant));
+    run.output.phase_ms = {{build_phase, 1e3 * (run.clustering_seconds + run.build_seconds)},
+                           {query_phase, 1e3 * run.traversal_seconds}};
+    return std::move(run.output);
   }
 
  private:

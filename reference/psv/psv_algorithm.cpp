@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "reference/psv/psv_shadows.h"
+#include "shadowcts/phase_clock.h"
 
 namespace shadowcts {
 namespace {
@@ -42,6 +43,11 @@ class PsvAlgorithm final : public Algorithm {
 
   const AlgorithmInfo& info() const override { return info_; }
 
+  // build: insertion order and TOP tree; query: the per-sample queries.
+  std::vector<std::string> timed_phases(const std::string&) const override {
+    return build_and_query_phases();
+  }
+
   AlgorithmOutput run(const Case& c, const ViewSamples& samples,
                       const std::string& variant) const override {
     psv::PsvOptions options = variant_options(variant);
@@ -50,6 +56,7 @@ class PsvAlgorithm final : public Algorithm {
     AlgorithmOutput output;
     output.shadowed = std::move(result.shadowed);
     output.counters = std::move(result.counters);
+    output.phase_ms = std::move(result.phase_ms);
     return output;
   }
 

@@ -18,6 +18,7 @@
 #include "reference/psv/query_stackless.h"
 #include "reference/psv/top_tree_build.h"
 #include "reference/psv/top_tree_depth.h"
+#include "shadowcts/phase_clock.h"
 
 namespace shadowcts::psv {
 namespace {
@@ -39,6 +40,7 @@ double coordinate_bound(const Case& c, const ViewSamples& samples) {
 PsvResult psv_hard_shadows(const Case& c, const ViewSamples& samples, const PsvOptions& options) {
   const HardShadowLight light = hard_shadow_light(c);
   check_receivers(c, samples);
+  PhaseClock clock;
   const PlaneSide planes(light, c.triangles, coordinate_bound(c, samples));
   BuildStatistics build;
   const std::vector<std::uint32_t> order =
@@ -46,6 +48,7 @@ PsvResult psv_hard_shadows(const Case& c, const ViewSamples& samples, const PsvO
   const TopTree tree = build_top_tree(c, planes, order, build);
   const bool depth_test = options.query != QueryKind::stack;
   const QueryContext context(tree, planes, depth_test);
+  clock.lap(build_phase);
 
   PsvResult result;
   result.shadowed.assign(samples.samples.size(), 0);
@@ -102,6 +105,8 @@ PsvResult psv_hard_shadows(const Case& c, const ViewSamples& samples, const PsvO
                           high_water.compare_exchange_weak(seen, deepest);
                       });
   });
+  clock.lap(query_phase);
+  result.phase_ms = clock.times();
   const bool uses_stack = options.query != QueryKind::stackless;
   result.counters = {{"triangles_inserted", build.volumes},
                      {"triangles_culled_front_facing", build.culled_front_facing},

@@ -33,6 +33,8 @@ struct PsvResult {
   // exact_plane_tests (plane tests of the build and the queries that the float filter could not
   // decide and an exact predicate answered).
   Counters counters;
+  // "build" (insertion order, TOP tree, query context) and "query" (the per-sample queries).
+  PhaseTimes phase_ms;
 };
 
 // A stack query that overflows its stack has no answer; that sample is counted in

@@ -18,6 +18,7 @@
 #include "reference/ptsv/two_pass.h"
 #include "reference/ptsv/view_frame.h"
 #include "shadowcts/errors.h"
+#include "shadowcts/phase_clock.h"
 
 namespace shadowcts {
 namespace {
@@ -89,6 +90,12 @@ class Ptsv final : public Algorithm {
 
   const AlgorithmInfo& info() const override { return info_; }
 
+  // build: cluster keys and the hierarchy (hdb2011: the hierarchical depth buffer); query: the
+  // per-triangle work, shadow-volume setup and traversal (one kernel in the paper).
+  std::vector<std::string> timed_phases(const std::string&) const override {
+    return build_and_query_phases();
+  }
+
   std::optional<std::string> unsupported_reason(const Case& c, const ViewSamples& samples,
                                                 const std::string& variant) const override {
     if (auto why = Algorithm::unsupported_reason(c, samples, variant)) return why;
@@ -105,8 +112,10 @@ class Ptsv final : public Algorithm {
     if (samples.width == 0 || samples.height == 0 ||
         samples.samples.size() != std::size_t(samples.width) * samples.height)
       throw InputError(c.source, "view samples", "not one sample per pixel");
+    PhaseClock clock;
     const ViewFrame frame = make_view_frame(c.camera, samples.width, samples.height);
     const double bound = scene_bound(c, samples);
+    clock.lap(build_phase);
 
     SetupOptions setup;
     setup.extra_planes = !config.depth_buffer_2011 && config.extra_planes;
@@ -114,6 +123,7 @@ class Ptsv final : public Algorithm {
     SetupCounts setup_counts;
     const std::vector<ShadowVolume> volumes =
         set_up_shadow_volumes(c, front_face_culling_meshes(c, samples), setup, bound, setup_counts);
+    clock.lap(query_phase);
 
     AlgorithmOutput output;
     output.shadowed.assign(samples.samples.size(), 0);
@@ -124,9 +134,11 @@ class Ptsv final : public Algorithm {
       if (!buffer.problem().empty()) throw InputError(c.source, "view samples", buffer.problem());
       const NodeTolerances tolerances =
           NodeTolerances::for_bounds(std::max(bound, buffer.corner_bound()), bound);
+      clock.lap(build_phase);
       for (const ShadowVolume& volume : volumes)
         buffer.traverse(volume, tolerances, output.shadowed, counters);
       buffer.merge(output.shadowed);
+      clock.lap(query_phase);
       for (int l = 0; l < buffer.level_count(); ++l)
         for (std::uint8_t occupied : buffer.level(l).occupied) nodes += occupied;
       levels = std::uint64_t(buffer.level_count());
@@ -144,12 +156,14 @@ class Ptsv final : public Algorithm {
       ClusterTraversal traversal(hierarchy, frame, samples, config.bounds, config.extra_planes,
                                  NodeTolerances::for_bounds(node_bound, bound), output.shadowed,
                                  counters);
+      clock.lap(build_phase);
       if (config.two_pass) {
         traverse_two_pass(traversal, volumes, default_job_level(hierarchy.leaf_level()), counters);
       } else {
         for (const ShadowVolume& volume : volumes) traversal.traverse_from_root(volume);
       }
       traversal.mark_trivially_accepted(keys.key);
+      clock.lap(query_phase);
       nodes = hierarchy.node_count();
       levels = std::uint64_t(hierarchy.leaf_level()) + 1;
       key_bits = std::uint64_t(layout.layout.key_bits());
@@ -174,6 +188,7 @@ class Ptsv final : public Algorithm {
         {"hierarchy_levels", levels},
         {"key_bits", key_bits},
     };
+    output.phase_ms = clock.times();
     return output;
   }
 

@@ -16,6 +16,7 @@
 #include "reference/shadowmap/depth_map.h"
 #include "reference/shadowmap/orthographic_map.h"
 #include "reference/shadowmap/rasterizer.h"
+#include "shadowcts/phase_clock.h"
 
 namespace shadowcts {
 namespace {
@@ -82,10 +83,17 @@ class ShadowMapAlgorithm final : public Algorithm {
 
   const AlgorithmInfo& info() const override { return info_; }
 
+  // build: the caster list and the depth maps (fitting, rasterization); query: binning the
+  // samples by map and the depth look-ups. Point lights alternate the two face by face.
+  std::vector<std::string> timed_phases(const std::string&) const override {
+    return build_and_query_phases();
+  }
+
   AlgorithmOutput run(const Case& c, const ViewSamples& samples,
                       const std::string& variant) const override {
     const ShadowMapVariant v = parse_variant(variant);
     const HardShadowLight light = hard_shadow_light(c);
+    PhaseClock clock;
     std::vector<Triangle> casters;
     for (std::size_t i = 0; i < c.triangles.size(); ++i)
       if (casts_shadow(c, i)) casters.push_back(c.triangles[i]);
@@ -95,19 +103,23 @@ class ShadowMapAlgorithm final : public Algorithm {
     RasterCounters totals;
     std::uint64_t maps = 0;
     run_with_thread_limit(c.parameters.threads, [&] {
+      clock.lap(build_phase);
       const auto draw_and_look_up = [&](const LightView& view,
                                         const std::vector<std::size_t>& indices) {
         DepthMap map;
         const RasterCounters counters = rasterize_depth(view, casters, map);
+        clock.lap(build_phase);
         totals.triangles_rasterized += counters.triangles_rasterized;
         totals.texels_written += counters.texels_written;
         ++maps;
         look_up(view, map, v.bias, light, samples, indices, output.shadowed);
+        clock.lap(query_phase);
       };
       if (light.directional) {
         std::vector<std::size_t> regular;
         for (std::size_t i = 0; i < samples.samples.size(); ++i)
           if (samples.samples[i].sample_class == SampleClass::regular) regular.push_back(i);
+        clock.lap(query_phase);
         if (!regular.empty())
           draw_and_look_up(orthographic_view(light.direction, samples, v.resolution), regular);
       } else {
@@ -117,6 +129,7 @@ class ShadowMapAlgorithm final : public Algorithm {
             by_face[cube_face_of(glm::dvec3(samples.samples[i].position) - light.position)]
                 .push_back(i);
         const double near = cube_near_fraction * c.scale();
+        clock.lap(query_phase);
         // One face at a time: only one map is alive.
         for (int face = 0; face < cube_faces; ++face)
           if (!by_face[face].empty())
@@ -127,6 +140,7 @@ class ShadowMapAlgorithm final : public Algorithm {
     output.counters = {{"texels_written", totals.texels_written},
                        {"triangles_rasterized", totals.triangles_rasterized},
                        {"depth_maps", maps}};
+    output.phase_ms = clock.times();
     return output;
   }
 

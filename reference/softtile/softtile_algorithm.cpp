@@ -17,6 +17,7 @@
 #include "reference/softtile/fragment_occlusion.h"
 #include "reference/softtile/softtile_gather.h"
 #include "reference/softtile/softtile_variant.h"
+#include "shadowcts/phase_clock.h"
 
 namespace shadowcts {
 namespace {
@@ -91,6 +92,12 @@ class Softtile final : public Algorithm {
 
   const AlgorithmInfo& info() const override { return info_; }
 
+  // build: the gather pass (clusters, triangle cones, light-space triangles); query: the tile and
+  // fragment pass (tile bounds, cone culling, per-pixel disk rasterization).
+  std::vector<std::string> timed_phases(const std::string&) const override {
+    return build_and_query_phases();
+  }
+
   SoftErrorBudget soft_error_budget(const std::string& variant) const override {
     return softtile_error_budget(variant);
   }
@@ -99,9 +106,11 @@ class Softtile final : public Algorithm {
                       const std::string& variant_name) const override {
     const Variant variant = parse_variant(variant_name);
     check_receivers(c, samples);
+    PhaseClock clock;
     AlgorithmOutput output;
     output.visible_fraction.assign(samples.samples.size(), 1.0f);
     const Gathered gathered = gather(c, samples);
+    clock.lap(build_phase);
     const DiskBitmask empty_disk(variant);
     const float inverse_scale =
         float(1.0 / (variant.sine_normalization ? std::sin(gathered.sun.angular_radius)
@@ -192,6 +201,8 @@ class Softtile final : public Algorithm {
             }
           });
     });
+    clock.lap(query_phase);
+    output.phase_ms = clock.times();
 
     // Sums and maxima of per-tile integers: independent of the partitioning.
     TileCounters total;

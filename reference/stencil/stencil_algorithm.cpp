@@ -12,6 +12,7 @@
 #include "reference/stencil/silhouette.h"
 #include "reference/stencil/view_grid.h"
 #include "reference/stencil/volume_counting.h"
+#include "shadowcts/phase_clock.h"
 
 namespace shadowcts {
 namespace {
@@ -40,6 +41,12 @@ class StencilAlgorithm final : public Algorithm {
 
   const AlgorithmInfo& info() const override { return info_; }
 
+  // build: occluders, silhouettes, volume faces and the view grid over them; query: the crossing
+  // counts per sample.
+  std::vector<std::string> timed_phases(const std::string&) const override {
+    return build_and_query_phases();
+  }
+
   std::optional<std::string> unsupported_reason(const Case& c, const ViewSamples& samples,
                                                 const std::string& variant) const override {
     if (auto reason = Algorithm::unsupported_reason(c, samples, variant)) return reason;
@@ -62,7 +69,9 @@ class StencilAlgorithm final : public Algorithm {
     std::atomic<std::uint64_t> quads_tested{0}, caps_tested{0};
     Occluders occluders;
     ShadowVolumes volumes;
+    PhaseClock clock;
     run_with_thread_limit(c.parameters.threads, [&] {
+      clock.restart();
       occluders = find_occluders(c, light);
       volumes = build_shadow_volumes(occluders, light, eye, samples);
       // z-pass never needs the dark caps (see volume_counting.h): leave them out of its grid.
@@ -76,6 +85,7 @@ class StencilAlgorithm final : public Algorithm {
                             sides[f] = eye_sides(faces[f], eye);
                         });
       const ViewGrid grid(c.camera, samples, faces);
+      clock.lap(build_phase);
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.samples.size(), 256),
                         [&](const tbb::blocked_range<std::size_t>& range) {
                           std::uint64_t quads = 0, caps = 0;
@@ -98,7 +108,9 @@ class StencilAlgorithm final : public Algorithm {
                           quads_tested += quads;
                           caps_tested += caps;
                         });
+      clock.lap(query_phase);
     });
+    output.phase_ms = clock.times();
     output.counters = {{"silhouette_edges", volumes.silhouette_edges},
                        {"caps", occluders.caps.size()},
                        {"quads_tested", quads_tested.load()},

@@ -60,7 +60,7 @@ TEST(Runner, WritesResultsJunitAndImagesAndPasses) {
   const int code = run_suite(small_run(out, 2), builtin_registry(), log, err);
   EXPECT_EQ(code, exit_pass) << log.str();
   const auto results = nlohmann::json::parse(read_file(out / "results.json"));
-  EXPECT_EQ(results["schema"], "shadowcts.results/1");
+  EXPECT_EQ(results["schema"], "shadowcts.results/2");
   ASSERT_EQ(results["cases"].size(), 2u);
   bool ran_bruteforce = false;
   for (const auto& r : results["results"]) {

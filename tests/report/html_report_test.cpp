@@ -47,7 +47,7 @@ TEST(HtmlReport, NumbersOnThePageAreTheJsons) {
     else
       EXPECT_EQ(ordered_json::parse(it->second), value) << record << " " << field;
   };
-  std::size_t timed = 0, curve_points = 0;
+  std::size_t timed = 0, curve_points = 0, phased = 0;
   ASSERT_FALSE(results["results"].empty());
   for (const ordered_json& r : results["results"]) {
     const std::string name = r["name"];
@@ -56,6 +56,22 @@ TEST(HtmlReport, NumbersOnThePageAreTheJsons) {
     ++timed;
     curve_points += r["error"]["mismatch_curve"].size();
     expect_marked(name, "time_ms.median", r["time_ms"]["median"]);
+    if (r["time_ms"].contains("phases")) {
+      ++phased;
+      for (const auto& [phase, timing] : r["time_ms"]["phases"].items()) {
+        const std::string field = "time_ms.phases." + phase + ".median";
+        expect_marked(name, field, timing["median"]);
+        const std::regex phase_range(
+            "data-record=\"" + std::regex_replace(name, std::regex(R"([.\[\]])"), R"(\$&)") +
+            "\" data-dir=\"0\" data-field=\"" +
+            std::regex_replace(field, std::regex(R"([.])"), R"(\$&)") +
+            R"re(" data-value="[^"]*" data-min="([^"]*)" data-max="([^"]*)")re");
+        std::smatch m;
+        ASSERT_TRUE(std::regex_search(page, m, phase_range)) << name << " " << phase;
+        EXPECT_EQ(ordered_json::parse(std::string(m[1])), timing["min"]);
+        EXPECT_EQ(ordered_json::parse(std::string(m[2])), timing["max"]);
+      }
+    }
     for (const auto& [key, value] : r["error"].items())
       if (!value.is_array()) expect_marked(name, "error." + key, value);
     for (const auto& [key, value] : r["counters"].items())
@@ -74,6 +90,12 @@ TEST(HtmlReport, NumbersOnThePageAreTheJsons) {
     EXPECT_EQ(std::stod(m[2]), hi);
   }
   EXPECT_GE(timed, 2u);
+  EXPECT_GE(phased, 1u);  // embree times its scene build and its rays
+  // The machine as recorded, the ISA Highway dispatches to included.
+  ASSERT_TRUE(results["machine"]["isa"].is_string());
+  EXPECT_NE(page.find("data-run-field=\"machine.isa\" data-value=\"" +
+                      results["machine"]["isa"].get<std::string>() + "\""),
+            std::string::npos);
   // One point per timed record on the case's error-against-time plot.
   // Every timed record is a point on the error-against-time plot, every curve point on the curves.
   EXPECT_EQ(count(page, "<g class=\"point\""), timed + curve_points);
@@ -160,6 +182,37 @@ TEST(HtmlReport, SameRecordInTwoRunsIsComparedSideBySide) {
   // Both versions' points are on the plot, in different marker shapes.
   EXPECT_EQ(count(page, "<g class=\"point\" data-record=\"" + name + "\"><circle"), 1u + 15u);
   EXPECT_EQ(count(page, "<g class=\"point\" data-record=\"" + name + "\"><rect"), 1u + 15u);
+}
+
+TEST(HtmlReport, PhasesShowUnderTheTotalAndCompareWithVersionOne) {
+  const fs::path root = fresh_dir("phases");
+  ordered_json phased = hand_hard_record("a", "x", 8, 0);
+  phased["time_ms"]["phases"] = {
+      {"build", {{"median", 2.0}, {"min", 1.5}, {"max", 2.5}, {"runs", {2.5, 2.0, 1.5}}}},
+      {"query", {{"median", 5.0}, {"min", 4.0}, {"max", 6.0}, {"runs", {6.0, 5.0, 4.0}}}}};
+  ordered_json faster = phased;
+  faster["time_ms"]["phases"]["build"]["median"] = 1.0;
+  // A version-1 directory (no phases) beside two version-2 ones.
+  write_results(root / "v1", {hand_case("a")}, {hand_hard_record("a", "x", 10, 0)},
+                "shadowcts.results/1");
+  write_results(root / "v2", {hand_case("a")}, {phased});
+  write_results(root / "v2b", {hand_case("a")}, {faster});
+  write_html_report({root / "v2", root / "v1", root / "v2b"}, root / "compare.html");
+  const std::string page = read_text(root / "compare.html");
+  const std::string name = "hard.x.exact.reference.a";
+  const MarkedValues marked = marked_values(page);
+  EXPECT_EQ(marked.at({name, "0", "time_ms.phases.build.median"}), "2.0");
+  EXPECT_EQ(marked.at({name, "0", "time_ms.phases.query.median"}), "5.0");
+  EXPECT_FALSE(marked.count({name, "1", "time_ms.phases.build.median"}));
+  EXPECT_EQ(marked.at({name, "2", "time_ms.phases.build.median"}), "1.0");
+  // Against the first version: build twice as fast, query unchanged.
+  EXPECT_NE(page.find("<span class=\"ratio faster\" title=\"build median against v2\">×0.50"),
+            std::string::npos);
+  EXPECT_NE(page.find("<span class=\"ratio\" title=\"query median against v2\">×1.00"),
+            std::string::npos);
+  // Build and query sit under the total, labelled.
+  EXPECT_NE(page.find("<span class=\"k\">build</span> 2.00"), std::string::npos);
+  EXPECT_NE(page.find("<span class=\"k\">query</span> 5.00"), std::string::npos);
 }
 
 TEST(HtmlReport, SameInputSameBytesAndNothingHalfWritten) {

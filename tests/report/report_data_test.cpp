@@ -60,6 +60,17 @@ TEST(ReportData, SameRecordInTwoDirectoriesKeepsBothVersions) {
   EXPECT_EQ(c.records[0].label(), "x:exact [reference]");
 }
 
+TEST(ReportData, VersionOneDirectoriesCompareWithVersionTwo) {
+  const fs::path root = fresh_dir("versions");
+  write_results(root / "old", {hand_case("a")}, {hand_hard_record("a", "x", 10, 0)},
+                "shadowcts.results/1");
+  write_results(root / "new", {hand_case("a")}, {hand_hard_record("a", "x", 5, 0)});
+  const ReportData data = load_report_data({root / "old", root / "new"}, root);
+  ASSERT_EQ(data.cases.size(), 1u);
+  ASSERT_EQ(data.cases[0].records.size(), 1u);
+  EXPECT_EQ(data.cases[0].records[0].versions.size(), 2u);
+}
+
 TEST(ReportData, RefusesWhatIsNotAResultDirectory) {
   const fs::path root = fresh_dir("refuse");
   EXPECT_THROW(load_report_data({root / "missing"}, root), InputError);
@@ -70,7 +81,7 @@ TEST(ReportData, RefusesWhatIsNotAResultDirectory) {
 
   fs::create_directories(root / "other_schema");
   std::ofstream(root / "other_schema" / "results.json")
-      << R"({"schema": "shadowcts.results/2", "cases": [], "results": []})";
+      << R"({"schema": "shadowcts.results/3", "cases": [], "results": []})";
   EXPECT_THROW(load_report_data({root / "other_schema"}, root), InputError);
 
   write_results(root / "orphan", {hand_case("a")}, {hand_hard_record("b", "x", 1, 0)});

@@ -83,9 +83,9 @@ ordered_json hand_hard_record(const std::string& case_name, const std::string& a
 }
 
 void write_results(const fs::path& dir, const std::vector<ordered_json>& cases,
-                   const std::vector<ordered_json>& results) {
+                   const std::vector<ordered_json>& results, const std::string& schema) {
   fs::create_directories(dir);
-  const ordered_json root{{"schema", "shadowcts.results/1"},
+  const ordered_json root{{"schema", schema},
                           {"threads", 1},
                           {"cases", ordered_json(cases)},
                           {"results", ordered_json(results)}};

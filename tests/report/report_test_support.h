@@ -23,7 +23,8 @@ nlohmann::ordered_json hand_hard_record(const std::string& case_name, const std:
 // (Lists as vectors: a braced single json would not become an array.)
 void write_results(const std::filesystem::path& dir,
                    const std::vector<nlohmann::ordered_json>& cases,
-                   const std::vector<nlohmann::ordered_json>& results);
+                   const std::vector<nlohmann::ordered_json>& results,
+                   const std::string& schema = "shadowcts.results/2");
 
 // Runs the suite (ground_blockers.2k, bruteforce and embree, two timed repeats) into dir.
 void run_small_suite(const std::filesystem::path& dir);

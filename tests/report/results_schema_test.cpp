@@ -32,7 +32,7 @@ TEST(ResultsSchema, ARealRunValidates) {
 }
 
 TEST(ResultsSchema, HandWrittenRecordsOfEveryVerdictValidate) {
-  json doc = {{"schema", "shadowcts.results/1"}, {"threads", 2}};
+  json doc = {{"schema", "shadowcts.results/2"}, {"threads", 2}};
   doc["cases"] = json::array({json(hand_case("a"))});
   json pass = hand_hard_record("a", "x", 1, 0), fail = hand_hard_record("a", "y", 1, 2);
   json unsupported = {{"name", "hard.z.v.cuda.a"}, {"case", "a"},          {"output", "hard"},
@@ -47,15 +47,27 @@ TEST(ResultsSchema, HandWrittenRecordsOfEveryVerdictValidate) {
   soft["name"] = "soft.s.v.reference.a";
   soft["output"] = "soft";
   soft["error"] = {{"mean_abs_error", 0.01}};
-  doc["results"] = {pass, fail, unsupported, crash, soft};
+  json phased = pass;
+  phased["name"] = "hard.p.exact.reference.a";
+  phased["time_ms"]["phases"] = {
+      {"build", {{"median", 0.25}, {"min", 0.2}, {"max", 0.3}, {"runs", {0.3, 0.25, 0.2}}}},
+      {"query", {{"median", 0.5}, {"runs", {0.5, 0.5, 0.5}}}}};
+  doc["machine"] = {
+      {"cpu", "hand"}, {"hardware_threads", 2}, {"isa", "AVX2"}, {"isa_targets", {"AVX2", "SSE4"}}};
+  doc["results"] = {pass, fail, unsupported, crash, soft, phased};
   const std::vector<std::string> violations = schema_violations(documented_schema(), doc);
   EXPECT_TRUE(violations.empty()) << joined(violations);
 }
 
 TEST(ResultsSchema, CatchesWhatBreaksIt) {
-  json doc = {{"schema", "shadowcts.results/1"}, {"threads", 2}};
+  json doc = {{"schema", "shadowcts.results/2"}, {"threads", 2}};
+  doc["machine"] = {
+      {"cpu", "hand"}, {"hardware_threads", 2}, {"isa", "SSE4"}, {"isa_targets", {"SSE4"}}};
   doc["cases"] = json::array({json(hand_case("a"))});
   doc["results"] = json::array({json(hand_hard_record("a", "x", 1, 0))});
+  doc["results"][0]["time_ms"]["phases"] = {
+      {"build", {{"median", 0.25}, {"runs", {0.3, 0.25, 0.2}}}},
+      {"query", {{"median", 0.5}, {"runs", {0.5, 0.5, 0.5}}}}};
   const json schema = documented_schema();
   ASSERT_TRUE(schema_violations(schema, doc).empty()) << joined(schema_violations(schema, doc));
 
@@ -64,7 +76,10 @@ TEST(ResultsSchema, CatchesWhatBreaksIt) {
     void (*apply)(json&);
   };
   const Breakage breakages[] = {
-      {"other schema", [](json& d) { d["schema"] = "shadowcts.results/2"; }},
+      {"older schema", [](json& d) { d["schema"] = "shadowcts.results/1"; }},
+      {"machine without isa", [](json& d) { d["machine"].erase("isa"); }},
+      {"empty isa", [](json& d) { d["machine"]["isa"] = ""; }},
+      {"no isa targets", [](json& d) { d["machine"]["isa_targets"] = json::array(); }},
       {"no threads", [](json& d) { d.erase("threads"); }},
       {"unknown light", [](json& d) { d["cases"][0]["light"] = "laser"; }},
       {"three resolution numbers", [](json& d) { d["cases"][0]["resolution"].push_back(1); }},
@@ -74,6 +89,17 @@ TEST(ResultsSchema, CatchesWhatBreaksIt) {
       {"unknown verdict", [](json& d) { d["results"][0]["verdict"] = "Maybe"; }},
       {"ran but no time", [](json& d) { d["results"][0].erase("time_ms"); }},
       {"negative median", [](json& d) { d["results"][0]["time_ms"]["median"] = -1; }},
+      {"negative min", [](json& d) { d["results"][0]["time_ms"]["min"] = -1; }},
+      {"phases not an object",
+       [](json& d) {
+         d["results"][0]["time_ms"]["phases"] = json::array({1, 2});
+       }},
+      {"phase without runs",
+       [](json& d) { d["results"][0]["time_ms"]["phases"]["build"].erase("runs"); }},
+      {"negative phase median",
+       [](json& d) { d["results"][0]["time_ms"]["phases"]["query"]["median"] = -0.5; }},
+      {"phase run not a number",
+       [](json& d) { d["results"][0]["time_ms"]["phases"]["query"]["runs"].push_back("x"); }},
       {"fractional counter", [](json& d) { d["results"][0]["counters"]["pair_tests"] = 1.5; }},
       {"hard error without leaks", [](json& d) { d["results"][0]["error"].erase("leaks"); }},
       {"rate above 1", [](json& d) { d["results"][0]["error"]["robust_mismatch_rate"] = 2; }},
