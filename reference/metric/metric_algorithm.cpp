@@ -1,5 +1,6 @@
 #include "reference/metric/metric_algorithm.h"
 
+#include "reference/light_on_caster.h"
 #include "reference/metric/metric_shadows.h"
 
 namespace shadowcts {
@@ -23,7 +24,11 @@ class MetricAlgorithm final : public Algorithm {
 
   AlgorithmOutput run(const Case& c, const ViewSamples& samples,
                       const std::string& variant) const override {
-    return metric::run_metric(c, samples, metric::parse_metric_variant(variant)).output;
+    AlgorithmOutput output =
+        metric::run_metric(c, samples, metric::parse_metric_variant(variant)).output;
+    output.counters.push_back({"light_on_caster_samples",
+                               shadow_samples_by_light_on_caster(c, samples, output.shadowed)});
+    return output;
   }
 
  private:

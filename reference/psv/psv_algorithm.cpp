@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "reference/light_on_caster.h"
 #include "reference/psv/psv_shadows.h"
 
 namespace shadowcts {
@@ -50,6 +51,8 @@ class PsvAlgorithm final : public Algorithm {
     AlgorithmOutput output;
     output.shadowed = std::move(result.shadowed);
     output.counters = std::move(result.counters);
+    output.counters.push_back({"light_on_caster_samples",
+                               shadow_samples_by_light_on_caster(c, samples, output.shadowed)});
     return output;
   }
 
