@@ -1,5 +1,6 @@
 #include "reference/metric/metric_algorithm.h"
 
+#include "reference/light_on_caster.h"
 #include "reference/metric/metric_shadows.h"
 #include "shadowcts/phase_clock.h"
 
@@ -33,6 +34,9 @@ class MetricAlgorithm final : public Algorithm {
     metric::MetricRun run = metric::run_metric(c, samples, metric::parse_metric_variant(variant));
     run.output.phase_ms = {{build_phase, 1e3 * (run.clustering_seconds + run.build_seconds)},
                            {query_phase, 1e3 * run.traversal_seconds}};
+    run.output.counters.push_back(
+        {"light_on_caster_samples",
+         shadow_samples_by_light_on_caster(c, samples, run.output.shadowed)});
     return std::move(run.output);
   }
 

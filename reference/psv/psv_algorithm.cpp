@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "reference/light_on_caster.h"
 #include "reference/psv/psv_shadows.h"
 #include "shadowcts/phase_clock.h"
 
@@ -21,6 +22,11 @@ psv::PsvOptions variant_options(const std::string& variant) {
     options.query = psv::QueryKind::stackless;
   } else if (variant == "hybrid") {
     options.query = psv::QueryKind::hybrid;
+  } else if (variant == "hybrid4") {
+    // The smallest stack of the paper's Figure 9 sweep (4 to 48): on the built-in cases a stack
+    // of 12 never fills (high water 8), so only this variant runs the stackless switch.
+    options.query = psv::QueryKind::hybrid;
+    options.stack_capacity = 4;
   } else {
     throw std::invalid_argument("psv: unknown variant '" + variant + "'");
   }
@@ -32,7 +38,7 @@ class PsvAlgorithm final : public Algorithm {
   PsvAlgorithm() {
     info_.id = "psv";
     info_.backend = "reference";
-    info_.variants = {"stack", "stack32", "depth", "stackless", "hybrid"};
+    info_.variants = {"stack", "stack32", "depth", "stackless", "hybrid", "hybrid4"};
     info_.summary =
         "partitioned shadow volumes: TOP tree with exact plane sides; PSV, D-PSV, D-Stackless "
         "and D-Hybrid queries (Mora 2016)";
@@ -57,6 +63,8 @@ class PsvAlgorithm final : public Algorithm {
     output.shadowed = std::move(result.shadowed);
     output.counters = std::move(result.counters);
     output.phase_ms = std::move(result.phase_ms);
+    output.counters.push_back({"light_on_caster_samples",
+                               shadow_samples_by_light_on_caster(c, samples, output.shadowed)});
     return output;
   }
 

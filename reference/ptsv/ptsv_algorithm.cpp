@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "oracles/hard_shadow_inputs.h"
+#include "reference/light_on_caster.h"
 #include "reference/ptsv/cluster_keys.h"
 #include "reference/ptsv/counters.h"
 #include "reference/ptsv/hdb2011.h"
@@ -168,6 +169,8 @@ class Ptsv final : public Algorithm {
       levels = std::uint64_t(hierarchy.leaf_level()) + 1;
       key_bits = std::uint64_t(layout.layout.key_bits());
     }
+    const std::uint64_t light_on_caster =
+        shadow_samples_by_light_on_caster(c, samples, output.shadowed);
 
     output.counters = {
         {"test_and_set_operations", counters.test_and_set()},
@@ -187,6 +190,7 @@ class Ptsv final : public Algorithm {
         {"hierarchy_nodes", nodes},
         {"hierarchy_levels", levels},
         {"key_bits", key_bits},
+        {"light_on_caster_samples", light_on_caster},
     };
     output.phase_ms = clock.times();
     return output;

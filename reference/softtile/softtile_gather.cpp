@@ -8,6 +8,7 @@
 
 #include "oracles/hard_shadow_inputs.h"
 #include "oracles/soft_shadow/sun_disk_projection.h"
+#include "reference/closed_mesh_culling.h"
 
 namespace shadowcts::softtile {
 namespace {
@@ -52,6 +53,10 @@ Gathered gather(const Case& c, const ViewSamples& samples) {
   frame_bound.radius_a = receivers.radius;
 
   const double sin_a = std::sin(frame.angular_radius);
+  // Light-facing faces of a closed mesh hide nothing its other faces do not, but only seen from
+  // outside the solid: a sample inside it, or on it where the disk dips below the receiver's
+  // plane (a wide sun), sees out through exactly those faces.
+  const std::vector<bool> cull_light_facing = meshes_safe_for_face_culling(c, samples);
   std::size_t i = 0;
   while (i < c.triangles.size()) {
     // One cluster: consecutive triangles of the same mesh.
@@ -82,7 +87,7 @@ Gathered gather(const Case& c, const ViewSamples& samples) {
       i = stop;
       continue;
     }
-    const bool closed = c.meshes[mesh].closed;
+    const bool closed = cull_light_facing[mesh];
     for (std::size_t k = i; k < stop; ++k) {
       if (!casts_shadow(c, k)) {
         ++out.triangles_culled;

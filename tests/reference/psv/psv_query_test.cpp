@@ -192,8 +192,8 @@ TEST(PsvAlgorithm, DescribesItselfAndRejectsUnknownVariants) {
   const AlgorithmInfo& info = algorithm->info();
   EXPECT_EQ(info.id, "psv");
   EXPECT_EQ(info.backend, "reference");
-  EXPECT_EQ(info.variants,
-            (std::vector<std::string>{"stack", "stack32", "depth", "stackless", "hybrid"}));
+  EXPECT_EQ(info.variants, (std::vector<std::string>{"stack", "stack32", "depth", "stackless",
+                                                     "hybrid", "hybrid4"}));
   EXPECT_TRUE(info.capabilities.point_light);
   EXPECT_TRUE(info.capabilities.directional_light);
   EXPECT_FALSE(info.capabilities.sun_disk);
