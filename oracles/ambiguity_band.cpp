@@ -17,12 +17,27 @@ struct ExactBandClassifier::Query {
   bool shadowed = false;
   std::uint32_t first_blocker = no_triangle;  // the first candidate that blocks p itself
   const std::vector<BandCandidate>* candidates = nullptr;  // sorted by (separation, triangle)
+  std::vector<std::uint32_t> blockers;  // shadowed: every candidate that blocks p, first first
+  std::uint32_t receiver = no_receiver;
 };
+
+namespace {
+
+glm::dvec3 vertex(const Triangle& t, int i) {
+  return glm::dvec3(i == 0 ? t.v0 : i == 1 ? t.v1 : t.v2);
+}
+
+}  // namespace
 
 ExactBandClassifier::ExactBandClassifier(const Case& c, const HardShadowLight& light,
                                          const CasterBvh& casters,
                                          const ExactShadowPredicate& predicate)
-    : case_(c), light_(light), casters_(casters), predicate_(predicate), scale_(c.scale()) {
+    : case_(c),
+      light_(light),
+      casters_(casters),
+      predicate_(predicate),
+      closure_(c, casters, predicate),
+      scale_(c.scale()) {
   for (int k = band_min_exponent; k <= band_max_exponent; ++k)
     level_lengths_.push_back(std::ldexp(scale_, k));  // exact: S times a power of two
 
@@ -44,19 +59,6 @@ ExactBandClassifier::ExactBandClassifier(const Case& c, const HardShadowLight& l
   if (!class_lengths_.empty()) largest_move_ = std::max(largest_move_, class_lengths_.back());
 }
 
-bool ExactBandClassifier::moved_answer(const Query& q, double delta, const glm::ivec3& move,
-                                       std::size_t active) const {
-  const MovedPoint moved{q.position, delta, move};
-  if (q.first_blocker != no_triangle && predicate_.blocks(case_.triangles[q.first_blocker], moved))
-    return true;
-  for (std::size_t i = 0; i < active; ++i) {
-    const std::uint32_t triangle = (*q.candidates)[i].triangle;
-    if (triangle != q.first_blocker && predicate_.blocks(case_.triangles[triangle], moved))
-      return true;
-  }
-  return false;
-}
-
 bool ExactBandClassifier::cube_in_shadow_of(const Query& q, std::uint32_t triangle,
                                             double delta) const {
   for (std::size_t m = first_corner_move; m < band_moves.size(); ++m)
@@ -65,47 +67,103 @@ bool ExactBandClassifier::cube_in_shadow_of(const Query& q, std::uint32_t triang
   return true;
 }
 
-// Index of the first length (ascending) at which some move changes the answer; lengths.size()
-// when none does.
+std::size_t ExactBandClassifier::active_candidates(const Query& q, double delta) const {
+  const std::vector<BandCandidate>& candidates = *q.candidates;
+  std::size_t active = 0;
+  while (active < candidates.size() && candidates[active].separation <= delta) ++active;
+  return active;
+}
+
+bool ExactBandClassifier::answer_constant_on_cube(const Query& q, double delta) const {
+  // Candidates with separation > delta miss every query from the cube (shadow_segment.h).
+  const std::size_t active = active_candidates(q, delta);
+  const std::vector<BandCandidate>& candidates = *q.candidates;
+  if (!q.shadowed) {
+    // Lit: constant iff no shadow volume meets the cube.
+    if (active == 0) return true;
+    const ExactCubeQuery cube(predicate_, q.position, delta);
+    for (std::size_t i = 0; i < active; ++i)
+      if (cube.shadow_volume_meets(case_.triangles[candidates[i].triangle])) return false;
+    return true;
+  }
+  // Shadowed: the cube inside one blocker's shadow volume, or no exposed boundary piece in it.
+  for (const std::uint32_t blocker : q.blockers)
+    if (cube_in_shadow_of(q, blocker, delta)) return true;
+  const ExactCubeQuery cube(predicate_, q.position, delta);
+  return boundary_misses(q, cube, active);
+}
+
+// No piece of the shadow boundary that may be exposed meets the cube: no candidate meets it, and
+// no wedge behind an open piece of an edge and no ray behind an open point of it does
+// (caster_closure.h). Non-candidates have shadow volumes that miss the cube.
+bool ExactBandClassifier::boundary_misses(const Query& q, const ExactCubeQuery& cube,
+                                          std::size_t active) const {
+  const std::vector<BandCandidate>& candidates = *q.candidates;
+  for (std::size_t i = 0; i < active; ++i)
+    if (cube.meets_triangle(case_.triangles[candidates[i].triangle])) return false;
+  for (std::size_t i = 0; i < active; ++i) {
+    const std::uint32_t t = candidates[i].triangle;
+    const Triangle& tri = case_.triangles[t];
+    for (int k = 0; k < 3; ++k) {
+      if (!closure_.may_expose(t, k, q.receiver)) continue;
+      // Every piece's wedge and every point's ray lies in the wedge behind the whole edge.
+      if (!cube.shadow_wedge_meets(vertex(tri, k), vertex(tri, (k + 1) % 3))) continue;
+      const bool exposed = closure_.any_exposed(
+          t, k, q.receiver,
+          [&](const glm::vec3& a, const glm::vec3& b) {
+            return cube.shadow_wedge_meets(glm::dvec3(a), glm::dvec3(b));
+          },
+          [&](const glm::vec3& x) { return cube.shadow_ray_meets(glm::dvec3(x)); });
+      if (exposed) return false;
+    }
+  }
+  return true;
+}
+
+// Index of the first length (ascending) whose cube the oracle cannot certify constant;
+// lengths.size() when it certifies them all. A certified cube contains every smaller one, so
+// every length below a certified one is certified too.
 std::size_t ExactBandClassifier::first_changing_length(const Query& q,
                                                        const std::vector<double>& lengths) const {
   const std::size_t n = lengths.size();
   if (n == 0) return 0;
   const std::vector<BandCandidate>& candidates = *q.candidates;
-  std::size_t start = 0;
+  std::ptrdiff_t constant = -1;  // the largest index known to be certified
   if (q.shadowed) {
     // Cube containment is monotone in the length: binary search for the largest length whose
-    // cube lies in the first blocker's shadow volume; no move up to it changes the answer.
+    // cube lies in the first blocker's shadow volume.
     if (cube_in_shadow_of(q, q.first_blocker, lengths[n - 1])) return n;
-    std::ptrdiff_t inside = -1, outside = std::ptrdiff_t(n - 1);
-    while (outside - inside > 1) {
-      const std::ptrdiff_t middle = (inside + outside) / 2;
+    std::ptrdiff_t outside = std::ptrdiff_t(n - 1);
+    while (outside - constant > 1) {
+      const std::ptrdiff_t middle = (constant + outside) / 2;
       if (cube_in_shadow_of(q, q.first_blocker, lengths[std::size_t(middle)]))
-        inside = middle;
+        constant = middle;
       else
         outside = middle;
     }
-    start = std::size_t(inside + 1);
   } else {
-    // Lit: no move of a length below the nearest candidate's separation can reach a caster.
+    // Lit: no cube of a length below the nearest candidate's separation can reach a caster.
     if (candidates.empty()) return n;
-    while (start < n && lengths[start] < candidates.front().separation) ++start;
+    while (constant + 1 < std::ptrdiff_t(n) &&
+           lengths[std::size_t(constant + 1)] < candidates.front().separation)
+      ++constant;
   }
-  std::size_t active = 0;
-  for (std::size_t level = start; level < n; ++level) {
-    const double delta = lengths[level];
-    // Candidates with separation > delta miss every query moved by at most delta.
-    while (active < candidates.size() && candidates[active].separation <= delta) ++active;
-    for (const glm::ivec3& move : band_moves)
-      if (moved_answer(q, delta, move, active) != q.shadowed) return level;
+  std::ptrdiff_t changing = std::ptrdiff_t(n);  // the smallest index known not to be certified
+  while (changing - constant > 1) {
+    const std::ptrdiff_t middle = (constant + changing) / 2;
+    if (answer_constant_on_cube(q, lengths[std::size_t(middle)]))
+      constant = middle;
+    else
+      changing = middle;
   }
-  return n;
+  return std::size_t(changing);
 }
 
 SampleTruth ExactBandClassifier::classify(const ViewSample& sample,
                                           std::vector<BandCandidate>& candidates) const {
   Query q;
   q.position = glm::dvec3(sample.position);
+  q.receiver = sample.receiver;
   q.candidates = &candidates;
   const ShadowSegment segment = make_shadow_segment(q.position, light_, scale_);
 
@@ -146,12 +204,26 @@ SampleTruth ExactBandClassifier::classify(const ViewSample& sample,
               if (a.separation != b.separation) return a.separation < b.separation;
               return a.triangle < b.triangle;
             });
+  if (q.shadowed) {
+    // Every candidate that blocks p (only those with separation 0 can), the first one first.
+    q.blockers.push_back(q.first_blocker);
+    for (const BandCandidate& candidate : candidates) {
+      if (candidate.separation != 0.0) break;
+      if (candidate.triangle != q.first_blocker &&
+          predicate_.blocks(case_.triangles[candidate.triangle],
+                            MovedPoint{q.position, 0.0, {0, 0, 0}}))
+        q.blockers.push_back(candidate.triangle);
+    }
+  }
 
   const std::size_t level = first_changing_length(q, level_lengths_);
   truth.robust_exponent = std::int8_t(band_min_exponent - 1 + int(level));
-  const bool robust = class_from_exponent_
-                          ? truth.robust_exponent >= class_exponent_
-                          : first_changing_length(q, class_lengths_) == class_lengths_.size();
+  // At eps_rel, the largest cube decides (it holds every smaller one).
+  bool robust = true;
+  if (class_from_exponent_)
+    robust = truth.robust_exponent >= class_exponent_;
+  else if (!class_lengths_.empty())
+    robust = answer_constant_on_cube(q, class_lengths_.back());
   truth.band = !robust      ? BandClass::ambiguous
                : q.shadowed ? BandClass::robust_shadowed
                             : BandClass::robust_lit;

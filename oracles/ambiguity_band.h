@@ -1,24 +1,35 @@
 #pragma once
 // Exact classification of one view sample in the ambiguity band (DESIGN.md, "Tolerance: the
-// ambiguity band"): its exact answer, its class at the case's eps_rel and its robust_exponent.
+// ambiguity band"; docs/specification.md, "The ambiguity band"): its exact answer, its class at
+// the case's eps_rel and its robust_exponent.
 //
-// A sample is robust at a set of move lengths when no move p + delta u (u one of band_moves,
-// delta in the set) changes the exact answer; the band at eps_rel uses the lengths
-// eps_rel S 2^-j >= 2^-24 S, and robust_exponent the lengths 2^k S, k = -24 ... -10.
+// A sample is robust at a move length h when the exact answer is the same at every point of the
+// closed cube of half-width h around p (which holds the 14 moves of length h and every shorter
+// move); the band at eps_rel uses h = eps_rel S (when eps_rel S >= 2^-24 S), and
+// robust_exponent the lengths 2^k S, k = -24 ... -10. A cube that is certified constant holds
+// every smaller cube, so robustness is monotone in the length.
 //
-// Most samples need no move at all, by two exact sufficient tests:
-// - lit: the candidate set (triangles that may come within the band of the shadow query, with a
-//   conservative separation each) is empty at the largest move, or holds only triangles farther
-//   than the moves of a level: nothing can block a moved query, so the answer cannot change;
-// - shadowed: the 8 corners of the cube of half-width delta around p, all blocked by one triangle
-//   T (exact predicate), put the whole cube inside T's shadow volume (convex: the points whose
-//   segment to the light, or ray, meets T), so every move of length <= delta stays shadowed.
-// Otherwise the moves are tried, level by level from the smallest, against the candidates.
+// The oracle certifies a cube constant only by exact arguments (never by trying moves):
+// - lit, cheaply: the candidate set (triangles that may come within the band of the shadow
+//   query, with a conservative separation each) holds no triangle nearer than h;
+// - lit, exactly: no candidate's shadow volume V_T (convex: the points whose segment to the
+//   light, or ray towards it, meets the closed triangle T) meets the cube (ExactCubeQuery);
+// - shadowed, cheaply: the 8 corners of the cube, all blocked by one triangle T, put the whole
+//   cube inside V_T;
+// - shadowed, otherwise: no piece of the shadow boundary that may be exposed meets the cube. The
+//   boundary of the union of the V_T lies in the triangles, the wedges behind their edges and the
+//   rays behind their vertices. Pieces of edges that another caster covers from the other side,
+//   seen from the light, and vertices all round which the casters cover, are no boundary
+//   (caster_closure.h: closed fans, DESIGN.md's shared edges, also across T-junctions). If the
+//   cube meets none of the remaining pieces, it cannot hold a lit point: it is connected and
+//   holds the shadowed p. This is conservative (a triangle or an open wedge inside another
+//   caster's shadow makes a sample ambiguous that may not be), never the other way round.
 #include <array>
 #include <cstdint>
 #include <vector>
 
 #include "oracles/caster_bvh.h"
+#include "oracles/caster_closure.h"
 #include "oracles/exact_segment_triangle.h"
 #include "oracles/hard_shadow_inputs.h"
 #include "shadowcts/case.h"
@@ -53,14 +64,17 @@ class ExactBandClassifier {
 
  private:
   struct Query;
-  bool moved_answer(const Query& q, double delta, const glm::ivec3& move, std::size_t active) const;
   bool cube_in_shadow_of(const Query& q, std::uint32_t triangle, double delta) const;
+  std::size_t active_candidates(const Query& q, double delta) const;
+  bool answer_constant_on_cube(const Query& q, double delta) const;
+  bool boundary_misses(const Query& q, const ExactCubeQuery& cube, std::size_t active) const;
   std::size_t first_changing_length(const Query& q, const std::vector<double>& lengths) const;
 
   const Case& case_;
   HardShadowLight light_;
   const CasterBvh& casters_;
   const ExactShadowPredicate& predicate_;
+  CasterClosure closure_;
   double scale_;
   std::vector<double> level_lengths_;  // 2^k S for k = band_min_exponent ... band_max_exponent
   // The band at eps_rel: either read off robust_exponent (eps_rel = 2^e, e in the level range),

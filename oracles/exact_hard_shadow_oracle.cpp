@@ -21,7 +21,8 @@ HardShadowTruth exact_hard_shadow_oracle(const Case& c, const ViewSamples& sampl
   HardShadowTruth truth;
   truth.method =
       "exact: CGAL Epick orientation predicates (exact rationals where a moved point is not a "
-      "double), candidates from a conservative BVH with separating-axis bounds";
+      "double), candidates from a conservative BVH with separating-axis bounds; band over the "
+      "whole cube of moves (exact for lit samples, conservative for shadowed ones)";
   truth.exact = true;
   truth.eps_rel = c.parameters.eps_rel;
   truth.tau = c.parameters.eps_rel * c.scale();

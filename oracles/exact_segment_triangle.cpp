@@ -3,9 +3,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
+#include <optional>
+#include <type_traits>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Exact_rational.h>
+#include <CGAL/Iso_cuboid_3.h>
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/intersections.h>
 
@@ -111,6 +115,316 @@ bool ExactShadowPredicate::blocks(const Triangle& t, const MovedPoint& x) const 
     to = P(light_.position.x, light_.position.y, light_.position.z);
   }
   return triangle_meets_segment<RationalKernel>(kernel_triangle<RationalKernel>(t), from, to);
+}
+
+}  // namespace shadowcts
+
+namespace shadowcts {
+namespace {
+
+// x - y when the double difference is exact.
+bool exact_double_difference(double x, double y, double& difference) {
+  return exact_double_sum(x, -y, difference);
+}
+
+// The sign of det(b - a, d, x - a) for a directional light: exact.
+int directional_plane_side(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& d,
+                           const glm::dvec3& x) {
+  std::array<double, 3> u{}, w{};
+  bool exact = true;
+  for (int i = 0; i < 3; ++i) {
+    exact = exact_double_difference(b[i], a[i], u[i]) && exact;
+    exact = exact_double_difference(x[i], a[i], w[i]) && exact;
+  }
+  if (exact) {
+    using V = Epick::Vector_3;
+    return int(CGAL::orientation(V(u[0], u[1], u[2]), V(d.x, d.y, d.z), V(w[0], w[1], w[2])));
+  }
+  using P = RationalKernel::Point_3;
+  using V = RationalKernel::Vector_3;
+  const P pa(a.x, a.y, a.z);
+  return int(CGAL::orientation(P(b.x, b.y, b.z) - pa, V(d.x, d.y, d.z), P(x.x, x.y, x.z) - pa));
+}
+
+// p - h (side 0) or p + h (side 1), rounded outwards where the double result is not exact.
+double outward_bound(double p, double h, int side) {
+  double bound = 0.0;
+  if (side == 0) {
+    if (!exact_double_sum(p, -h, bound)) bound = std::nextafter(bound, -HUGE_VAL);
+  } else {
+    if (!exact_double_sum(p, h, bound)) bound = std::nextafter(bound, HUGE_VAL);
+  }
+  return bound;
+}
+
+// The cube B (bounds rounded outwards) and its light hull H in one kernel. Corner c has the upper
+// bound along axis k where bit k of c is set.
+template <class Kernel>
+struct CubeGeometry {
+  using K = Kernel;
+  using FT = typename Kernel::FT;
+  using P = typename Kernel::Point_3;
+  using Segment = typename Kernel::Segment_3;
+  using KTriangle = typename Kernel::Triangle_3;
+
+  struct Lateral {
+    int c0 = 0, c1 = 0;                         // the silhouette edge, from corner c0 to c1
+    CGAL::Orientation inside = CGAL::COPLANAR;  // the side of the lateral plane that holds B
+  };
+
+  bool directional = false;
+  P light;                            // point light
+  std::array<double, 3> direction{};  // directional light: d
+  P centre;                           // strictly inside B
+  typename Kernel::Iso_cuboid_3 box;
+  std::array<double, 3> lo{}, hi{};
+  std::array<P, 8> corner;
+  std::array<P, 8> far;         // directional: corner + 2^e d, beyond the scene bound
+  bool faces_light[3][2] = {};  // face (axis, 0 lower / 1 upper) faces the light
+  std::array<Lateral, 12> laterals;
+  int lateral_count = 0;
+  bool silhouette_corner[8] = {};
+
+  P point(const glm::dvec3& x) const { return P(x.x, x.y, x.z); }
+
+  // A point from x towards the light: L, or x + d (none where that is not exact here).
+  std::optional<P> towards_light(const P& x) const {
+    if (!directional) return light;
+    if constexpr (std::is_same_v<Kernel, Epick>) {
+      std::array<double, 3> sum{};
+      for (int k = 0; k < 3; ++k)
+        if (!exact_double_sum(x[k], direction[std::size_t(k)], sum[std::size_t(k)]))
+          return std::nullopt;
+      return P(sum[0], sum[1], sum[2]);
+    } else {
+      return x + typename Kernel::Vector_3(direction[0], direction[1], direction[2]);
+    }
+  }
+
+  // The plane of lateral face e (through L and the edge, or through the edge parallel to d).
+  CGAL::Orientation lateral_side(const Lateral& e, const P& x) const {
+    return directional ? CGAL::orientation(corner[e.c0], corner[e.c1], far[e.c1], x)
+                       : CGAL::orientation(light, corner[e.c0], corner[e.c1], x);
+  }
+
+  bool lateral_meets(const Lateral& e, const Segment& s) const {
+    if (!directional) return CGAL::do_intersect(KTriangle(light, corner[e.c0], corner[e.c1]), s);
+    return CGAL::do_intersect(KTriangle(corner[e.c0], corner[e.c1], far[e.c1]), s) ||
+           CGAL::do_intersect(KTriangle(corner[e.c0], far[e.c1], far[e.c0]), s);
+  }
+
+  // x in H: inside every face of B that does not face the light, and inside every lateral face.
+  bool hull_contains(const P& x) const {
+    for (int k = 0; k < 3; ++k) {
+      if (!faces_light[k][0] && x[k] < FT(lo[k])) return false;
+      if (!faces_light[k][1] && x[k] > FT(hi[k])) return false;
+    }
+    for (int i = 0; i < lateral_count; ++i) {
+      const CGAL::Orientation side = lateral_side(laterals[i], x);
+      if (side != CGAL::COPLANAR && side != laterals[i].inside) return false;
+    }
+    return true;
+  }
+
+  // A segment meets the closed convex H iff an end point lies in it or it crosses H's boundary:
+  // a face of B (then it meets B) or a lateral face.
+  bool segment_meets_hull(const P& a, const P& b) const {
+    if (hull_contains(a) || hull_contains(b)) return true;
+    const Segment s(a, b);
+    if (CGAL::do_intersect(s, box)) return true;
+    for (int i = 0; i < lateral_count; ++i)
+      if (lateral_meets(laterals[i], s)) return true;
+    return false;
+  }
+
+  // Whether all 8 corners lie strictly on the given side of the plane (a, b, c): then B misses
+  // the closed other side.
+  bool corners_strictly_on(const P& a, const P& b, const P& c, CGAL::Orientation side) const {
+    for (const P& x : corner)
+      if (CGAL::orientation(a, b, c, x) != side) return false;
+    return true;
+  }
+
+  // A triangle meets the closed convex H iff the polygon T n H is not empty; each of its vertices
+  // is a vertex of T in H, a crossing of an edge of T with the boundary of H (a face of B, so T
+  // meets B, or a lateral face), or a crossing of an edge of H with T (an edge of B, so T meets B,
+  // or a lateral edge from a silhouette corner).
+  bool triangle_meets_hull(const Triangle& t) const {
+    const std::array<P, 3> v = {point(glm::dvec3(t.v0)), point(glm::dvec3(t.v1)),
+                                point(glm::dvec3(t.v2))};
+    const KTriangle triangle(v[0], v[1], v[2]);
+    // Quick exact rejections by the planes of V_T: its supporting plane (V_T lies on the side
+    // away from the light) and the three planes through an edge and the light (V_T lies on the
+    // third vertex's side). Each plane is spanned by T's vertices and a point towards the light:
+    // L, or a vertex plus d (skipped where that sum is not exact in this kernel).
+    std::array<std::optional<P>, 3> towards;
+    for (int i = 0; i < 3; ++i) towards[std::size_t(i)] = towards_light(v[std::size_t(i)]);
+    if (towards[0]) {
+      const CGAL::Orientation light_side = CGAL::orientation(v[0], v[1], v[2], *towards[0]);
+      if (light_side != CGAL::COPLANAR && corners_strictly_on(v[0], v[1], v[2], light_side))
+        return false;
+    }
+    for (std::size_t i = 0; i < 3; ++i) {
+      if (!towards[i]) continue;
+      const P& a = v[i];
+      const P& b = v[(i + 1) % 3];
+      const CGAL::Orientation inner = CGAL::orientation(*towards[i], a, b, v[(i + 2) % 3]);
+      if (inner != CGAL::COPLANAR && corners_strictly_on(*towards[i], a, b, CGAL::opposite(inner)))
+        return false;
+    }
+    for (int c = 0; c < 8; ++c) {
+      if (!silhouette_corner[c]) continue;
+      if (directional) {
+        if (CGAL::do_intersect(triangle, Segment(corner[c], far[c]))) return true;
+      } else if (corner[c] != light && CGAL::do_intersect(triangle, Segment(corner[c], light))) {
+        return true;
+      }
+    }
+    if (CGAL::do_intersect(triangle, box)) return true;
+    for (const P& x : v)
+      if (hull_contains(x)) return true;
+    for (int i = 0; i < 3; ++i) {
+      const Segment edge(v[i], v[(i + 1) % 3]);
+      for (int e = 0; e < lateral_count; ++e)
+        if (lateral_meets(laterals[e], edge)) return true;
+    }
+    return false;
+  }
+};
+
+// Builds the geometry; false when a needed point is not exact in this kernel (doubles only).
+template <class Kernel>
+bool build_cube(const HardShadowLight& light, double scene_bound, const glm::dvec3& centre,
+                double half_width, CubeGeometry<Kernel>& g) {
+  using P = typename Kernel::Point_3;
+  g.directional = light.directional;
+  g.direction = {light.direction.x, light.direction.y, light.direction.z};
+  g.centre = P(centre.x, centre.y, centre.z);
+  double max_abs = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    g.lo[k] = outward_bound(centre[k], half_width, 0);
+    g.hi[k] = outward_bound(centre[k], half_width, 1);
+    max_abs = std::max({max_abs, std::fabs(g.lo[k]), std::fabs(g.hi[k])});
+  }
+  g.box = typename Kernel::Iso_cuboid_3(P(g.lo[0], g.lo[1], g.lo[2]), P(g.hi[0], g.hi[1], g.hi[2]));
+  for (int c = 0; c < 8; ++c)
+    g.corner[std::size_t(c)] =
+        P((c & 1) ? g.hi[0] : g.lo[0], (c & 2) ? g.hi[1] : g.lo[1], (c & 4) ? g.hi[2] : g.lo[2]);
+  if (light.directional) {
+    for (int k = 0; k < 3; ++k) {
+      g.faces_light[k][0] = light.direction[k] < 0.0;
+      g.faces_light[k][1] = light.direction[k] > 0.0;
+    }
+  } else {
+    g.light = P(light.position.x, light.position.y, light.position.z);
+    for (int k = 0; k < 3; ++k) {
+      g.faces_light[k][0] = light.position[k] < g.lo[k];
+      g.faces_light[k][1] = light.position[k] > g.hi[k];
+    }
+  }
+  // Silhouette edges: between a face that faces the light and one that does not. (An edge whose
+  // line holds L has L in the planes of both its faces, so neither faces the light: every
+  // lateral face is a proper triangle. Likewise an edge parallel to d lies between two faces
+  // parallel to d.)
+  g.lateral_count = 0;
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    for (int si = 0; si < 2; ++si)
+      for (int sj = 0; sj < 2; ++sj) {
+        if (g.faces_light[i][si] == g.faces_light[j][sj]) continue;
+        typename CubeGeometry<Kernel>::Lateral e;
+        e.c0 = (si << i) | (sj << j);
+        e.c1 = e.c0 | (1 << k);
+        g.laterals[std::size_t(g.lateral_count++)] = e;
+        g.silhouette_corner[e.c0] = g.silhouette_corner[e.c1] = true;
+      }
+  }
+  if (light.directional) {
+    const int exponent = far_point_exponent(scene_bound, max_abs, light.direction);
+    for (int c = 0; c < 8; ++c) {
+      if (!g.silhouette_corner[c]) continue;
+      const P& x = g.corner[std::size_t(c)];
+      if constexpr (std::is_same_v<Kernel, Epick>) {
+        std::array<double, 3> f{};
+        for (int k = 0; k < 3; ++k)
+          if (!exact_double_sum(x[k], std::ldexp(light.direction[k], exponent), f[k])) return false;
+        g.far[std::size_t(c)] = P(f[0], f[1], f[2]);
+      } else {
+        g.far[std::size_t(c)] =
+            x + typename Kernel::Vector_3(light.direction.x, light.direction.y, light.direction.z) *
+                    typename Kernel::FT(std::ldexp(1.0, exponent));
+      }
+    }
+  }
+  for (int i = 0; i < g.lateral_count; ++i) {
+    auto& e = g.laterals[std::size_t(i)];
+    e.inside = g.lateral_side(e, g.centre);
+  }
+  return true;
+}
+
+}  // namespace
+
+int ExactShadowPredicate::light_plane_side(const glm::dvec3& a, const glm::dvec3& b,
+                                           const glm::dvec3& x) const {
+  if (light_.directional) return directional_plane_side(a, b, light_.direction, x);
+  using P = Epick::Point_3;
+  const glm::dvec3& l = light_.position;
+  return int(
+      CGAL::orientation(P(l.x, l.y, l.z), P(a.x, a.y, a.z), P(b.x, b.y, b.z), P(x.x, x.y, x.z)));
+}
+
+struct ExactCubeQuery::Impl {
+  std::optional<CubeGeometry<Epick>> fast;
+  std::optional<CubeGeometry<RationalKernel>> exact;
+  // A lateral face that came out degenerate (impossible by the construction; kept as a guard):
+  // every test then answers "meets", which is conservative.
+  bool everything_meets = false;
+
+  template <class F>
+  bool visit(F&& f) const {
+    if (everything_meets) return true;
+    return fast ? f(*fast) : f(*exact);
+  }
+};
+
+ExactCubeQuery::ExactCubeQuery(const ExactShadowPredicate& predicate, const glm::dvec3& centre,
+                               double half_width)
+    : impl_(std::make_unique<Impl>()) {
+  auto check = [&](const auto& g) {
+    for (int i = 0; i < g.lateral_count; ++i)
+      if (g.laterals[std::size_t(i)].inside == CGAL::COPLANAR) impl_->everything_meets = true;
+  };
+  impl_->fast.emplace();
+  if (build_cube(predicate.light(), predicate.scene_bound(), centre, half_width, *impl_->fast)) {
+    check(*impl_->fast);
+    return;
+  }
+  impl_->fast.reset();
+  impl_->exact.emplace();
+  build_cube(predicate.light(), predicate.scene_bound(), centre, half_width, *impl_->exact);
+  check(*impl_->exact);
+}
+
+ExactCubeQuery::~ExactCubeQuery() = default;
+
+bool ExactCubeQuery::meets_triangle(const Triangle& t) const {
+  return impl_->visit([&](const auto& g) {
+    using Kernel = typename std::decay_t<decltype(g)>::K;
+    return CGAL::do_intersect(kernel_triangle<Kernel>(t), g.box);
+  });
+}
+
+bool ExactCubeQuery::shadow_ray_meets(const glm::dvec3& x) const {
+  return impl_->visit([&](const auto& g) { return g.hull_contains(g.point(x)); });
+}
+
+bool ExactCubeQuery::shadow_wedge_meets(const glm::dvec3& a, const glm::dvec3& b) const {
+  return impl_->visit([&](const auto& g) { return g.segment_meets_hull(g.point(a), g.point(b)); });
+}
+
+bool ExactCubeQuery::shadow_volume_meets(const Triangle& t) const {
+  return impl_->visit([&](const auto& g) { return g.triangle_meets_hull(t); });
 }
 
 }  // namespace shadowcts

@@ -4,6 +4,8 @@
 // Exact for float triangle vertices, float lights and exactly represented moved positions: CGAL's
 // orientation predicates decide, no plane or intersection point is ever constructed in floating
 // point, and no coordinate is ever rounded.
+#include <memory>
+
 #include <glm/vec3.hpp>
 
 #include "oracles/hard_shadow_inputs.h"
@@ -35,9 +37,58 @@ class ExactShadowPredicate {
   // the receiver and non-caster triangles.
   bool blocks(const Triangle& t, const MovedPoint& x) const;
 
+  // The side of x of the plane that holds the segment ab and the light: the plane through L, a
+  // and b (point light) or through a and b parallel to d (directional). +1 or -1, consistently
+  // for one (a, b); 0 when x lies on the plane or there is no such plane (L on the line ab, or
+  // ab parallel to d). Two triangles sharing the edge ab with third vertices on opposite sides
+  // cover, seen from the light, both sides of the edge. Exact.
+  int light_plane_side(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& x) const;
+
+  const HardShadowLight& light() const { return light_; }
+  double scene_bound() const { return scene_bound_; }
+
  private:
   HardShadowLight light_;
   double scene_bound_;
+};
+
+// The closed cube B of half-width h around a sample (all its moves of length <= h), and exact
+// tests of how the pieces of a caster's shadow volume meet it. With V_T the shadow volume of a
+// closed caster triangle T (the points whose segment to the light, or ray towards it, meets T):
+//
+// - V_T is bounded by T itself and by the wedges behind T's edges, W_ab = {L + s (x - L): x in ab,
+//   s >= 1} (point light) or {x - t d: x in ab, t >= 0} (directional light);
+// - W_ab meets B iff the segment ab meets B's light hull H: conv(L, B) for a point light, B swept
+//   towards a directional light (B + t d, t >= 0); likewise the ray behind a vertex v
+//   ({L + s (v - L): s >= 1}, or {v - t d}) meets B iff v lies in H, and V_T meets B iff T meets H.
+//
+// H is a convex polyhedron: the faces of B that do not face the light, and one lateral face per
+// silhouette edge e of B (the triangle conv(L, e), or the strip e + t d cut beyond the scene
+// bound, where no caster lies). Every test runs CGAL's exact predicates on exactly represented
+// points (exact rationals where a swept point is not a double). The cube's bounds p +- h are
+// rounded outwards to doubles where they are not doubles, so every test answers for a cube that
+// contains B: "does not meet" is always certain for B itself.
+class ExactCubeQuery {
+ public:
+  ExactCubeQuery(const ExactShadowPredicate& predicate, const glm::dvec3& centre,
+                 double half_width);
+  ~ExactCubeQuery();
+  ExactCubeQuery(const ExactCubeQuery&) = delete;
+  ExactCubeQuery& operator=(const ExactCubeQuery&) = delete;
+
+  // Does the closed triangle meet B?
+  bool meets_triangle(const Triangle& t) const;
+  // Does the shadow ray behind x meet B (x in H)?
+  bool shadow_ray_meets(const glm::dvec3& x) const;
+  // Does the shadow wedge behind the segment ab meet B (ab meets H)? a != b.
+  bool shadow_wedge_meets(const glm::dvec3& a, const glm::dvec3& b) const;
+  // Does the shadow volume of the non-degenerate triangle t meet B (t meets H)? Exactly when
+  // some point of B is shadowed by t.
+  bool shadow_volume_meets(const Triangle& t) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
 };
 
 }  // namespace shadowcts
