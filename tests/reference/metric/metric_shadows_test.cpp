@@ -227,9 +227,15 @@ TEST(Metric, DescribesItselfAndParsesVariants) {
 
   const testing::FixtureCase f = testing::load_fixture("gate_house.20k", 32);
   const AlgorithmOutput output = algorithm->run(f.c, f.samples, "capsules");
-  const std::vector<std::string> names = {
-      "clusters",   "capsule_share_permille", "clusters_culled_facing_away", "tree_nodes",
-      "tree_depth", "nodes_visited",          "clusters_tested_without_hit", "triangle_tests"};
+  const std::vector<std::string> names = {"clusters",
+                                          "capsule_share_permille",
+                                          "clusters_culled_facing_away",
+                                          "tree_nodes",
+                                          "tree_depth",
+                                          "nodes_visited",
+                                          "clusters_tested_without_hit",
+                                          "triangle_tests",
+                                          "light_on_caster_samples"};
   ASSERT_EQ(output.counters.size(), names.size());
   for (std::size_t i = 0; i < names.size(); ++i) EXPECT_EQ(output.counters[i].first, names[i]);
   EXPECT_GT(output.counters[1].second, 0u);  // gate_house has wires and poles: capsules
