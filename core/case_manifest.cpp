@@ -369,7 +369,9 @@ Case load_case_manifest(const std::string& path) {
   Json root;
   try {
     root = Json::parse(read_text_file(path));
-  } catch (const Json::parse_error& e) {
+  } catch (const Json::exception& e) {
+    // parse_error, and out_of_range for a number beyond double's range (found by
+    // fuzz_case_manifest: "4e938" escaped as a non-InputError).
     throw InputError(path, "JSON", e.what());
   }
   const ManifestObject manifest(

@@ -12,11 +12,14 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <limits>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "mesh_closedness.h"
@@ -80,12 +83,33 @@ struct DeclaredCounts {
   std::optional<std::size_t> triangles;  // after fan triangulation of polygons
 };
 
+// A face corner's vertex index as OpenMesh reads it ("i", "i/t", "i//n", "i/t/n"): an integer,
+// 1-based, or negative to count back from the last vertex read so far.
+std::optional<long long> corner_vertex_index(const std::string& corner) {
+  std::string_view text(corner);
+  text = text.substr(0, text.find('/'));
+  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
+  long long value = 0;
+  const auto [rest, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || error != std::errc() || rest != text.data() + text.size())
+    return std::nullopt;
+  return value;
+}
+
 // OBJ: "v x y z [w]" lines (vertex numbers are 1-based, as in the file); "f" lines give n - 2
-// triangles each.
+// triangles each. Every face corner must start with a vertex index that names an existing
+// vertex: OpenMesh's reader aborts on an assertion for a corner without one ("f /1 2 3", found by
+// the OBJ fuzz target) and silently drops faces with indices out of range.
 DeclaredCounts scan_obj(const std::string& path, std::istream& in) {
   DeclaredCounts counts{0, 0};
   std::string line;
-  std::size_t line_number = 0;
+  std::size_t line_number = 0, face = 0;
+  // Positive indices may point forward (OpenMesh reads every vertex first): checked at the end.
+  struct ForwardReference {
+    std::string element;
+    long long index;
+  };
+  std::optional<ForwardReference> furthest;
   while (std::getline(in, line)) {
     ++line_number;
     const auto tokens = split_whitespace(line);
@@ -97,9 +121,35 @@ DeclaredCounts scan_obj(const std::string& path, std::istream& in) {
       if (tokens.size() < 4) throw InputError(path, element, "fewer than 3 coordinates");
       for (std::size_t axis = 1; axis <= 3; ++axis)
         check_coordinate_token(path, tokens[axis], element);
-    } else if (tokens[0] == "f" && tokens.size() >= 4) {
-      *counts.triangles += tokens.size() - 3;
+    } else if (tokens[0] == "f") {
+      const std::string element =
+          "f " + std::to_string(++face) + " (line " + std::to_string(line_number) + ")";
+      const auto vertices_so_far = static_cast<long long>(*counts.vertices);
+      for (std::size_t corner = 1; corner < tokens.size(); ++corner) {
+        const auto index = corner_vertex_index(tokens[corner]);
+        if (!index) {
+          throw InputError(path, element,
+                           "corner '" + tokens[corner] + "' does not start with a vertex index");
+        }
+        if (*index == 0) {
+          throw InputError(path, element, "vertex index 0 (OBJ indices start at 1)");
+        }
+        if (*index < 0 && -*index > vertices_so_far) {
+          throw InputError(path, element,
+                           "relative vertex index " + std::to_string(*index) + " reaches before " +
+                               "the first vertex (" + std::to_string(vertices_so_far) +
+                               " vertices so far)");
+        }
+        if (*index > vertices_so_far && (!furthest || *index > furthest->index))
+          furthest = ForwardReference{element, *index};
+      }
+      if (tokens.size() >= 4) *counts.triangles += tokens.size() - 3;
     }
+  }
+  if (furthest && furthest->index > static_cast<long long>(*counts.vertices)) {
+    throw InputError(path, furthest->element,
+                     "vertex index " + std::to_string(furthest->index) + " is out of range (" +
+                         std::to_string(*counts.vertices) + " vertices)");
   }
   return counts;
 }
@@ -152,140 +202,629 @@ DeclaredCounts scan_stl(const std::string& path, std::istream& in) {
   return counts;
 }
 
-// Next line that is not empty and not a '#' comment, split; empty at end of file.
-std::vector<std::string> next_content_line(std::istream& in, std::size_t& line_number) {
-  std::string line;
-  while (std::getline(in, line)) {
-    ++line_number;
-    const auto comment = line.find('#');
-    if (comment != std::string::npos) line.erase(comment);
-    auto tokens = split_whitespace(line);
-    if (!tokens.empty()) return tokens;
+// ---- OFF and PLY: the file is walked the way OpenMesh's reader walks it, before OpenMesh sees
+// it. OpenMesh trusts the declared counts (it reserves memory for them and loops over them even
+// past the end of the file) and checks its stream only for hard I/O errors, so a count that
+// does not parse, or one larger than the file, makes it allocate gigabytes or loop forever (both
+// found by the fuzz targets). Every value is therefore checked here with the same token
+// boundaries as OpenMesh's `stream >> value`, and a file is handed to OpenMesh only when each
+// of its reads will succeed on what was checked.
+
+// Whitespace-separated tokens, as `stream >> value` reads them (the C locale's whitespace), with
+// the line each one is on.
+class TokenReader {
+ public:
+  TokenReader(std::istream& in, std::size_t line) : in_(in), line_(line) {}
+
+  // The next token, or nullopt at the end of the file.
+  std::optional<std::string> next() {
+    int c = in_.get();
+    while (c != std::char_traits<char>::eof() && std::isspace(c)) {
+      if (c == '\n') ++line_;
+      c = in_.get();
+    }
+    if (c == std::char_traits<char>::eof()) return std::nullopt;
+    token_line_ = line_;
+    std::string token;
+    while (c != std::char_traits<char>::eof() && !std::isspace(c)) {
+      token.push_back(static_cast<char>(c));
+      c = in_.get();
+    }
+    if (c != std::char_traits<char>::eof()) in_.unget();  // `>>` leaves the separator
+    return token;
   }
-  return {};
+
+  // What std::getline does: the rest of the current line, newline included.
+  void skip_rest_of_line() {
+    int c = in_.get();
+    while (c != std::char_traits<char>::eof() && c != '\n') c = in_.get();
+    if (c == '\n') ++line_;
+  }
+
+  // The line of the last token next() returned.
+  std::size_t line() const { return token_line_; }
+  std::string at_line() const { return " (line " + std::to_string(token_line_) + ")"; }
+
+ private:
+  std::istream& in_;
+  std::size_t line_;
+  std::size_t token_line_ = 0;
+};
+
+// Bytes from the stream's position to the end of the file (0 once the stream has failed).
+std::uint64_t bytes_left(std::istream& in, std::uintmax_t file_size) {
+  const auto position = in.tellg();
+  if (position < 0 || static_cast<std::uintmax_t>(position) > file_size) return 0;
+  return file_size - static_cast<std::uintmax_t>(position);
 }
 
-std::optional<std::size_t> parse_count(const std::string& token) {
-  std::size_t value = 0;
+// A count or index as `stream >> unsigned` reads it, restricted to plain digits (it would also
+// take a sign and wrap "-1" to 4294967295).
+std::optional<std::uint32_t> parse_u32(const std::string& token) {
+  std::uint32_t value = 0;
   const auto [rest, error] = std::from_chars(token.data(), token.data() + token.size(), value);
-  if (error != std::errc() || rest != token.data() + token.size()) return std::nullopt;
+  if (token.empty() || error != std::errc() || rest != token.data() + token.size())
+    return std::nullopt;
   return value;
 }
 
-// OFF: header keyword ([ST][C][N][4][n]OFF, optionally BINARY), counts "vertices faces edges",
-// then one vertex per line. Only plain 3D ASCII OFF is scanned; OpenMesh reads the others alone.
-DeclaredCounts scan_off(const std::string& path, std::istream& in) {
-  std::size_t line_number = 0;
-  auto tokens = next_content_line(in, line_number);
-  if (tokens.empty()) return {};
-  const std::string keyword = tokens[0];
-  const bool plain_ascii = keyword.size() >= 3 && keyword.ends_with("OFF") &&
-                           keyword.find('4') == std::string::npos && !keyword.starts_with("n") &&
-                           !(tokens.size() > 1 && tokens[1] == "BINARY");
-  if (!plain_ascii) return {};
-  tokens.erase(tokens.begin());
-  if (tokens.empty()) tokens = next_content_line(in, line_number);
-  if (tokens.size() < 2) return {};
-  const auto vertices = parse_count(tokens[0]);
-  const auto faces = parse_count(tokens[1]);
-  if (!vertices || !faces) return {};
-  for (std::size_t vertex = 0; vertex < *vertices; ++vertex) {
-    const auto coordinates = next_content_line(in, line_number);
-    const std::string element = vertex_element(vertex, line_number);
-    if (coordinates.empty()) {
-      throw InputError(
-          path, "vertex " + std::to_string(vertex),
-          "file ends before the " + std::to_string(*vertices) + " vertices its header declares");
-    }
-    if (coordinates.size() < 3) throw InputError(path, element, "fewer than 3 coordinates");
-    for (std::size_t axis = 0; axis < 3; ++axis)
-      check_coordinate_token(path, coordinates[axis], element);
-  }
-  std::size_t triangles = 0;
-  for (std::size_t face = 0; face < *faces; ++face) {
-    const auto indices = next_content_line(in, line_number);
-    const std::string element =
-        "face " + std::to_string(face) + " (line " + std::to_string(line_number) + ")";
-    if (indices.empty()) {
-      throw InputError(
-          path, "face " + std::to_string(face),
-          "file ends before the " + std::to_string(*faces) + " faces its header declares");
-    }
-    const auto corner_count = parse_count(indices[0]);
-    if (!corner_count || indices.size() < 1 + *corner_count) {
-      throw InputError(path, element, "malformed face (vertex count, then that many indices)");
-    }
-    for (std::size_t corner = 1; corner <= *corner_count; ++corner) {
-      const auto index = parse_count(indices[corner]);
-      if (!index || *index >= *vertices) {
-        throw InputError(path, element,
-                         "vertex index '" + indices[corner] + "' is out of range (" +
-                             std::to_string(*vertices) + " vertices)");
-      }
-    }
-    if (*corner_count >= 3) triangles += *corner_count - 2;
-  }
-  return {*vertices, triangles};
+bool is_int32(const std::string& token) {
+  std::string_view text(token);
+  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
+  std::int32_t value = 0;
+  const auto [rest, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  return !text.empty() && error == std::errc() && rest == text.data() + text.size();
 }
 
-// PLY: the header declares the element counts; an ASCII file whose first element is the vertex
-// element has its x, y, z properties scanned (one vertex per line).
-DeclaredCounts scan_ply(const std::string& path, std::istream& in) {
-  std::size_t line_number = 0;
-  bool ascii = false, vertex_is_first = false, vertex_has_list = false;
-  std::optional<std::size_t> vertices, faces;
-  std::string current_element;
-  std::vector<std::string> vertex_properties;
-  for (;;) {
-    std::string line;
-    // OpenMesh's PLY reader loops forever on a header without end_header: refuse it here.
-    if (!std::getline(in, line))
-      throw InputError(path, "header", "the PLY header has no end_header line");
-    ++line_number;
-    const auto tokens = split_whitespace(line);
-    if (tokens.empty()) continue;
-    if (tokens[0] == "end_header") break;
-    if (tokens[0] == "format" && tokens.size() > 1) ascii = tokens[1] == "ascii";
-    if (tokens[0] == "element" && tokens.size() > 2) {
-      if (current_element.empty()) vertex_is_first = tokens[1] == "vertex";
-      current_element = tokens[1];
-      if (tokens[1] == "vertex") vertices = parse_count(tokens[2]);
-      if (tokens[1] == "face") faces = parse_count(tokens[2]);
-    }
-    if (tokens[0] == "property" && current_element == "vertex") {
-      if (tokens.size() > 1 && tokens[1] == "list") vertex_has_list = true;
-      vertex_properties.push_back(tokens.back());
-    }
+// The next token, or an InputError saying which element the file ends in.
+std::string required_token(const std::string& path, TokenReader& tokens, const std::string& element,
+                           const std::string& what) {
+  auto token = tokens.next();
+  if (!token) throw InputError(path, element, "file ends before " + what);
+  return *token;
+}
+
+std::uint32_t required_u32(const std::string& path, TokenReader& tokens, const std::string& element,
+                           const std::string& what) {
+  const std::string token = required_token(path, tokens, element, "the " + what);
+  const auto value = parse_u32(token);
+  if (!value) {
+    const std::string shown = token.size() > 24 ? token.substr(0, 24) + "..." : token;
+    throw InputError(path, element + tokens.at_line(),
+                     "the " + what + " '" + shown + "' is not a whole number from 0 to 4294967295");
   }
-  DeclaredCounts counts{vertices, std::nullopt};
-  std::vector<std::size_t> columns;
-  for (const char* axis : {"x", "y", "z"}) {
-    const auto it = std::find(vertex_properties.begin(), vertex_properties.end(), axis);
-    if (it == vertex_properties.end()) {
-      throw InputError(path, "header", std::string("vertex element has no property ") + axis);
-    }
-    columns.push_back(static_cast<std::size_t>(it - vertex_properties.begin()));
+  return *value;
+}
+
+// Little- or big-endian unsigned integer of `bytes` bytes, or nullopt at the end of the file.
+std::optional<std::uint32_t> read_binary_u32(std::istream& in, int bytes, bool big_endian) {
+  unsigned char raw[4] = {};
+  if (!in.read(reinterpret_cast<char*>(raw), bytes)) return std::nullopt;
+  std::uint32_t value = 0;
+  for (int i = 0; i < bytes; ++i) {
+    const int shift = 8 * (big_endian ? bytes - 1 - i : i);
+    value |= std::uint32_t(raw[i]) << shift;
   }
-  if (!ascii || !vertex_is_first || vertex_has_list || !vertices) return counts;
-  for (std::size_t vertex = 0; vertex < *vertices; ++vertex) {
-    std::string line;
-    if (!std::getline(in, line)) {
+  return value;
+}
+
+std::string too_large(std::uint64_t needed, std::uint64_t available) {
+  return "needs at least " + std::to_string(needed) + " bytes, but only " +
+         std::to_string(available) + " follow the header";
+}
+
+// -- OFF ----------------------------------------------------------------------------------------
+
+struct OffKeyword {
+  bool readable = false;  // OpenMesh's reader accepts it (3D only)
+  bool binary = false;
+  bool normals = false, colors = false, texcoords = false;
+};
+
+// The first line as OpenMesh's OFF reader decodes it: [ST][C][N][4][n]OFF, then "BINARY" after
+// exactly one character. It looks at no more than 4095 characters.
+OffKeyword off_keyword(const std::string& first_line, bool had_newline) {
+  OffKeyword keyword;
+  std::string line = first_line.substr(0, 4095);
+  // Characters OpenMesh counts: the line, and the newline when there was one.
+  std::size_t remaining = line.size() + (had_newline && first_line.size() < 4095 ? 1 : 0);
+  line.append(16, '\0');
+  std::size_t p = 0;
+  auto take = [&](char c) {
+    if (remaining == 0 || line[p] != c) return false;
+    ++p;
+    --remaining;
+    return true;
+  };
+  if (remaining > 1 && line[0] == 'S' && line[1] == 'T') {
+    keyword.texcoords = true;
+    p = 2;
+    remaining -= 2;
+  }
+  keyword.colors = take('C');
+  keyword.normals = take('N');
+  const bool four_dimensional = take('4');
+  const bool n_dimensional = take('n');
+  if (remaining < 3 || line.compare(p, 3, "OFF") != 0) return keyword;
+  p += 4;
+  remaining = remaining >= 4 ? remaining - 4 : 0;
+  keyword.binary = remaining >= 6 && line.compare(p, 6, "BINARY") == 0;
+  keyword.readable = !four_dimensional && !n_dimensional;
+  return keyword;
+}
+
+// Binary OFF: little-endian 32-bit counts, vertices of 3 floats (+ 3 normal floats, 3 colour
+// integers, 2 texture floats as the keyword says), faces as a count and that many indices.
+DeclaredCounts scan_binary_off(const std::string& path, std::istream& in, const OffKeyword& keyword,
+                               std::uintmax_t file_size) {
+  std::uint32_t header[3];
+  for (std::uint32_t& value : header) {
+    const auto read = read_binary_u32(in, 4, false);
+    if (!read)
+      throw InputError(path, "header", "file ends before the vertex, face and edge counts");
+    value = *read;
+  }
+  const std::uint32_t vertices = header[0], faces = header[1];
+  const std::uint64_t vertex_bytes =
+      12 + (keyword.normals ? 12 : 0) + (keyword.colors ? 12 : 0) + (keyword.texcoords ? 8 : 0);
+  const std::uint64_t needed = vertices * vertex_bytes + std::uint64_t(faces) * 4;
+  const std::uint64_t available = bytes_left(in, file_size);
+  if (needed > available) {
+    throw InputError(path, "header",
+                     "declares " + std::to_string(vertices) + " vertices and " +
+                         std::to_string(faces) + " faces, which " + too_large(needed, available));
+  }
+  for (std::uint32_t vertex = 0; vertex < vertices; ++vertex) {
+    float xyz[3];
+    in.read(reinterpret_cast<char*>(xyz), sizeof xyz);
+    if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2]))
+      throw InputError(path, "vertex " + std::to_string(vertex), "non-finite coordinate");
+    in.ignore(static_cast<std::streamsize>(vertex_bytes - sizeof xyz));
+  }
+  std::size_t triangles = 0;
+  for (std::uint32_t face = 0; face < faces; ++face) {
+    const std::string element = "face " + std::to_string(face);
+    const auto corners = read_binary_u32(in, 4, false);
+    if (!corners) {
       throw InputError(
-          path, "vertex " + std::to_string(vertex),
-          "file ends before the " + std::to_string(*vertices) + " vertices its header declares");
+          path, element,
+          "file ends before the " + std::to_string(faces) + " faces its header declares");
     }
-    ++line_number;
-    const auto tokens = split_whitespace(line);
-    const std::string element = vertex_element(vertex, line_number);
-    if (tokens.size() < vertex_properties.size()) {
+    const std::uint64_t left = bytes_left(in, file_size);
+    if (std::uint64_t(*corners) * 4 > left) {
       throw InputError(path, element,
-                       "fewer values than the " + std::to_string(vertex_properties.size()) +
-                           " vertex properties of the header");
+                       std::to_string(*corners) + " vertex indices need " +
+                           std::to_string(std::uint64_t(*corners) * 4) + " bytes, only " +
+                           std::to_string(left) + " are left");
     }
-    for (const std::size_t column : columns) check_coordinate_token(path, tokens[column], element);
+    for (std::uint32_t corner = 0; corner < *corners; ++corner) {
+      const std::uint32_t index = *read_binary_u32(in, 4, false);
+      if (index >= vertices) {
+        throw InputError(path, element,
+                         "vertex index " + std::to_string(index) + " is out of range (" +
+                             std::to_string(vertices) + " vertices)");
+      }
+    }
+    if (*corners >= 3) triangles += *corners - 2;
   }
-  (void)faces;  // polygons: their triangle count is not known from the header
-  return counts;
+  return {vertices, triangles};
+}
+
+// OFF: the keyword line, counts "vertices faces edges", vertices (3 coordinates, 3 more with N,
+// the rest of the line is colour and texture), faces (a count, then that many indices, then
+// with C the rest of the line).
+DeclaredCounts scan_off(const std::string& path, std::istream& in) {
+  std::error_code size_error;
+  const std::uintmax_t file_size = std::filesystem::file_size(path, size_error);
+  std::string first_line;
+  if (size_error || !std::getline(in, first_line)) return {};  // OpenMesh reports it
+  const OffKeyword keyword = off_keyword(first_line, !in.eof());
+  if (!keyword.readable) return {};  // not an OFF file OpenMesh can read: it says so
+  if (keyword.binary) return scan_binary_off(path, in, keyword, file_size);
+  const auto keyword_tokens = split_whitespace(first_line);
+  if (keyword_tokens.size() > 1) {
+    throw InputError(path, "line 1",
+                     "text after the OFF keyword: the counts must be on the next line (the reader "
+                     "skips the rest of the keyword line)");
+  }
+
+  TokenReader tokens(in, 2);
+  const std::string header = "header";
+  const std::uint32_t vertices = required_u32(path, tokens, header, "vertex count");
+  const std::uint32_t faces = required_u32(path, tokens, header, "face count");
+  required_u32(path, tokens, header, "edge count");
+  // Every number takes at least one character and a separator (the last one may end the file):
+  // counts the rest of the file cannot hold are refused before anything is read.
+  const std::uint64_t room = bytes_left(in, file_size) + 1;
+  const std::uint64_t vertex_room = 2 * (keyword.normals ? 6 : 3);
+  if (vertices > room / vertex_room) {
+    throw InputError(path, "vertex " + std::to_string(room / vertex_room),
+                     "the file ends before the " + std::to_string(vertices) +
+                         " vertices its header declares (the " + std::to_string(room - 1) +
+                         " bytes after the counts hold at most " +
+                         std::to_string(room / vertex_room) + ")");
+  }
+  const std::uint64_t face_room = (room - vertices * vertex_room) / 2;
+  if (faces > face_room) {
+    throw InputError(path, "face " + std::to_string(face_room),
+                     "the file ends before the " + std::to_string(faces) +
+                         " faces its header declares (the bytes after the vertices hold at most " +
+                         std::to_string(face_room) + ")");
+  }
+
+  for (std::uint32_t vertex = 0; vertex < vertices; ++vertex) {
+    const std::string element = "vertex " + std::to_string(vertex);
+    const std::string what = "the " + std::to_string(vertices) + " vertices its header declares";
+    for (int axis = 0; axis < (keyword.normals ? 6 : 3); ++axis) {
+      const std::string token = required_token(path, tokens, element, what);
+      check_coordinate_token(path, token, element + tokens.at_line());
+    }
+    tokens.skip_rest_of_line();
+  }
+  std::size_t triangles = 0;
+  for (std::uint32_t face = 0; face < faces; ++face) {
+    const std::string element = "face " + std::to_string(face);
+    const std::string what = "the " + std::to_string(faces) + " faces its header declares";
+    const std::string count = required_token(path, tokens, element, what);
+    const std::string located = element + tokens.at_line();
+    const auto corners = parse_u32(count);
+    if (!corners) {
+      throw InputError(path, located, "malformed face (vertex count, then that many indices)");
+    }
+    for (std::uint32_t corner = 0; corner < *corners; ++corner) {
+      const std::string token = required_token(path, tokens, located, what);
+      const auto index = parse_u32(token);
+      if (!index || *index >= vertices) {
+        throw InputError(path, located,
+                         "vertex index '" + token + "' is out of range (" +
+                             std::to_string(vertices) + " vertices)");
+      }
+    }
+    if (keyword.colors) tokens.skip_rest_of_line();
+    if (*corners >= 3) triangles += *corners - 2;
+  }
+  return {vertices, triangles};
+}
+
+// -- PLY ----------------------------------------------------------------------------------------
+
+enum class PlyType { unknown, int8, uint8, int16, uint16, int32, uint32, float32, float64 };
+
+// The type names OpenMesh knows, in the order it tries them when a property line names two.
+constexpr std::pair<std::string_view, PlyType> ply_type_names[] = {
+    {"float32", PlyType::float32}, {"float64", PlyType::float64}, {"float", PlyType::float32},
+    {"double", PlyType::float64},  {"int8", PlyType::int8},       {"uint8", PlyType::uint8},
+    {"char", PlyType::int8},       {"uchar", PlyType::uint8},     {"int32", PlyType::int32},
+    {"uint32", PlyType::uint32},   {"int", PlyType::int32},       {"uint", PlyType::uint32},
+    {"int16", PlyType::int16},     {"uint16", PlyType::uint16},   {"short", PlyType::int16},
+    {"ushort", PlyType::uint16}};
+
+PlyType ply_type(const std::string& name) {
+  for (const auto& [type_name, type] : ply_type_names)
+    if (name == type_name) return type;
+  return PlyType::unknown;
+}
+
+int ply_size(PlyType type) {
+  switch (type) {
+    case PlyType::int8:
+    case PlyType::uint8:
+      return 1;
+    case PlyType::int16:
+    case PlyType::uint16:
+      return 2;
+    case PlyType::float64:
+      return 8;
+    case PlyType::unknown:
+      return 0;
+    default:
+      return 4;
+  }
+}
+
+// The 1- and 4-byte integers OpenMesh's binary reader can read as indices and colours.
+bool ply_byte_or_word(PlyType type) {
+  return type == PlyType::int8 || type == PlyType::uint8 || type == PlyType::int32 ||
+         type == PlyType::uint32;
+}
+
+enum class PlyRole {
+  coordinate,   // vertex x, y, z: read as float
+  float_value,  // vertex normal and texture coordinate: read as float
+  color,        // read as float or as an integer
+  vertex_list,  // the face's vertex_indices
+  skipped,      // anything else: read and dropped
+};
+
+struct PlyProperty {
+  std::string name;
+  PlyType type = PlyType::unknown;  // the entries' type for a list
+  PlyType count_type = PlyType::unknown;
+  bool list = false;
+  PlyRole role = PlyRole::skipped;
+};
+
+struct PlyElement {
+  std::string name;
+  std::uint32_t count = 0;
+  std::string located;  // "element 'face' (line 8)"
+  std::vector<PlyProperty> properties;
+};
+
+PlyRole ply_role(const std::string& element, const std::string& property) {
+  const auto is = [&](std::initializer_list<const char*> names) {
+    return std::any_of(names.begin(), names.end(),
+                       [&](const char* name) { return property == name; });
+  };
+  if (element == "vertex") {
+    if (is({"x", "y", "z"})) return PlyRole::coordinate;
+    if (is({"nx", "ny", "nz", "u", "s", "v", "t"})) return PlyRole::float_value;
+    if (is({"red", "green", "blue", "alpha", "diffuse_red", "diffuse_green", "diffuse_blue"}))
+      return PlyRole::color;
+  }
+  if (element == "face" && is({"red", "green", "blue", "alpha"})) return PlyRole::color;
+  return PlyRole::skipped;
+}
+
+struct PlyHeader {
+  bool binary = false, big_endian = false;
+  std::vector<PlyElement> elements;
+  std::uint64_t body_start = 0;  // binary: where OpenMesh starts reading the data
+};
+
+// One "property ..." line after its keyword, with the rules of OpenMesh's reader and the shapes
+// it reads wrongly refused.
+PlyProperty read_ply_property(const std::string& path, TokenReader& tokens, PlyElement& element,
+                              bool binary) {
+  const std::string end = "the end_header line";
+  PlyProperty property;
+  const std::string first = required_token(path, tokens, "header", end);
+  const std::string located = "header" + tokens.at_line();
+  if (first == "list") {
+    const std::string count_type = required_token(path, tokens, "header", end);
+    const std::string entry_type = required_token(path, tokens, "header", end);
+    property.name = required_token(path, tokens, "header", end);
+    property.list = true;
+    property.count_type = ply_type(count_type);
+    property.type = ply_type(entry_type);
+    if (count_type != "uint8" && count_type != "uchar" && count_type != "uint16" &&
+        count_type != "int") {
+      throw InputError(
+          path, located,
+          "list count type '" + count_type + "' is not supported (uint8, uchar, uint16 or int)");
+    }
+    if (element.name != "face" ||
+        (property.name != "vertex_indices" && property.name != "vertex_index")) {
+      throw InputError(path, located,
+                       "list property '" + property.name +
+                           "' is not supported: only the face element's vertex_indices is read");
+    }
+    if (!element.properties.empty()) {
+      throw InputError(path, located,
+                       "face property '" + element.properties.front().name +
+                           "' before vertex_indices is not supported (the reader drops it)");
+    }
+    if (property.type == PlyType::unknown || property.type == PlyType::float32 ||
+        property.type == PlyType::float64) {
+      throw InputError(path, located, "vertex index type '" + entry_type + "' is not an integer");
+    }
+    if (binary && (count_type == "uint16" || !ply_byte_or_word(property.type))) {
+      throw InputError(path, located,
+                       "binary vertex lists need a uint8, uchar or int count and 8- or 32-bit "
+                       "indices");
+    }
+    property.role = PlyRole::vertex_list;
+    return property;
+  }
+  const std::string second = required_token(path, tokens, "header", end);
+  // OpenMesh takes the type from whichever word is one, in its own order of names.
+  for (const auto& [type_name, type] : ply_type_names) {
+    if (first == type_name || second == type_name) {
+      property.type = type;
+      break;
+    }
+  }
+  property.name = ply_type(first) != PlyType::unknown ? second : first;
+  if (property.type == PlyType::unknown ||
+      (ply_type(first) == PlyType::unknown && ply_type(second) == PlyType::unknown)) {
+    throw InputError(path, located, "property '" + first + " " + second + "' has no known type");
+  }
+  property.role = ply_role(element.name, property.name);
+  if (binary && (property.role == PlyRole::coordinate || property.role == PlyRole::float_value) &&
+      property.type != PlyType::float32) {
+    throw InputError(path, located,
+                     "binary vertex property '" + property.name +
+                         "' must be float (the reader reads no other type for it)");
+  }
+  if (binary && property.role == PlyRole::color && property.type != PlyType::float32 &&
+      !ply_byte_or_word(property.type)) {
+    throw InputError(
+        path, located,
+        "binary colour property '" + property.name + "' must be float or an 8- or 32-bit integer");
+  }
+  return property;
+}
+
+// The header, token by token as OpenMesh reads it. OpenMesh loops forever when its stream fails
+// before end_header (a count that does not parse, the end of the file): every read is checked.
+PlyHeader read_ply_header(const std::string& path, std::istream& in, TokenReader& tokens) {
+  PlyHeader header;
+  const std::string end = "the end_header line";
+  const std::string format = required_token(path, tokens, "header", end);
+  const std::string format_line = tokens.at_line();
+  const std::string encoding = required_token(path, tokens, "header", end);
+  const std::string version = required_token(path, tokens, "header", end);
+  if (format != "format") {
+    throw InputError(path, "header" + format_line,
+                     "expected 'format <ascii|binary_little_endian|binary_big_endian> 1.0'");
+  }
+  if (encoding != "ascii" && encoding != "binary_little_endian" &&
+      encoding != "binary_big_endian") {
+    throw InputError(path, "header" + format_line, "unsupported PLY format '" + encoding + "'");
+  }
+  check_coordinate_token(path, version, "format version" + format_line);
+  header.binary = encoding != "ascii";
+  header.big_endian = encoding == "binary_big_endian";
+
+  std::set<std::string> seen;
+  for (;;) {
+    const auto before_keyword = in.tellg();
+    const auto keyword = tokens.next();
+    // OpenMesh's reader loops forever on a header without end_header: refuse it here.
+    if (!keyword) throw InputError(path, "header", "the PLY header has no end_header line");
+    if (*keyword == "end_header") {
+      if (header.binary) {
+        // OpenMesh seeks to 12 (or, after "\r\n", 14) bytes past where this token's leading
+        // whitespace began: the data it reads start there.
+        in.seekg(before_keyword);
+        char c[2] = {};
+        in.read(c, 2);
+        header.body_start =
+            static_cast<std::uint64_t>(before_keyword) + (c[0] == '\r' && c[1] == '\n' ? 14 : 12);
+        in.clear();
+      }
+      break;
+    }
+    if (*keyword == "comment") {
+      tokens.skip_rest_of_line();
+    } else if (*keyword == "element") {
+      PlyElement element;
+      element.name = required_token(path, tokens, "header", end);
+      element.located = "element '" + element.name + "'" + tokens.at_line();
+      element.count = required_u32(path, tokens, "element '" + element.name + "'", "element count");
+      if ((element.name == "vertex" || element.name == "face") && !seen.insert(element.name).second)
+        throw InputError(path, element.located, "a second '" + element.name + "' element");
+      if (element.name == "face" && !seen.count("vertex"))
+        throw InputError(path, element.located, "the face element comes before the vertex element");
+      header.elements.push_back(std::move(element));
+    } else if (*keyword == "property") {
+      if (header.elements.empty()) {
+        throw InputError(path, "header" + tokens.at_line(), "property before any element");
+      }
+      PlyElement& element = header.elements.back();
+      element.properties.push_back(read_ply_property(path, tokens, element, header.binary));
+    }
+    // Any other word is skipped, as OpenMesh does ("obj_info", free text).
+  }
+  return header;
+}
+
+// PLY: the header declares the elements; the data are walked the way OpenMesh reads them (up to
+// the end of the face element, where it stops), so that no count, list length or index it reads
+// is out of range.
+DeclaredCounts scan_ply(const std::string& path, std::istream& in) {
+  std::error_code size_error;
+  const std::uintmax_t file_size = std::filesystem::file_size(path, size_error);
+  if (size_error) return {};
+  std::string first_line;
+  std::getline(in, first_line);
+  const auto first = split_whitespace(first_line);
+  if (first.size() != 1 || (first[0] != "ply" && first[0] != "PLY"))
+    throw InputError(path, "line 1", "not a PLY file (the first line is not 'ply')");
+  TokenReader tokens(in, 2);
+  const PlyHeader header = read_ply_header(path, in, tokens);
+  const PlyElement* vertex_element = nullptr;
+  for (const PlyElement& element : header.elements)
+    if (element.name == "vertex") vertex_element = &element;
+  for (const char* axis : {"x", "y", "z"}) {
+    const auto named = [&](const PlyProperty& p) { return p.name == axis; };
+    const auto count = vertex_element ? std::count_if(vertex_element->properties.begin(),
+                                                      vertex_element->properties.end(), named)
+                                      : 0;
+    if (count != 1) {
+      throw InputError(path, "header",
+                       std::string("vertex element has ") + (count == 0 ? "no" : "more than one") +
+                           " property " + axis);
+    }
+  }
+  const std::uint32_t vertices = vertex_element->count;
+
+  // Caps by the file size, before anything is read: each value takes at least its size (binary)
+  // or one character and a separator (text; the last one may end the file).
+  const std::uint64_t available =
+      header.binary ? (header.body_start <= file_size ? file_size - header.body_start : 0)
+                    : bytes_left(in, file_size) + 1;
+  std::uint64_t needed = 0;
+  for (const PlyElement& element : header.elements) {
+    std::uint64_t per_instance = 0;
+    for (const PlyProperty& p : element.properties)
+      per_instance += header.binary ? ply_size(p.list ? p.count_type : p.type) : 2;
+    const std::uint64_t bytes =
+        std::uint64_t(element.count) * std::max<std::uint64_t>(1, per_instance);
+    if (bytes > available) {
+      throw InputError(path, element.located,
+                       "declares " + std::to_string(element.count) + " instances, which " +
+                           too_large(bytes, available));
+    }
+    needed += bytes;
+  }
+  if (needed > available) {
+    throw InputError(path, "header", "the declared elements " + too_large(needed, available));
+  }
+
+  if (header.binary) in.seekg(static_cast<std::streamoff>(header.body_start));
+  for (const PlyElement& element : header.elements) {
+    const std::string what = "the " + std::to_string(element.count) + " '" + element.name +
+                             "' elements its header declares";
+    for (std::uint32_t i = 0; i < element.count; ++i) {
+      const std::string element_i = element.name + " " + std::to_string(i);
+      for (const PlyProperty& p : element.properties) {
+        if (!header.binary) {
+          const std::string token = required_token(path, tokens, element_i, what);
+          const std::string located = element_i + tokens.at_line();
+          if (p.role == PlyRole::coordinate || p.role == PlyRole::float_value ||
+              (p.role == PlyRole::color && p.type == PlyType::float32)) {
+            check_coordinate_token(path, token, located);
+          } else if (p.role == PlyRole::color && !is_int32(token)) {
+            throw InputError(path, located, "colour '" + token + "' is not an integer");
+          } else if (p.role == PlyRole::vertex_list) {
+            const auto corners = parse_u32(token);
+            if (!corners)
+              throw InputError(path, located, "vertex count '" + token + "' is not a number");
+            for (std::uint32_t corner = 0; corner < *corners; ++corner) {
+              const std::string index = required_token(path, tokens, located, what);
+              const auto value = parse_u32(index);
+              if (!value || *value >= vertices) {
+                throw InputError(path, located,
+                                 "vertex index '" + index + "' is out of range (" +
+                                     std::to_string(vertices) + " vertices)");
+              }
+            }
+          }
+          continue;
+        }
+        const std::string& located = element_i;
+        if (p.role == PlyRole::vertex_list) {
+          const auto corners = read_binary_u32(in, ply_size(p.count_type), header.big_endian);
+          if (!corners) throw InputError(path, located, "file ends before " + what);
+          // An int count is read as signed and converted: -1 becomes 4294967295.
+          std::uint32_t n = *corners;
+          if (p.count_type == PlyType::int32) n = std::uint32_t(std::int32_t(n));
+          const std::uint64_t bytes = std::uint64_t(n) * ply_size(p.type);
+          const std::uint64_t left = bytes_left(in, file_size);
+          if (bytes > left) {
+            throw InputError(path, located,
+                             std::to_string(n) + " vertex indices need " + std::to_string(bytes) +
+                                 " bytes, only " + std::to_string(left) + " are left");
+          }
+          for (std::uint32_t corner = 0; corner < n; ++corner) {
+            std::uint32_t index = *read_binary_u32(in, ply_size(p.type), header.big_endian);
+            if (p.type == PlyType::int8) index = std::uint32_t(std::int32_t(std::int8_t(index)));
+            if (index >= vertices) {
+              throw InputError(path, located,
+                               "vertex index " + std::to_string(index) + " is out of range (" +
+                                   std::to_string(vertices) + " vertices)");
+            }
+          }
+          continue;
+        }
+        if (!in.ignore(ply_size(p.type)) || in.gcount() != ply_size(p.type))
+          throw InputError(path, located, "file ends before " + what);
+      }
+    }
+    if (element.name == "face") break;  // OpenMesh reads nothing after the faces
+  }
+  return {vertices, std::nullopt};
 }
 
 std::size_t count_occurrences(const std::string& text, std::string_view what) {

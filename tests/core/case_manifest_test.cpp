@@ -245,5 +245,18 @@ TEST(CaseManifest, SyntaxErrorIsAnInputError) {
   EXPECT_NE(message.find(manifest.string() + ": JSON: "), std::string::npos) << message;
 }
 
+// Found by fuzz_case_manifest (a number like 4e938): the JSON library reports a number beyond
+// double's range as out_of_range, not as a parse error, and it escaped as another exception.
+TEST(CaseManifest, NumberBeyondDoubleRangeIsAnInputError) {
+  const TempDir dir;
+  const fs::path manifest =
+      dir.write("overflow.json", "44444444444440000000000000000000000000000742e938585244124955");
+  const std::string message = load_error(manifest);
+  EXPECT_NE(message.find(manifest.string() + ": JSON: "), std::string::npos) << message;
+  const fs::path nested =
+      dir.write("nested.json", "{\"name\": \"x\", \"parameters\": {\"eps_rel\": 1e400}}");
+  EXPECT_NE(load_error(nested).find(nested.string() + ": JSON: "), std::string::npos);
+}
+
 }  // namespace
 }  // namespace shadowcts

@@ -643,3 +643,184 @@ TEST(MeshFiles, PlyHeaderWithoutEndHeaderIsAnInputErrorNotAHang) {
 
 }  // namespace
 }  // namespace shadowcts
+
+namespace shadowcts {
+namespace {
+
+std::string binary_u32(std::uint32_t value) {
+  std::string bytes(4, '\0');
+  for (int i = 0; i < 4; ++i) bytes[i] = static_cast<char>((value >> (8 * i)) & 0xFF);
+  return bytes;
+}
+
+// Found by the OFF fuzz target (oom-d1c3974a...): a vertex count that overflows 32 bits made
+// OpenMesh reserve 17 GB (it reads the counts with `>>` and trusts whatever they become), and a
+// count that parses but exceeds the file would make it allocate and loop as much. Counts are
+// checked against what the file can hold before OpenMesh sees it.
+TEST(MeshFiles, OffCountsBeyondTheFileAreInputErrorsNotAllocations) {
+  const TempDir dir;
+  // The fuzz input's shape: digits running past 32 bits, then garbage, where the counts belong.
+  const fs::path overflow =
+      dir.write("overflow.off", "OFF\n" + std::string(60, '5') + "=" + std::string(40, '5') +
+                                    "0 0 1\n 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n");
+  const std::string overflow_message = load_error(overflow);
+  EXPECT_NE(overflow_message.find(overflow.string()), std::string::npos) << overflow_message;
+  EXPECT_NE(overflow_message.find("vertex count '5555"), std::string::npos) << overflow_message;
+
+  const fs::path huge =
+      dir.write("huge.off", "OFF\n4294967295 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  const std::string huge_message = load_error(huge);
+  EXPECT_NE(huge_message.find(huge.string()), std::string::npos) << huge_message;
+  EXPECT_NE(huge_message.find("4294967295 vertices"), std::string::npos) << huge_message;
+
+  const fs::path faces =
+      dir.write("faces.off", "OFF\n3 4000000000 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  const std::string faces_message = load_error(faces);
+  EXPECT_NE(faces_message.find("4000000000 faces"), std::string::npos) << faces_message;
+
+  // Binary OFF: the counts are raw 32-bit integers, and so is each face's corner count.
+  std::string binary = "OFF BINARY\n" + binary_u32(4000000000u) + binary_u32(1) + binary_u32(0);
+  const std::string binary_message = load_error(dir.write("binary.off", binary));
+  EXPECT_NE(binary_message.find("4000000000 vertices"), std::string::npos) << binary_message;
+  std::string corners = "OFF BINARY\n" + binary_u32(3) + binary_u32(1) + binary_u32(0);
+  for (const float v : {0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f})
+    corners.append(reinterpret_cast<const char*>(&v), sizeof v);
+  corners += binary_u32(0xFFFFFFFFu) + binary_u32(0) + binary_u32(1) + binary_u32(2);
+  const std::string corners_message = load_error(dir.write("corners.off", corners));
+  EXPECT_NE(corners_message.find("face 0"), std::string::npos) << corners_message;
+  EXPECT_NE(corners_message.find("4294967295 vertex indices"), std::string::npos)
+      << corners_message;
+
+  // Still read: a binary OFF triangle.
+  std::string triangle = "OFF BINARY\n" + binary_u32(3) + binary_u32(1) + binary_u32(0);
+  for (const float v : {0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f})
+    triangle.append(reinterpret_cast<const char*>(&v), sizeof v);
+  triangle += binary_u32(3) + binary_u32(0) + binary_u32(1) + binary_u32(2);
+  EXPECT_EQ(load_scene_file(dir.write("triangle.off", triangle).string()).triangles.size(), 1u);
+}
+
+// OpenMesh's OFF reader takes the counts from the line after the keyword and does not skip
+// comments: either would make it read other numbers than the file means.
+TEST(MeshFiles, OffCountsOnTheKeywordLineOrCommentsAreInputErrors) {
+  const TempDir dir;
+  const std::string same_line =
+      load_error(dir.write("same_line.off", "OFF 3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"));
+  EXPECT_NE(same_line.find("line 1"), std::string::npos) << same_line;
+  const std::string comment = load_error(
+      dir.write("comment.off", "OFF\n3 1 0\n# a comment\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"));
+  EXPECT_NE(comment.find("vertex 0 (line 3)"), std::string::npos) << comment;
+}
+
+const std::string ply_triangle_header =
+    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+    "property float z\nelement face 1\nproperty list uchar int vertex_indices\n";
+const std::string ply_triangle_body = "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+
+// Found by the PLY fuzz target (timeout-a4334fc3...): OpenMesh's header loop checks its stream
+// only for I/O errors, so once a read fails (a count or version that does not parse, or the end
+// of the file before end_header) it spins forever; a property line cut short swallows
+// "end_header" as its name and sends it past the header. Each shape is an InputError now.
+TEST(MeshFiles, PlyHeadersThatOpenMeshCannotFinishAreInputErrorsNotHangs) {
+  const TempDir dir;
+  // The fuzz input's shape: binary data after a misspelt end_header.
+  std::string misspelt =
+      "ply\nformat binary_little_endian 1.0\ncomment VCGLIB generated\nelement vertex 8\n"
+      "property float x\nproperty float y\nproperty float z\nelement face 12\n"
+      "property list uchar int vertex_indicees\nnd_header\n";
+  misspelt.append(96, '\0');
+  misspelt += std::string("\x03\x00\x00\x00\x00\x01\x00\x00\x00\x02\x00\x00\x00", 13);
+  const fs::path misspelt_file = dir.write("misspelt.ply", misspelt);
+  const std::string misspelt_message = load_error(misspelt_file);
+  EXPECT_NE(misspelt_message.find(misspelt_file.string()), std::string::npos) << misspelt_message;
+
+  struct Shape {
+    std::string name, header, expected;
+  };
+  const std::vector<Shape> shapes = {
+      {"count_not_a_number",
+       "ply\nformat ascii 1.0\nelement vertex three\nproperty float x\nproperty float y\n"
+       "property float z\nelement face 1\nproperty list uchar int vertex_indices\n",
+       "count 'three'"},
+      {"count_overflows",
+       "ply\nformat ascii 1.0\nelement vertex 99999999999\nproperty float x\nproperty float y\n"
+       "property float z\nelement face 1\nproperty list uchar int vertex_indices\n",
+       "count '99999999999'"},
+      {"version_not_a_number", "ply\nformat ascii one\n" + ply_triangle_header.substr(21),
+       "format version"},
+      {"property_cut_short",
+       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+       "property float z\nelement face 1\nproperty float\n",
+       "end_header"},
+      {"property_before_element",
+       "ply\nformat ascii 1.0\nproperty float x\n" + ply_triangle_header.substr(21),
+       "property before any element"},
+      {"count_beyond_the_file",
+       "ply\nformat ascii 1.0\nelement vertex 4000000000\nproperty float x\nproperty float y\n"
+       "property float z\nelement face 1\nproperty list uchar int vertex_indices\n",
+       "4000000000"},
+  };
+  for (const Shape& shape : shapes) {
+    const fs::path file =
+        dir.write(shape.name + ".ply", shape.header + "end_header\n" + ply_triangle_body);
+    const std::string message = load_error(file);
+    EXPECT_NE(message.find(file.string()), std::string::npos) << shape.name << ": " << message;
+    EXPECT_NE(message.find(shape.expected), std::string::npos) << shape.name << ": " << message;
+  }
+  // The triangle itself loads.
+  EXPECT_EQ(load_scene_file(
+                dir.write("triangle.ply", ply_triangle_header + "end_header\n" + ply_triangle_body)
+                    .string())
+                .triangles.size(),
+            1u);
+}
+
+// Binary PLY face lists are read with the count the file gives: an int count of -1 would make
+// OpenMesh read four billion indices. Lists are checked against the bytes left.
+TEST(MeshFiles, PlyFaceListLongerThanTheFileIsAnInputError) {
+  const TempDir dir;
+  std::string ply =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+      "property float y\nproperty float z\nelement face 1\nproperty list int int vertex_indices\n"
+      "end_header\n";
+  for (const float v : {0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f})
+    ply.append(reinterpret_cast<const char*>(&v), sizeof v);
+  const std::string good = ply + binary_u32(3) + binary_u32(0) + binary_u32(1) + binary_u32(2);
+  EXPECT_EQ(load_scene_file(dir.write("good.ply", good).string()).triangles.size(), 1u);
+  const std::string bad = ply + binary_u32(0xFFFFFFFFu) + binary_u32(0) + binary_u32(1);
+  const std::string message = load_error(dir.write("bad.ply", bad));
+  EXPECT_NE(message.find("face 0"), std::string::npos) << message;
+  EXPECT_NE(message.find("4294967295 vertex indices"), std::string::npos) << message;
+}
+
+// Found by the OBJ fuzz target (crash-b3956210...): a face corner without a vertex index
+// ("f /4 3 2 1") makes OpenMesh's reader fail an assertion and abort the process. Corners must
+// start with an index that names a vertex.
+TEST(MeshFiles, ObjCornerWithoutAVertexIndexIsAnInputErrorNotACrash) {
+  const TempDir dir;
+  const std::string vertices = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvn 0 0 1\n";
+  struct Shape {
+    std::string name, face, expected;
+  };
+  for (const Shape& shape : std::vector<Shape>{
+           {"texture_first", "f /4 3 2 1\n", "corner '/4'"},
+           {"normal_first", "f //1 2//1 3//1\n", "corner '//1'"},
+           {"zero", "f 0 1 2\n", "vertex index 0"},
+           {"beyond", "f 1 2 7\n", "vertex index 7 is out of range (4 vertices)"},
+           {"before_first", "f -1 -2 -5\n", "relative vertex index -5"},
+           {"garbage", "f 1 2 x3\n", "corner 'x3'"},
+       }) {
+    const fs::path file = dir.write(shape.name + ".obj", vertices + shape.face);
+    const std::string message = load_error(file);
+    EXPECT_NE(message.find(file.string()), std::string::npos) << shape.name << ": " << message;
+    EXPECT_NE(message.find("f 1 (line 6)"), std::string::npos) << shape.name << ": " << message;
+    EXPECT_NE(message.find(shape.expected), std::string::npos) << shape.name << ": " << message;
+  }
+  // Still read: texture and normal references, relative indices, forward references.
+  const std::string good = "f 1/1/1 2//1 3\nf -1 -2 -3\n" + vertices + "f 5 6 7\n";
+  EXPECT_EQ(load_scene_file(dir.write("good.obj", vertices + "vt 0 0\n" + good).string())
+                .triangles.size(),
+            3u);
+}
+
+}  // namespace
+}  // namespace shadowcts
