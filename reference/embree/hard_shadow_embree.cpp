@@ -1,6 +1,9 @@
 #include "reference/embree/hard_shadow_embree.h"
 
+#include <algorithm>
 #include <atomic>
+#include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include <tbb/blocked_range.h>
@@ -13,6 +16,12 @@
 
 namespace shadowcts {
 namespace {
+
+std::string power_of_two(double x) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.3g (2^%.1f)", x, std::log2(x));
+  return text;
+}
 
 class EmbreeHardShadow final : public Algorithm {
  public:
@@ -27,6 +36,37 @@ class EmbreeHardShadow final : public Algorithm {
   }
 
   const AlgorithmInfo& info() const override { return info_; }
+
+  // Embree intersects in float32, so its answers hold only where its products stay normal
+  // floats: see embree_min_scale_exponent in the header and docs/specification.md.
+  std::optional<std::string> unsupported_reason(const Case& c, const ViewSamples& samples,
+                                                const std::string& variant) const override {
+    if (auto why = Algorithm::unsupported_reason(c, samples, variant)) return why;
+    const double scale = c.scale();
+    const double low = std::ldexp(1.0, embree_min_scale_exponent);
+    const double high = std::ldexp(1.0, embree_max_scale_exponent);
+    const std::string range = "outside Embree's float32 range 2^" +
+                              std::to_string(embree_min_scale_exponent) + " <= S <= 2^" +
+                              std::to_string(embree_max_scale_exponent) + ": ";
+    if (!(scale >= low))
+      return range + "the case scale S = " + power_of_two(scale) +
+             " makes its ray/triangle products (of three coordinates) float32 denormals";
+    if (scale > high)
+      return range + "the case scale S = " + power_of_two(scale) +
+             " makes its ray/triangle products (of three coordinates) overflow float32";
+    if (c.light && c.light->kind != ShadowLightKind::point) {
+      // The edge tests multiply two coordinates by the direction vector as given.
+      const glm::vec3& d = c.light->direction;
+      const double length = std::max({std::fabs(d.x), std::fabs(d.y), std::fabs(d.z)});
+      const double product = scale * scale * length;
+      if (!(product >= low * low * low) || product > high * high * high)
+        return range + "the light direction's largest component " + power_of_two(length) +
+               " times S^2 = " + power_of_two(product) + " leaves the range 2^" +
+               std::to_string(3 * embree_min_scale_exponent) + " ... 2^" +
+               std::to_string(3 * embree_max_scale_exponent) + " of its products";
+    }
+    return std::nullopt;
+  }
 
   // build: the Embree device and scene (geometry, BVH build, commit); query: the shadow rays.
   std::vector<std::string> timed_phases(const std::string&) const override {
