@@ -153,6 +153,8 @@ MetricRun run_metric(const Case& c, const ViewSamples& samples, const MetricOpti
     start = std::chrono::steady_clock::now();
     TraversalScene traversal;
     traversal.c = &c;
+    const ExactShadowPredicate exact(hard_shadow_light(c), c.scale());
+    traversal.exact = &exact;
     traversal.clustering = &scene.clustering;
     traversal.volumes = &scene.volumes;
     traversal.elements = &structure.elements;

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "oracles/exact_segment_triangle.h"
 #include "reference/metric/bounding_volumes.h"
 #include "reference/metric/clustering.h"
 #include "reference/metric/counters.h"
@@ -19,6 +20,9 @@ namespace shadowcts::metric {
 
 struct TraversalScene {
   const Case* c = nullptr;
+  // Decides again where the float test misses a triangle whose edge the ray passes within
+  // rounding of (ray_near_triangle_edge: a crack at a T-junction).
+  const ExactShadowPredicate* exact = nullptr;
   const Clustering* clustering = nullptr;
   const std::vector<ClusterVolume>* volumes = nullptr;  // per cluster
   const std::vector<LightSpaceElement>* elements = nullptr;

@@ -96,11 +96,18 @@ double PlaneSide::error_bound(const TopNode& node, bool capping, const glm::dvec
   // Rounding the coefficients to float moves each by at most 2^-24 of itself, and the offset was
   // computed as -n . L (or -n . a) with terms up to |n|_1 M: 2^-22 of those magnitudes bounds
   // both and the evaluation's roundings; the extra term covers the double normal's own error.
+  // Below float's normal range (a scene scaled below about 2^-40: the offset is a product of
+  // three coordinates) rounding moves a coefficient by up to 2^-150 instead, whatever its size
+  // (subnormal_error). A coefficient beyond float's range is infinite, and so is the bound: the exact
+  // test decides.
   const double a = std::fabs(node.plane[0]), b = std::fabs(node.plane[1]),
                c = std::fabs(node.plane[2]), d = std::fabs(node.plane[3]);
   const double magnitude =
       a * std::fabs(p.x) + b * std::fabs(p.y) + c * std::fabs(p.z) + d + (a + b + c) * scene_bound_;
-  return 0x1p-22 * magnitude + (capping ? capping_extra_error_ : edge_extra_error_);
+  const double subnormal_error =
+      0x1p-149 * (std::fabs(p.x) + std::fabs(p.y) + std::fabs(p.z) + 1.0);
+  return 0x1p-22 * magnitude + subnormal_error +
+         (capping ? capping_extra_error_ : edge_extra_error_);
 }
 
 int PlaneSide::side(const TopTree& tree, std::uint32_t node, const glm::dvec3& p) const {

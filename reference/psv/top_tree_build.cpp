@@ -25,8 +25,10 @@ float triangle_wedge(const PlaneSide& planes, const TopNode& node, const Triangl
   double extent = 0.0;
   for (const glm::vec3& v : {t.v0, t.v1, t.v2}) {
     const glm::dvec3 p(v);
-    extent =
-        std::max(extent, std::fabs(planes.value(node, p)) + planes.error_bound(node, false, p));
+    const double bound = std::fabs(planes.value(node, p)) + planes.error_bound(node, false, p);
+    // A plane whose float coefficients overflowed (huge scenes) gives NaN: it must stay NaN (no
+    // wedge prunes then), where std::max would drop it.
+    if (std::isnan(bound) || bound > extent) extent = bound;
   }
   if (planes.light().directional) return round_up_to_float(extent);
   if (!(depth > 0.0f)) return INFINITY;

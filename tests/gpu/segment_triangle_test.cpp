@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <limits>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -304,7 +305,9 @@ struct ReferenceAnswer {
   bool hit;
 };
 
-ReferenceAnswer reference_hit(const ShadowRay& ray, const TestTriangle& t) {
+// `t_unit`: the length of t = 1 in scene units where t is a distance (a unit-length direction in a
+// scene scaled by t_unit); t along a segment is a fraction.
+ReferenceAnswer reference_hit(const ShadowRay& ray, const TestTriangle& t, double t_unit = 1.0) {
   const glm::dvec3 o(ray.origin), d(ray.direction), a(t.a), b(t.b), c(t.c);
   const glm::dvec3 e1 = b - a, e2 = c - a;
   const glm::dvec3 p = glm::cross(d, e2);
@@ -320,12 +323,18 @@ ReferenceAnswer reference_hit(const ShadowRay& ray, const TestTriangle& t) {
   const double w = 1.0 - u - v;
   const double t_hit = glm::dot(e2, q) / det;
   const double edge_distance = std::min({u, v, w});
-  if (std::abs(edge_distance) < margin || std::abs(t_hit) < margin) return {false, false};
+  if (std::abs(edge_distance) < margin || std::abs(t_hit) < margin * t_unit) return {false, false};
   if (!std::isinf(ray.t_max) && std::abs(t_hit - ray.t_max) < margin) return {false, false};
   return {true, edge_distance > 0.0 && t_hit > 0.0 && t_hit <= ray.t_max};
 }
 
-void expect_matches_reference(bool directional) {
+// Positions scaled by 2^k (exact for these coordinates at every k used).
+glm::vec3 scaled(const glm::vec3& v, int k) {
+  return {std::ldexp(v.x, k), std::ldexp(v.y, k), std::ldexp(v.z, k)};
+}
+
+void expect_matches_reference(bool directional, int k = 0) {
+  SCOPED_TRACE("scaled by 2^" + std::to_string(k));
   std::mt19937_64 random(directional ? 17 : 19);
   std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
   int decisive = 0, hits_seen = 0, mismatches = 0;
@@ -337,16 +346,18 @@ void expect_matches_reference(bool directional) {
     // Aim near the triangle so that hits are common.
     const glm::vec3 target =
         (t.a + t.b + t.c) / 3.0f + glm::vec3(unit(random), unit(random), unit(random)) * 0.5f;
+    // The light before, near or beyond the triangle.
+    const glm::vec3 light = sample + (1.25f + unit(random)) * (target - sample);
+    const TestTriangle scaled_triangle{scaled(t.a, k), scaled(t.b, k), scaled(t.c, k)};
     const ShadowRay ray =
-        directional
-            ? ray_to_directional_light(sample, glm::normalize(target - sample))
-            // The light before, near or beyond the triangle.
-            : segment_to_point_light(sample, sample + (1.25f + unit(random)) * (target - sample));
-    const ReferenceAnswer expected = reference_hit(ray, t);
+        directional ? ray_to_directional_light(scaled(sample, k), glm::normalize(target - sample))
+                    : segment_to_point_light(scaled(sample, k), scaled(light, k));
+    const ReferenceAnswer expected =
+        reference_hit(ray, scaled_triangle, directional ? std::ldexp(1.0, k) : 1.0);
     if (!expected.decisive) continue;
     ++decisive;
     hits_seen += expected.hit ? 1 : 0;
-    mismatches += hits(ray, t) != expected.hit ? 1 : 0;
+    mismatches += hits(ray, scaled_triangle) != expected.hit ? 1 : 0;
   }
   EXPECT_EQ(mismatches, 0);
   // The comparison must exercise both answers in quantity.
@@ -361,6 +372,31 @@ TEST(SegmentTriangle, MatchesDoubleReferenceAwayFromEdgesForSegments) {
 
 TEST(SegmentTriangle, MatchesDoubleReferenceAwayFromEdgesForDirectionalRays) {
   expect_matches_reference(true);
+}
+
+// Float products of two or three lengths leave float's normal range in tiny and huge scenes
+// (underflow below about 2^-40, overflow above about 2^42): the test must notice and decide in
+// double, so that its answers do not depend on the scale.
+TEST(SegmentTriangle, MatchesDoubleReferenceAtTinyAndHugeScales) {
+  for (const int k : {-100, -60, -47, 47, 60, 100}) {
+    expect_matches_reference(false, k);
+    expect_matches_reference(true, k);
+  }
+}
+
+// Found by fuzz_degenerate through the metric algorithm: a directional ray at a scene scale of
+// about 2^-49 whose hit distance (a product of three lengths, ~2^-147) underflowed to zero in
+// float, so the blocker was missed (a leak). The same ray hits at every scale.
+TEST(SegmentTriangle, DirectionalHitAtTwoToTheMinus49IsNotLostToUnderflow) {
+  const glm::vec3 direction(0.7071067690849304f, 0.7071067690849304f, 0.0f);
+  const TestTriangle blocker{{-0x1.2p-50f, -0x1.54p-50f, -0x1.34p-50f},
+                             {-0x1.24p-50f, -0x1.dcp-50f, -0x1.04p-50f},
+                             {0x1.e8p-51f, -0x1p-56f, 0x1.a4p-50f}};
+  const glm::vec3 sample(-0x1.7p-50f, -0x1.b4p-50f, -0x1.04p-50f);
+  for (const int k : {-60, -20, 0, 20, 49, 90, 150}) {
+    const TestTriangle t{scaled(blocker.a, k), scaled(blocker.b, k), scaled(blocker.c, k)};
+    EXPECT_TRUE(hits(ray_to_directional_light(scaled(sample, k), direction), t)) << "2^" << k;
+  }
 }
 
 }  // namespace

@@ -10,7 +10,15 @@
 // therefore exact for one consistent perturbation of the mesh, and a ray cannot slip between two
 // triangles through a shared edge or vertex. Triangles are closed (edges and vertices hit, on both
 // sides of a shared edge), triangles of zero area never hit, and hits count for t in (0, t_max].
+//
+// Float's relative rounding holds only in its normal range: the edge functions are products of two
+// lengths and the hit distance's numerator of three (of two for a point light, whose ray-space
+// depths are dimensionless), which underflow in scenes scaled below about 2^-40 and overflow above
+// about 2^42. Every float product is therefore checked to be normal (or an exact zero) and finite;
+// where one is not, the double path decides, whose range covers every float scene.
+#include <cfloat>
 #include <cmath>
+#include <type_traits>
 
 #include <glm/vec3.hpp>
 
@@ -106,8 +114,25 @@ struct EdgeProducts {
   float first, second;
 };
 
-SHADOWCTS_HD inline EdgeProducts edge_products(const RaySpaceVertex& p, const RaySpaceVertex& q) {
-  return {rounded_mul(q.x, p.y), rounded_mul(q.y, p.x)};
+// A float product keeps float's relative rounding: it is finite, and normal unless a factor is
+// zero (then it is an exact zero). Below the normal range its error is absolute, up to 2^-150.
+SHADOWCTS_HD inline bool faithful_product(float a, float b, float product) {
+  const float magnitude = std::fabs(product);
+  return magnitude <= FLT_MAX && (magnitude >= FLT_MIN || a == 0.0f || b == 0.0f);
+}
+
+// rounded_mul that clears `faithful` when a float product leaves the normal range (double's range
+// holds every product of float-range lengths, so double products are always faithful).
+template <typename Real>
+SHADOWCTS_HD inline Real checked_mul(Real a, Real b, bool& faithful) {
+  const Real product = rounded_mul(a, b);
+  if constexpr (std::is_same_v<Real, float>) faithful = faithful && faithful_product(a, b, product);
+  return product;
+}
+
+SHADOWCTS_HD inline EdgeProducts edge_products(const RaySpaceVertex& p, const RaySpaceVertex& q,
+                                               bool& faithful) {
+  return {checked_mul(q.x, p.y, faithful), checked_mul(q.y, p.x, faithful)};
 }
 
 SHADOWCTS_HD inline double exact_edge_function(const RaySpaceVertex& p, const RaySpaceVertex& q) {
@@ -117,9 +142,10 @@ SHADOWCTS_HD inline double exact_edge_function(const RaySpaceVertex& p, const Ra
 
 // Given the edge functions u, v, w (weights of vertices a, b, c, all scaled by det) and the
 // ray-space depths of the vertices: is the origin in the closed triangle at t in (0, t_max]?
+// `faithful` is cleared when a float product left the normal range (the answer is then unsure).
 template <typename Real>
 SHADOWCTS_HD inline bool closed_hit_in_range(Real u, Real v, Real w, Real a_z, Real b_z, Real c_z,
-                                             Real t_max) {
+                                             Real t_max, bool& faithful) {
   const Real zero = 0;
   const bool has_negative = u < zero || v < zero || w < zero;
   const bool has_positive = u > zero || v > zero || w > zero;
@@ -128,10 +154,15 @@ SHADOWCTS_HD inline bool closed_hit_in_range(Real u, Real v, Real w, Real a_z, R
   const Real det = rounded_add(rounded_add(u, v), w);
   if (det == zero) return false;
   const Real t_scaled =
-      rounded_add(rounded_add(rounded_mul(u, a_z), rounded_mul(v, b_z)), rounded_mul(w, c_z));
-  // t = t_scaled / det, compared without dividing.
-  if (det > zero) return t_scaled > zero && t_scaled <= rounded_mul(t_max, det);
-  return t_scaled < zero && t_scaled >= rounded_mul(t_max, det);
+      rounded_add(rounded_add(checked_mul(u, a_z, faithful), checked_mul(v, b_z, faithful)),
+                  checked_mul(w, c_z, faithful));
+  // A sum that overflows is caught here; one whose result is subnormal is exact.
+  if constexpr (std::is_same_v<Real, float>)
+    faithful = faithful && std::fabs(det) <= FLT_MAX && std::fabs(t_scaled) <= FLT_MAX;
+  // t = t_scaled / det, compared without dividing (an infinite t_max takes every t > 0).
+  const Real t_limit = t_max == Real(INFINITY) ? t_max : checked_mul(t_max, det, faithful);
+  if (det > zero) return t_scaled > zero && t_scaled <= t_limit;
+  return t_scaled < zero && t_scaled >= (t_max == Real(INFINITY) ? -t_limit : t_limit);
 }
 
 SHADOWCTS_HD inline bool ray_hits_triangle(const RaySpace& space, const glm::vec3& v0,
@@ -140,24 +171,54 @@ SHADOWCTS_HD inline bool ray_hits_triangle(const RaySpace& space, const glm::vec
   const RaySpaceVertex a = to_ray_space(space, v0);
   const RaySpaceVertex b = to_ray_space(space, v1);
   const RaySpaceVertex c = to_ray_space(space, v2);
-  const EdgeProducts u = edge_products(b, c);
-  const EdgeProducts v = edge_products(c, a);
-  const EdgeProducts w = edge_products(a, b);
-  bool hit;
-  if (u.first != u.second && v.first != v.second && w.first != w.second) {
+  bool faithful = true;
+  const EdgeProducts u = edge_products(b, c, faithful);
+  const EdgeProducts v = edge_products(c, a, faithful);
+  const EdgeProducts w = edge_products(a, b, faithful);
+  bool hit = false;
+  if (faithful && u.first != u.second && v.first != v.second && w.first != w.second) {
     // Distinct rounded products order like the exact ones: every sign below is exact.
     hit = closed_hit_in_range(rounded_sub(u.first, u.second), rounded_sub(v.first, v.second),
-                              rounded_sub(w.first, w.second), a.z, b.z, c.z, space.t_max);
-  } else {
-    // An edge function that is zero in float may be a tiny nonzero value: decide all in double.
+                              rounded_sub(w.first, w.second), a.z, b.z, c.z, space.t_max, faithful);
+  }
+  if (!faithful || u.first == u.second || v.first == v.second || w.first == w.second) {
+    // An edge function that is zero in float may be a tiny nonzero value, and a product outside
+    // float's normal range lost its precision: decide all in double.
+    bool unused = true;
     hit = closed_hit_in_range(exact_edge_function(b, c), exact_edge_function(c, a),
                               exact_edge_function(a, b), static_cast<double>(a.z),
                               static_cast<double>(b.z), static_cast<double>(c.z),
-                              static_cast<double>(space.t_max));
+                              static_cast<double>(space.t_max), unused);
   }
   // The rounded transform can give a collinear triangle a sliver of area; only a hit pays for the
   // exact check.
   return hit && !triangle_has_zero_area(v0, v1, v2);
+}
+
+// Whether the ray passes within the rounding of the ray-space transform of an edge of the
+// triangle. The transform rounds each vertex on its own, by at most about 2^-22 of its distance
+// from the ray origin (per coordinate): triangles that share vertices move together, so shared
+// edges stay watertight, but where a vertex lies on another triangle's edge (a T-junction) a crack
+// that narrow can open. Away from the edges (false) the answer above is that of the exact
+// vertices; near one, a host caller with exact predicates can decide again.
+SHADOWCTS_HD inline bool ray_near_triangle_edge(const RaySpace& space, const glm::vec3& v0,
+                                                const glm::vec3& v1, const glm::vec3& v2) {
+  if (space.zero_direction) return false;
+  const RaySpaceVertex a = to_ray_space(space, v0);
+  const RaySpaceVertex b = to_ray_space(space, v1);
+  const RaySpaceVertex c = to_ray_space(space, v2);
+  // Bound on a vertex's distance from the ray origin in the x, y plane and along the ray, before
+  // the scale of z: its coordinates move by at most 2^-22 of it.
+  const auto extent = [&](const glm::vec3& v, const RaySpaceVertex& r) {
+    return double(std::fabs(r.x)) + double(std::fabs(r.y)) +
+           double(
+               std::fabs(rounded_sub(component(v, space.kz), component(space.origin, space.kz))));
+  };
+  const double na = extent(v0, a), nb = extent(v1, b), nc = extent(v2, c);
+  // An edge function p.y q.x - p.x q.y moves by at most about 2^-20 n_p n_q: 2^-16 leaves room.
+  return std::fabs(exact_edge_function(b, c)) <= 0x1p-16 * nb * nc ||
+         std::fabs(exact_edge_function(c, a)) <= 0x1p-16 * nc * na ||
+         std::fabs(exact_edge_function(a, b)) <= 0x1p-16 * na * nb;
 }
 
 SHADOWCTS_HD inline bool ray_hits_triangle(const ShadowRay& ray, const glm::vec3& v0,

@@ -1,4 +1,5 @@
 // The four TOP tree queries against each other and against the exact oracle.
+#include <cmath>
 #include <cstdint>
 #include <iostream>
 #include <random>
@@ -226,6 +227,56 @@ TEST(PsvSemantics, ReceiverZeroAreaAndClosedTriangles) {
     EXPECT_EQ(r.shadowed[on_receiver], 1);  // still on triangle 2
     EXPECT_EQ(r.shadowed[unblocked], 0);
     EXPECT_EQ(r.shadowed[on_own_face], 0);
+  }
+}
+
+// Found by fuzz_degenerate at a scale of 2^-47: the planes are stored in float, and a plane's
+// offset (a product of three coordinates, ~2^-143) was a subnormal whose absolute rounding the
+// error bound ignored, so a sample landed on the wrong side of its receiver's neighbour without
+// the exact fallback (a false shadow). The bound covers subnormal rounding now; tiny and huge
+// scenes agree with the oracle.
+TEST(PsvSemantics, TinyAndHugeScenesAgreeWithTheOracle) {
+  auto h =
+      testing::make_hand_built_case(testing::point_light({-0x1.78p-51f, 0x1.91p-48f, -0x1.ap-49f}));
+  h.c.triangles.clear();
+  h.add_triangle({-0x1.3p-50f, 0x1.f4p-50f, -0x1.ep-52f}, {-0x1.38p-51f, -0x1.6cp-50f, -0x1.dp-52f},
+                 {-0x1.8p-55f, 0x1.ep-50f, -0x1.ap-53f});
+  const std::uint32_t receiver =
+      h.add_triangle({-0x1.84p-50f, -0x1.18p-51f, -0x1p-55f}, {-0x1p-50f, 0x1.2cp-50f, 0x1.98p-50f},
+                     {0x1.a8p-50f, 0x1.ap-53f, -0x1p-49f});
+  h.c.camera.position = {-0x1.b80b06p-52f, 0x1.ff3e78p-49f, -0x1.0c59bap-49f};
+  h.c.camera.target = {0, 0, 0};
+  const std::size_t sample = h.add_sample({-0x1.528p-50f, 0x1.9p-54f, 0x1.28p-51f}, receiver);
+  const HardShadowTruth truth = exact_hard_shadow_oracle(h.c, h.samples);
+  ASSERT_EQ(truth.band[sample], BandClass::robust_lit);
+  for (QueryKind query :
+       {QueryKind::stack, QueryKind::depth, QueryKind::stackless, QueryKind::hybrid})
+    EXPECT_EQ(run(h.c, h.samples, query).shadowed[sample], 0);
+
+  // A random scene (blockers, samples on shadow images) at 2^-60 and 2^60.
+  for (const int k : {-60, 60}) {
+    auto r = testing::make_random_case(31, 8, 300, 0.75f, 600,
+                                       testing::point_light({1.5f, 10.0f, 0.75f}));
+    const auto scale = [k](glm::vec3& v) {
+      v = {std::ldexp(v.x, k), std::ldexp(v.y, k), std::ldexp(v.z, k)};
+    };
+    for (Triangle& t : r.c.triangles) {
+      scale(t.v0);
+      scale(t.v1);
+      scale(t.v2);
+    }
+    scale(r.c.light->position);
+    scale(r.c.camera.position);
+    scale(r.c.camera.target);
+    for (ViewSample& v : r.samples.samples) scale(v.position);
+    const HardShadowTruth scaled_truth = exact_hard_shadow_oracle(r.c, r.samples);
+    for (QueryKind query :
+         {QueryKind::stack, QueryKind::depth, QueryKind::stackless, QueryKind::hybrid}) {
+      const HardShadowComparison comparison =
+          compare_hard_shadows(run(r.c, r.samples, query).shadowed, scaled_truth);
+      EXPECT_EQ(comparison.leaks + comparison.false_shadows, 0u)
+          << "2^" << k << ": " << comparison.reason;
+    }
   }
 }
 
