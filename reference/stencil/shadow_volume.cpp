@@ -82,11 +82,14 @@ ShadowVolumes build_shadow_volumes(const Occluders& occluders, const HardShadowL
   } else {
     scale = std::max(2.0, 2.0 * reach / light_to_caps_distance(occluders, light.position));
   }
-  const auto extrude = [&](const glm::dvec3& x) {
-    return light.directional ? x + shift * away : light.position + scale * (x - light.position);
-  };
-
   ShadowVolumes volumes;
+  volumes.extrusion.directional = light.directional;
+  volumes.extrusion.light = light.position;
+  volumes.extrusion.scale = scale;
+  volumes.extrusion.shift = shift;
+  volumes.extrusion.away = away;
+  const Extrusion& extrude = volumes.extrusion;
+
   volumes.silhouette_edges = occluders.silhouette.size();
   volumes.faces.reserve(2 * occluders.caps.size() + occluders.silhouette.size());
   for (const LightCap& cap : occluders.caps) {
@@ -110,6 +113,25 @@ ShadowVolumes build_shadow_volumes(const Occluders& occluders, const HardShadowL
     volumes.faces.push_back(dark);
   }
   return volumes;
+}
+
+std::vector<VolumeFace> own_volume_faces(const LightCap& cap, const Extrusion& extrude) {
+  std::vector<VolumeFace> faces(5);
+  faces[0].kind = FaceKind::light_cap;
+  faces[0].triangle = cap.triangle;
+  faces[0].v[0] = cap.v[0], faces[0].v[1] = cap.v[1], faces[0].v[2] = cap.v[2];
+  for (int k = 0; k < 3; ++k) {
+    // As build_shadow_volumes does for a silhouette edge from -> to of a cap.
+    const glm::dvec3& from = cap.v[k];
+    const glm::dvec3& to = cap.v[(k + 1) % 3];
+    VolumeFace& side = faces[std::size_t(1 + k)];
+    side.kind = FaceKind::side_quad;
+    side.v[0] = to, side.v[1] = from, side.v[2] = extrude(from), side.v[3] = extrude(to);
+  }
+  faces[4].kind = FaceKind::dark_cap;
+  faces[4].v[0] = extrude(cap.v[0]), faces[4].v[1] = extrude(cap.v[2]),
+  faces[4].v[2] = extrude(cap.v[1]);
+  return faces;
 }
 
 }  // namespace shadowcts::stencil

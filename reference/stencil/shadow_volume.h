@@ -34,10 +34,30 @@ struct VolumeFace {
   bool is_quad() const { return kind == FaceKind::side_quad; }
 };
 
+// Where a volume vertex x is extruded to: L + scale (x - L) for a point light, x + shift * away
+// for a directional one. One extrusion for every face, so a face built twice is the same bits.
+struct Extrusion {
+  bool directional = false;
+  glm::dvec3 light{0.0};  // point light position
+  double scale = 1.0, shift = 0.0;
+  glm::dvec3 away{0.0};  // directional: unit vector away from the light
+  glm::dvec3 operator()(const glm::dvec3& x) const {
+    return directional ? x + shift * away : light + scale * (x - light);
+  }
+};
+
 struct ShadowVolumes {
   std::vector<VolumeFace> faces;
   std::uint64_t silhouette_edges = 0;
+  Extrusion extrusion;
 };
+
+// The closed volume of one cap on its own: the cap, the side quads of its three edges and its dark
+// cap, built with the same extrusion (and so the same bits) as the faces of `volumes`. The faces
+// of all caps' own volumes sum, in every count, to those of `volumes` (the side quads of edges
+// that two caps share cancel), so subtracting the receiver's own volume leaves the winding of
+// every other caster (a receiver never shadows its own sample).
+std::vector<VolumeFace> own_volume_faces(const LightCap& cap, const Extrusion& extrusion);
 
 // Smallest distance from the point light to any caster triangle of the case (0 when it touches
 // one: every shadow segment then ends on that caster).

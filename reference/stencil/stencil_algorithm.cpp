@@ -85,6 +85,10 @@ class StencilAlgorithm final : public Algorithm {
                             sides[f] = eye_sides(faces[f], eye);
                         });
       const ViewGrid grid(c.camera, samples, faces);
+      // Each caster triangle's cap, for subtracting a receiver's own volume.
+      std::vector<std::uint32_t> cap_of_triangle(c.triangles.size(), no_triangle);
+      for (std::size_t k = 0; k < occluders.caps.size(); ++k)
+        cap_of_triangle[occluders.caps[k].triangle] = std::uint32_t(k);
       clock.lap(build_phase);
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.samples.size(), 256),
                         [&](const tbb::blocked_range<std::size_t>& range) {
@@ -98,9 +102,22 @@ class StencilAlgorithm final : public Algorithm {
                             grid.for_each_candidate(p, [&](std::uint32_t f) {
                               ++tested;
                               (faces[f].is_quad() ? quads : caps) += 1;
-                              winding +=
-                                  count_crossings(faces[f], sides[f], mode, eye, p, s.receiver);
+                              winding += count_crossings(faces[f], sides[f], mode, eye, p);
                             });
+                            // Without the receiver's own volume (volume_counting.h).
+                            const std::uint32_t own = s.receiver < cap_of_triangle.size()
+                                                          ? cap_of_triangle[s.receiver]
+                                                          : no_triangle;
+                            if (own != no_triangle) {
+                              for (const VolumeFace& f :
+                                   own_volume_faces(occluders.caps[own], volumes.extrusion)) {
+                                if (mode == CountingMode::z_pass && f.kind == FaceKind::dark_cap)
+                                  continue;
+                                ++tested;
+                                (f.is_quad() ? quads : caps) += 1;
+                                winding -= count_crossings(f, eye_sides(f, eye), mode, eye, p);
+                              }
+                            }
                             faces_tested[i] = tested;
                             output.shadowed[i] = winding != 0 ? 1 : 0;
                           }

@@ -15,10 +15,10 @@
 //    the eye and every sample (shadow_volume.h), hence beyond every point of the segment.
 //  - z-fail: winding(p-) = (exits - entries) on the ray from p- away from the eye, which leaves
 //    every (bounded) volume: no assumption about the eye; light caps, side quads and dark caps.
-// The receiver's own light cap is treated as passing exactly through p, with the sample on its
-// outer (lit) side whichever side the eye sees it from: the sample lies on it by definition (its
-// float position may be a rounding off the plane), and a receiver never shadows itself (the
-// oracle's rule), also when the eye looks at the side facing away from the light.
+// A receiver never shadows its own sample (the oracle's rule), although the sample lies on it (or,
+// its float position rounded, just off its plane, even inside its volume next to a side quad): the
+// algorithm subtracts the count of the receiver's own closed volume (own_volume_faces), counted
+// by the same rules, from the sample's winding.
 #include <cstdint>
 
 #include <glm/vec3.hpp>
@@ -37,6 +37,6 @@ FaceEyeSides eye_sides(const VolumeFace& face, const glm::dvec3& eye);
 
 // The face's contribution to the sample's winding number (a quad counts as its two triangles).
 int count_crossings(const VolumeFace& face, const FaceEyeSides& eye_side, CountingMode mode,
-                    const glm::dvec3& eye, const glm::dvec3& sample, std::uint32_t receiver);
+                    const glm::dvec3& eye, const glm::dvec3& sample);
 
 }  // namespace shadowcts::stencil

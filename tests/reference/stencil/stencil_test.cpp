@@ -388,5 +388,29 @@ TEST(StencilFuzzReproducer, TheReceiversOwnCapLeavesTheSampleLitWhenSeenFromBehi
   expect_both_variants_exact(r, false);
 }
 
+// fuzz_degenerate-26d850dcbe5b8485: the sample lies on a needle caster one ulp wide, its
+// receiver, but its float position is a rounding below the needle's plane: inside the needle's
+// own volume, beside a side quad. Forcing the sample onto the lit side of the receiver's cap alone
+// counted the entry through the cap but not the exit through the side quad (a false shadow); the
+// receiver's whole own volume is subtracted now.
+TEST(StencilFuzzReproducer, TheReceiversOwnVolumeNeverShadowsASampleBesideItsSideQuad) {
+  ShadowLight light;
+  light.kind = ShadowLightKind::point;
+  light.position = {-96256.0f, 821248.0f, -425984.0f};
+  Reproducer r{reproducer_case(light, {-61843.47265625f, 505311.71875f, -273690.25f},
+                               {0.0f, -62464.015625f, 0.0f}, 0.8421664237976074f, 842166400.0f),
+               {}};
+  const float s = 262144.0f;  // 2^18
+  r.c.triangles = {{{-s, -s, -s}, {s, -s, -s}, {0, -s, s}, 0},
+                   {{-0x1.14p+17f, 0x1.0cp+17f, -0x1p+18f},
+                    {-0x1p+18f, -0x1p+18f, -0x1.34p+17f},
+                    {-0x1.fffffep+17f, -0x1.000002p+18f, -0x1.33fffep+17f},
+                    1}};
+  r.sample.position = {-0x1.c5p+17f, -0x1.3d0002p+17f, -0x1.67p+17f};
+  r.sample.normal = {0, 1, 0};
+  r.sample.receiver = 1;
+  expect_both_variants_exact(r, false);
+}
+
 }  // namespace
 }  // namespace shadowcts
