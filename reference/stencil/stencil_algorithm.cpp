@@ -82,7 +82,7 @@ class StencilAlgorithm final : public Algorithm {
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, faces.size(), 1024),
                         [&](const tbb::blocked_range<std::size_t>& range) {
                           for (std::size_t f = range.begin(); f != range.end(); ++f)
-                            sides[f] = eye_sides(faces[f], eye);
+                            sides[f] = eye_sides(faces[f], eye, light);
                         });
       const ViewGrid grid(c.camera, samples, faces);
       // Each caster triangle's cap, for subtracting a receiver's own volume.
@@ -90,41 +90,40 @@ class StencilAlgorithm final : public Algorithm {
       for (std::size_t k = 0; k < occluders.caps.size(); ++k)
         cap_of_triangle[occluders.caps[k].triangle] = std::uint32_t(k);
       clock.lap(build_phase);
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.samples.size(), 256),
-                        [&](const tbb::blocked_range<std::size_t>& range) {
-                          std::uint64_t quads = 0, caps = 0;
-                          for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                            const ViewSample& s = samples.samples[i];
-                            if (s.sample_class != SampleClass::regular) continue;
-                            const glm::dvec3 p(s.position);
-                            int winding = 0;
-                            std::uint32_t tested = 0;
-                            grid.for_each_candidate(p, [&](std::uint32_t f) {
-                              ++tested;
-                              (faces[f].is_quad() ? quads : caps) += 1;
-                              winding += count_crossings(faces[f], sides[f], mode, eye, p);
-                            });
-                            // Without the receiver's own volume (volume_counting.h).
-                            const std::uint32_t own = s.receiver < cap_of_triangle.size()
-                                                          ? cap_of_triangle[s.receiver]
-                                                          : no_triangle;
-                            if (own != no_triangle) {
-                              for (const VolumeFace& f :
-                                   own_volume_faces(occluders.caps[own], volumes.extrusion)) {
-                                if (mode == CountingMode::z_pass && f.kind == FaceKind::dark_cap)
-                                  continue;
-                                ++tested;
-                                (f.is_quad() ? quads : caps) += 1;
-                                winding -= count_crossings(f, eye_sides(f, eye), mode, eye, p);
-                              }
-                            }
-                            faces_tested[i] = tested;
-                            output.shadowed[i] = winding != 0 ? 1 : 0;
-                          }
-                          // Integer sums: the totals do not depend on the partitioning.
-                          quads_tested += quads;
-                          caps_tested += caps;
-                        });
+      tbb::parallel_for(
+          tbb::blocked_range<std::size_t>(0, samples.samples.size(), 256),
+          [&](const tbb::blocked_range<std::size_t>& range) {
+            std::uint64_t quads = 0, caps = 0;
+            for (std::size_t i = range.begin(); i != range.end(); ++i) {
+              const ViewSample& s = samples.samples[i];
+              if (s.sample_class != SampleClass::regular) continue;
+              const glm::dvec3 p(s.position);
+              int winding = 0;
+              std::uint32_t tested = 0;
+              grid.for_each_candidate(p, [&](std::uint32_t f) {
+                ++tested;
+                (faces[f].is_quad() ? quads : caps) += 1;
+                winding += count_crossings(faces[f], sides[f], mode, eye, p, light);
+              });
+              // Without the receiver's own volume (volume_counting.h).
+              const std::uint32_t own =
+                  s.receiver < cap_of_triangle.size() ? cap_of_triangle[s.receiver] : no_triangle;
+              if (own != no_triangle) {
+                for (const VolumeFace& f :
+                     own_volume_faces(occluders.caps[own], volumes.extrusion)) {
+                  if (mode == CountingMode::z_pass && f.kind == FaceKind::dark_cap) continue;
+                  ++tested;
+                  (f.is_quad() ? quads : caps) += 1;
+                  winding -= count_crossings(f, eye_sides(f, eye, light), mode, eye, p, light);
+                }
+              }
+              faces_tested[i] = tested;
+              output.shadowed[i] = winding != 0 ? 1 : 0;
+            }
+            // Integer sums: the totals do not depend on the partitioning.
+            quads_tested += quads;
+            caps_tested += caps;
+          });
       clock.lap(query_phase);
     });
     output.phase_ms = clock.times();

@@ -5,10 +5,10 @@
 namespace shadowcts::stencil {
 namespace {
 
-// One oriented triangle of a face.
+// One oriented triangle of a face; `sample_side` is the sample's exact side of its plane.
 int triangle_crossing(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, int eye_side,
-                      CountingMode mode, const glm::dvec3& eye, const glm::dvec3& sample) {
-  const int sample_side = orientation(a, b, c, sample);
+                      int sample_side, CountingMode mode, const glm::dvec3& eye,
+                      const glm::dvec3& sample) {
   // z-pass prefilter: e and p strictly on one side, the segment cannot cross.
   if (mode == CountingMode::z_pass && sample_side != 0 && sample_side == eye_side) return 0;
   const int direction = edge_side(eye, sample, a, b);
@@ -24,22 +24,45 @@ int triangle_crossing(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3
   return e_side == -direction && p_side == direction ? -direction : 0;
 }
 
+// The side of x of a side quad's exact plane: through its edge (v[0] = to, v[1] = from) and the
+// point light, or through the edge parallel to the directional light. Its two triangles lie in
+// that plane only up to the rounding of the extruded vertices, so a point on it (a sample exactly
+// on a shadow boundary, behind a T-junction's edge covered from both sides) would land on
+// arbitrary sides of the rounded triangles of the quads through it; on the exact plane it is on
+// every one of them, and the rule for a plane through p holds for all. The sign matches the
+// triangles' orientation: an extruded vertex is L + s (x - L) with s > 1, or x - K d / |d|.
+int side_quad_plane_side(const VolumeFace& face, const HardShadowLight& light,
+                         const glm::dvec3& x) {
+  const glm::dvec3& to = face.v[0];
+  const glm::dvec3& from = face.v[1];
+  if (!light.directional) return -orientation(to, from, light.position, x);
+  return -sign_of_determinant(from, to, light.direction, glm::dvec3(0.0), x, to);
+}
+
+// The exact side of x of the face's plane (caps: their exact triangle; quads: as above).
+int face_side(const VolumeFace& face, const HardShadowLight& light, const glm::dvec3& x) {
+  if (face.is_quad()) return side_quad_plane_side(face, light, x);
+  return orientation(face.v[0], face.v[1], face.v[2], x);
+}
+
 }  // namespace
 
-FaceEyeSides eye_sides(const VolumeFace& face, const glm::dvec3& eye) {
+FaceEyeSides eye_sides(const VolumeFace& face, const glm::dvec3& eye,
+                       const HardShadowLight& light) {
   FaceEyeSides s;
-  s.side[0] = std::int8_t(orientation(face.v[0], face.v[1], face.v[2], eye));
-  if (face.is_quad()) s.side[1] = std::int8_t(orientation(face.v[0], face.v[2], face.v[3], eye));
+  s.side[0] = std::int8_t(face_side(face, light, eye));
+  if (face.is_quad()) s.side[1] = s.side[0];
   return s;
 }
 
 int count_crossings(const VolumeFace& face, const FaceEyeSides& eye_side, CountingMode mode,
-                    const glm::dvec3& eye, const glm::dvec3& sample) {
-  int count =
-      triangle_crossing(face.v[0], face.v[1], face.v[2], eye_side.side[0], mode, eye, sample);
+                    const glm::dvec3& eye, const glm::dvec3& sample, const HardShadowLight& light) {
+  const int sample_side = face_side(face, light, sample);
+  int count = triangle_crossing(face.v[0], face.v[1], face.v[2], eye_side.side[0], sample_side,
+                                mode, eye, sample);
   if (face.is_quad())
-    count +=
-        triangle_crossing(face.v[0], face.v[2], face.v[3], eye_side.side[1], mode, eye, sample);
+    count += triangle_crossing(face.v[0], face.v[2], face.v[3], eye_side.side[1], sample_side, mode,
+                               eye, sample);
   return count;
 }
 

@@ -30,13 +30,15 @@ namespace shadowcts::stencil {
 enum class CountingMode { z_pass, z_fail };
 
 // The eye's exact side of each face triangle, computed once per run (quads: both triangles).
+// Sides of a side quad are taken of its exact plane (through its edge and the light), which its
+// rounded extruded vertices only approximate; caps are exact triangles.
 struct FaceEyeSides {
   std::int8_t side[2] = {0, 0};
 };
-FaceEyeSides eye_sides(const VolumeFace& face, const glm::dvec3& eye);
+FaceEyeSides eye_sides(const VolumeFace& face, const glm::dvec3& eye, const HardShadowLight& light);
 
 // The face's contribution to the sample's winding number (a quad counts as its two triangles).
 int count_crossings(const VolumeFace& face, const FaceEyeSides& eye_side, CountingMode mode,
-                    const glm::dvec3& eye, const glm::dvec3& sample);
+                    const glm::dvec3& eye, const glm::dvec3& sample, const HardShadowLight& light);
 
 }  // namespace shadowcts::stencil

@@ -412,5 +412,51 @@ TEST(StencilFuzzReproducer, TheReceiversOwnVolumeNeverShadowsASampleBesideItsSid
   expect_both_variants_exact(r, false);
 }
 
+// fuzz_watertight-bf947eecba672556: a T-junction (a vertex of one caster in the middle of
+// another's edge) and a sample exactly on the shadow plane of the edge piece both triangles cover
+// (from both sides: robust-shadowed). The two side quads through that plane are extruded through
+// rounded vertices, and with a far sample stretching the extrusion their rounded triangles put the
+// sample on different sides: both variants leaked. Side quads take sides of their exact plane.
+TEST(StencilFuzzReproducer, SidesOfSideQuadsAreTakenOfTheirExactPlane) {
+  ShadowLight light;
+  light.kind = ShadowLightKind::point;
+  light.position = {24.0f, -24.0f, -15.0f};
+  Case c = reproducer_case(light, {10.23654556274414f, -10.883883476257324f, -5.7293500900268555f},
+                           {-62.20115661621094f, 58.1468505859375f, 43.0625114440918f},
+                           0.00020308911916799843f, 203089.109375f);
+  c.camera.width = 2;
+  c.triangles = {{{-1, -8, -1}, {1, -8, -1}, {0, -8, 1}, 0},
+                 {{-0x1.3p-1f, 0x1.cp+2f, 0x1.c8p+1f},
+                  {0x1p-1f, 0x1.fp+2f, 0x1.5p+1f},
+                  {-0x1.4p-1f, 0x1.c4p+2f, 0x1.ap+0f},
+                  1},
+                 {{-0x1.32p-1f, 0x1.c08p+2f, 0x1.a9p+1f},  // on the edge above
+                  {-0x1.4p-1f, 0x1.c4p+2f, 0x1.ap+0f},
+                  {-0x1.8p+0f, 0x1.dp+2f, 0x1.5p+1f},
+                  1}};
+  ViewSamples samples;
+  samples.width = 2;
+  samples.height = 1;
+  for (const auto& [position, normal] :
+       {std::pair{glm::vec3(-0x1.9dap+3f, 0x1.692p+4f, 0x1.554p+3f), glm::vec3(0, -1, 0)},
+        // Far away: it sets how far the volumes are extruded.
+        std::pair{glm::vec3(-0x1.f1cp+6f, 0x1.57f8p+6f, 0x1.5398p+6f), glm::vec3(1, 0, 0)}}) {
+    ViewSample sample;
+    sample.position = position;
+    sample.normal = normal;
+    sample.receiver = 0;
+    sample.pixel_x = std::uint32_t(samples.samples.size());
+    sample.sample_class = SampleClass::regular;  // re-derived below
+    samples.samples.push_back(sample);
+  }
+  validate(c);
+  classify_samples(c, samples, c.name);
+  ASSERT_EQ(samples.samples[0].sample_class, SampleClass::regular);
+  const HardShadowTruth truth = exact_hard_shadow_oracle(c, samples);
+  ASSERT_EQ(truth.band[0], BandClass::robust_shadowed);
+  for (const char* variant : {"zfail", "zpass"})
+    EXPECT_EQ(make_stencil()->run(c, samples, variant).shadowed[0], 1) << variant;
+}
+
 }  // namespace
 }  // namespace shadowcts
