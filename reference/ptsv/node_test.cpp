@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "reference/ptsv/exact_orientation.h"
+
 namespace shadowcts::ptsv {
 
 NodeTolerances NodeTolerances::for_bounds(double node_bound, double scene_bound) {
@@ -32,6 +34,23 @@ PlaneRange plane_range(const Plane& plane, const WorldBox& box) {
     accept_point[k] = positive ? box.hi[k] : box.lo[k];
   }
   return {plane.at(reject_point), plane.at(accept_point)};
+}
+
+bool outside_plane_exactly(const ShadowVolume& volume, int k, const glm::vec3& p) {
+  const ExactVolumePlanes& e = volume.exact;
+  if (k == 3) {
+    // n = (q - p0) x (r - p0): det[q - p0, r - p0, p - p0].
+    return e.triangle_outside *
+               orientation_towards_point(e.vertices[0], e.vertices[1], e.vertices[2], p) >
+           0;
+  }
+  static constexpr int first[3] = {0, 1, 0}, second[3] = {1, 2, 2};
+  const glm::vec3& a = e.vertices[std::size_t(first[k])];
+  const glm::vec3& b = e.vertices[std::size_t(second[k])];
+  // n = (b - a) x (L - a): det[b - a, L - a, p - a]; or n = (b - a) x d: -det[b - a, p - a, d].
+  const int sign = e.directional ? -orientation_towards_direction(a, b, p, e.light)
+                                 : orientation_towards_point(a, b, e.light, p);
+  return e.edge_outside[std::size_t(k)] * sign > 0;
 }
 
 }  // namespace shadowcts::ptsv

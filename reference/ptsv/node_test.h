@@ -12,6 +12,7 @@
 // the accept bias keeps out). All variants therefore give the same mask as testing every sample
 // against every volume.
 #include <array>
+#include <cmath>
 
 #include <glm/vec3.hpp>
 
@@ -76,13 +77,30 @@ NodeVerdict classify_node(const ShadowVolume& volume, const Bounds& bounds,
   return NodeVerdict::refine;
 }
 
+// Whether p lies on the outer side of plane k of the volume (edges 0-2, the triangle 3): the
+// plane's double value where it is clear, the exact orientation sign within its rounding.
+bool outside_plane_exactly(const ShadowVolume& volume, int k, const glm::vec3& p);
+
+inline bool outside_plane(const ShadowVolume& volume, int k, const Plane& plane,
+                          const glm::vec3& sample) {
+  const glm::dvec3 p(sample);
+  const double value = plane.at(p);
+  // The unit normal is rounded by a few 2^-52 of |a||b| / |a x b| (its two vectors), and the
+  // differences p - anchor by 2^-53 of themselves: 2^-44 of that covers both many times over.
+  const glm::dvec3 offset = p - plane.anchor;
+  const double bound = 0x1p-44 * (1.0 + volume.exact.condition[std::size_t(k)]) *
+                       (std::fabs(offset.x) + std::fabs(offset.y) + std::fabs(offset.z));
+  if (value > bound) return true;
+  if (value < -bound) return false;
+  return outside_plane_exactly(volume, k, sample);
+}
+
 // The per-sample test: inside the closed volume, and not the sample's own receiver.
 inline bool sample_in_volume(const ShadowVolume& volume, const ViewSample& sample) {
   if (sample.receiver == volume.triangle) return false;
-  const glm::dvec3 p(sample.position);
-  for (const Plane& plane : volume.edges)
-    if (plane.at(p) > 0.0) return false;
-  return !(volume.triangle_plane.at(p) > 0.0);
+  for (int k = 0; k < 3; ++k)
+    if (outside_plane(volume, k, volume.edges[std::size_t(k)], sample.position)) return false;
+  return !outside_plane(volume, 3, volume.triangle_plane, sample.position);
 }
 
 }  // namespace shadowcts::ptsv

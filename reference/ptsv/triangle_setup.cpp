@@ -162,16 +162,26 @@ std::vector<ShadowVolume> set_up_shadow_volumes(const Case& c,
     static constexpr int edge_first[3] = {0, 1, 0}, edge_second[3] = {1, 2, 2};
     static constexpr int edge_parity[3] = {1, 1, -1};
     bool usable = true;
+    const auto condition = [](const glm::dvec3& x, const glm::dvec3& y) {
+      return glm::length(x) * glm::length(y) / glm::length(glm::cross(x, y));
+    };
     for (int e = 0; e < 3; ++e) {
       const glm::dvec3& a = d[std::size_t(edge_first[e])];
       const glm::dvec3& b = d[std::size_t(edge_second[e])];
       const int opposite_side = -edge_parity[e] * orientation;
       usable = usable && make_plane(glm::cross(b - a, light.towards_light(a)), a, -opposite_side,
                                     volume.edges[std::size_t(e)]);
+      volume.exact.edge_outside[std::size_t(e)] = std::int8_t(-opposite_side);
+      volume.exact.condition[std::size_t(e)] = condition(b - a, light.towards_light(a));
     }
     // Triangle plane: det[q - p, r - p, L - p] = o, and the light's side is outside.
     usable = usable && make_plane(glm::cross(d[1] - d[0], d[2] - d[0]), d[0], orientation,
                                   volume.triangle_plane);
+    volume.exact.vertices = v;
+    volume.exact.triangle_outside = std::int8_t(orientation);
+    volume.exact.directional = light.directional;
+    volume.exact.light = light.directional ? light.direction : light.position;
+    volume.exact.condition[3] = condition(d[1] - d[0], d[2] - d[0]);
     if (!usable) {
       ++counts.edge_on;  // a cross product underflowed: as good as edge-on
       continue;

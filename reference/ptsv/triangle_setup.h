@@ -43,11 +43,28 @@ struct Plane {
   }
 };
 
+// The exact definition of a volume's four planes, so that a sample within rounding of one is
+// decided by an exact orientation sign (sample_in_volume): the canonical vertices p < q < r, the
+// outside signs and the light. Two triangles whose edges lie on one line but do not share both
+// ends (a T-junction) build that plane from different vertices and round it differently; without
+// the exact decision a sample on it can fall outside both volumes.
+struct ExactVolumePlanes {
+  std::array<glm::vec3, 3> vertices{};        // canonical order
+  std::array<std::int8_t, 3> edge_outside{};  // edges (p,q), (q,r), (p,r)
+  std::int8_t triangle_outside = 0;
+  bool directional = false;
+  glm::vec3 light{0.0f};  // the point light, or the direction towards the light
+  // Per plane (edges, then the triangle): |a||b| / |a x b| of the two vectors its normal was
+  // crossed from, which scales the rounding of the unit normal.
+  std::array<double, 4> condition{};
+};
+
 struct ShadowVolume {
   std::uint32_t triangle = 0;
   std::array<Plane, 3> edges;
   Plane triangle_plane;  // positive on the light's side
-  int extra_count = 0;   // Sintorn 2014 per-vertex culling planes
+  ExactVolumePlanes exact;
+  int extra_count = 0;  // Sintorn 2014 per-vertex culling planes
   std::array<Plane, 3> extra;
   int silhouette_count = 0;  // Sintorn 2011 planes through the eye
   std::array<Plane, 3> silhouette;

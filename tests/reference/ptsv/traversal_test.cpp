@@ -166,5 +166,51 @@ TEST(Traversal, KeyLayoutOverflowIsRefusedNotWrapped) {
   }
 }
 
+// fuzz_watertight-8cd4243f0fc51fa8: a T-junction (a vertex of one caster in the middle of the
+// other's edge) and a sample whose segment passes exactly through the edge piece both cover, so
+// both triangles block it. Their edge planes lie on one line but are crossed from different
+// vertices, so they round differently, and the sample fell outside both: every variant leaked.
+// Within rounding of a plane the sample test now decides by the exact orientation sign.
+TEST(Traversal, NoLeakThroughTheRoundedPlanesOfATJunction) {
+  Case c;
+  c.name = "t_junction";
+  c.source = "traversal_test.cpp";
+  c.meshes = {Mesh{"receiver", false, false}, Mesh{"surface", false, true}};
+  ShadowLight light;
+  light.kind = ShadowLightKind::point;
+  light.position = {24.0f, -24.0f, -15.0f};
+  c.light = light;
+  c.camera.position = {9.393692016601562f, -15.036345481872559f, -11.059608459472656f};
+  c.camera.target = {-63.095703125f, 29.44921875f, 8.49609375f};
+  c.camera.near_plane = 0.00015200885536614805f;
+  c.camera.far_plane = 152008.859375f;
+  c.camera.width = c.camera.height = 1;
+  c.triangles = {{{-1, -8, -1}, {1, -8, -1}, {0, -8, 1}, 0},
+                 {{-0x1.8ep+2f, -0x1.72p+2f, -0x1.7p+2f},
+                  {-0x1.5p+2f, -0x1.68p+2f, -0x1.b8p+2f},
+                  {-0x1.9p+2f, -0x1.76p+2f, -0x1.f4p+2f},
+                  1},
+                 {{-0x1.8ep+2f, -0x1.72p+2f, -0x1.7p+2f},
+                  {-0x1.8fcp+2f, -0x1.758p+2f, -0x1.e38p+2f},  // on the first one's edge
+                  {-0x1.dp+2f, -0x1.98p+2f, -0x1.b8p+2f},
+                  1}};
+  ViewSamples samples;
+  samples.width = samples.height = 1;
+  ViewSample sample;
+  sample.position = {-0x1.fcc4p+6f, 0x1.0b98p+6f, 0x1.8cep+4f};
+  sample.normal = {1, 0, 0};
+  sample.receiver = 0;
+  sample.sample_class = SampleClass::regular;  // re-derived below
+  samples.samples = {sample};
+  validate(c);
+  classify_samples(c, samples, c.name);
+  ASSERT_EQ(samples.samples[0].sample_class, SampleClass::regular);
+  const HardShadowTruth truth = exact_hard_shadow_oracle(c, samples);
+  ASSERT_EQ(truth.band[0], BandClass::robust_shadowed);
+  const auto algorithm = make_ptsv();
+  for (const std::string& variant : algorithm->info().variants)
+    EXPECT_EQ(algorithm->run(c, samples, variant).shadowed[0], 1) << variant;
+}
+
 }  // namespace
 }  // namespace shadowcts::ptsv
