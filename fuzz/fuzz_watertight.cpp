@@ -5,8 +5,10 @@
 // vertex or a point of a shared edge (or within a few ulps of one). Every registered algorithm
 // must agree with the exact oracle on every sample the oracle calls robust: through a shared
 // edge of a closed fan that is "shadowed" under every perturbation, so a leak there is a real
-// failure; at T-junctions the exact answer decides. Violations are shrunk and written as
-// reproducers (support/conformance_check.h).
+// failure; at T-junctions the exact answer decides (Embree, whose float test is watertight only
+// for edges shared vertex to vertex, is run but not compared on T-junction surfaces: a documented
+// limit of the peer). Violations are shrunk and written as reproducers
+// (support/conformance_check.h).
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -181,6 +183,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::uint32_t receiver = s.add_triangle({-1, -8, -1}, {1, -8, -1}, {0, -8, 1});
 
   Features features;
+  bool has_t_junction = false;
   const int surfaces = in.ConsumeIntegralInRange<int>(1, 3);
   for (int k = 0; k < surfaces; ++k) {
     const int kind = in.ConsumeIntegralInRange<int>(0, 3);
@@ -200,6 +203,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         break;
       default:
         t_junction(in, surface, features, centre);
+        has_t_junction = true;
         break;
     }
   }
@@ -219,6 +223,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     s.add_sample(p, receiver);
   }
   s.finish();
-  check_every_algorithm(s, "fuzz_watertight");
+  // Embree's watertightness covers edges shared vertex to vertex; at a T-junction its float test
+  // can let a ray through the crack between the rounded triangles (docs/specification.md). The
+  // runner reports that as a Fail; here it is a known limit of the peer, not a finding.
+  std::vector<KnownLimit> known_limits;
+  if (has_t_junction)
+    known_limits.push_back({"embree", "a float ray can slip through a T-junction's crack"});
+  check_every_algorithm(s, "fuzz_watertight", known_limits);
   return 0;
 }

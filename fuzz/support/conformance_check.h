@@ -6,13 +6,23 @@
 // shrunk to a minimal case, written as a reproducer and ends the process with abort(), so
 // libFuzzer stores the input too.
 #include <string>
+#include <vector>
 
 #include "sample_case.h"
 
 namespace shadowcts::fuzzing {
 
+// A documented limit of a peer that a fuzz input exercises: the algorithm still runs (it must not
+// crash, throw or answer NaN), but its answers are not compared with the exact oracle. Only for
+// limits the specification states (docs/specification.md), never for our own algorithms.
+struct KnownLimit {
+  std::string algorithm_id;  // e.g. "embree"
+  std::string why;
+};
+
 // `target` names the fuzz target in messages and in the reproducer's folder name. Reproducers go
 // to $SHADOWCTS_FUZZ_REPRODUCERS (default: ./fuzz-reproducers).
-void check_every_algorithm(const SampleCase& sample_case, const std::string& target);
+void check_every_algorithm(const SampleCase& sample_case, const std::string& target,
+                           const std::vector<KnownLimit>& known_limits = {});
 
 }  // namespace shadowcts::fuzzing
