@@ -22,6 +22,7 @@
 #include "junit_xml.h"
 #include "light_assignment_evaluation.h"
 #include "machine_info.h"
+#include "oracles/hard_shadow_inputs.h"
 #include "report/html_report.h"
 #include "results_json.h"
 #include "run_record.h"
@@ -127,16 +128,6 @@ void check_selection(const RunOptions& options, const Registry& registry) {
                        (options.backend.empty() ? "" : " --backend " + options.backend) +
                        ": no such registered algorithm (see `shadowcts list`)");
   }
-}
-
-// Hard-shadow algorithms see a sun disk as its centre direction: a directional light.
-Case hard_shadow_view(const Case& c) {
-  Case view = c;
-  if (view.light && view.light->kind == ShadowLightKind::sun_disk) {
-    view.light->kind = ShadowLightKind::directional;
-    view.light->angular_radius = 0.0f;
-  }
-  return view;
 }
 
 class Progress {

@@ -7,6 +7,15 @@
 
 namespace shadowcts {
 
+Case hard_shadow_view(const Case& c) {
+  Case view = c;
+  if (view.light && view.light->kind == ShadowLightKind::sun_disk) {
+    view.light->kind = ShadowLightKind::directional;
+    view.light->angular_radius = 0.0f;
+  }
+  return view;
+}
+
 HardShadowLight hard_shadow_light(const Case& c) {
   if (!c.light) throw InputError(c.source, "light", "a hard-shadow case needs a shadow light");
   HardShadowLight light;

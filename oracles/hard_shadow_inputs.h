@@ -18,6 +18,10 @@ struct HardShadowLight {
 // shadows, which the hard-shadow oracles do not define).
 HardShadowLight hard_shadow_light(const Case& c);
 
+// The case as hard-shadow algorithms and oracles see it: a sun disk becomes its centre direction,
+// a directional light. Other cases are returned unchanged.
+Case hard_shadow_view(const Case& c);
+
 // Whether triangle i can cast a shadow: its mesh is a caster and it has non-zero area (exact).
 // Throws InputError when its mesh id is out of range.
 bool casts_shadow(const Case& c, std::size_t i);

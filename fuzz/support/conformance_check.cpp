@@ -11,6 +11,7 @@
 #include <optional>
 #include <sstream>
 
+#include "oracles/hard_shadow_inputs.h"
 #include "reproducer.h"
 #include "shadowcts/case_manifest.h"
 #include "shadowcts/gbuffer_exr.h"
@@ -38,17 +39,6 @@ struct Violation {
   std::string what;
   std::optional<std::size_t> sample;
 };
-
-// Hard-shadow algorithms see a sun disk as its centre direction, a directional light: the
-// runner hands them this view of the case (core/runner.cpp), and so does the fuzzer.
-Case hard_shadow_view(const Case& c) {
-  Case view = c;
-  if (view.light && view.light->kind == ShadowLightKind::sun_disk) {
-    view.light->kind = ShadowLightKind::directional;
-    view.light->angular_radius = 0.0f;
-  }
-  return view;
-}
 
 std::optional<Violation> find_violation(const Subject& subject, const Case& original,
                                         const ViewSamples& samples,
