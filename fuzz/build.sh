@@ -37,7 +37,7 @@ mkdir -p "${OUT}"
 targets=(fuzz_gltf_loader fuzz_obj_loader fuzz_off_loader fuzz_ply_loader fuzz_stl_loader
   fuzz_case_manifest fuzz_gbuffer_exr fuzz_watertight fuzz_degenerate fuzz_differential)
 for target in "${targets[@]}"; do
-  cp "${build}/fuzz/${target}" "${OUT}/"
+  cp "${build}/fuzz/${target}" "${build}/fuzz/${target}_ci" "${OUT}/"
   seeds="${OUT}/${target}_seed_corpus"
   rm -rf "${seeds}"
   mkdir -p "${seeds}"
@@ -50,6 +50,9 @@ done
 cp "${build}/fuzz/reproducer_round_trip" "${OUT}/"
 # EXR files are git-ignored: the G-buffer seeds are written by the project's own writer.
 "${build}/fuzz/write_gbuffer_seeds" "${OUT}/fuzz_gbuffer_exr_seed_corpus"
+# Deep-nesting JSON seeds are several hundred KB: generated, not committed.
+"${build}/fuzz/write_nesting_seeds" "${OUT}/fuzz_gltf_loader_seed_corpus" \
+  "${OUT}/fuzz_case_manifest_seed_corpus"
 # OSS-Fuzz picks seed corpora up as <target>_seed_corpus.zip.
 if command -v zip >/dev/null; then
   for target in "${targets[@]}"; do
