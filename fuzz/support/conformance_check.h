@@ -5,6 +5,7 @@
 // throws, and (soft output) never answers NaN or a fraction outside [0, 1]. A violation is
 // shrunk to a minimal case, written as a reproducer and ends the process with abort(), so
 // libFuzzer stores the input too.
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -13,11 +14,14 @@
 namespace shadowcts::fuzzing {
 
 // A documented limit of a peer that a fuzz input exercises: the algorithm still runs (it must not
-// crash, throw or answer NaN), but its answers are not compared with the exact oracle. Only for
-// limits the specification states (docs/specification.md), never for our own algorithms.
+// crash, throw or answer NaN), but its answers on the samples concerned are not compared with the
+// exact oracle. Only for limits the specification states (docs/specification.md), never for our
+// own algorithms.
 struct KnownLimit {
   std::string algorithm_id;  // e.g. "embree"
   std::string why;
+  // The samples it concerns (indices into the case's samples); empty: the whole case.
+  std::vector<std::size_t> samples = {};
 };
 
 // `target` names the fuzz target in messages and in the reproducer's folder name. Reproducers go

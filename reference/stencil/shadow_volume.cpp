@@ -36,15 +36,6 @@ double point_triangle_distance(const glm::dvec3& p, const glm::dvec3& a, const g
 
 }  // namespace
 
-double light_to_casters_distance(const Case& c, const glm::dvec3& light) {
-  double d = std::numeric_limits<double>::infinity();
-  for (const Triangle& t : c.triangles)
-    if (t.mesh < c.meshes.size() && c.meshes[t.mesh].caster)
-      d = std::min(
-          d, point_triangle_distance(light, glm::dvec3(t.v0), glm::dvec3(t.v1), glm::dvec3(t.v2)));
-  return d;
-}
-
 double light_to_caps_distance(const Occluders& occluders, const glm::dvec3& light) {
   double d = std::numeric_limits<double>::infinity();
   for (const LightCap& cap : occluders.caps)

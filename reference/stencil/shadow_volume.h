@@ -59,10 +59,6 @@ struct ShadowVolumes {
 // every other caster (a receiver never shadows its own sample).
 std::vector<VolumeFace> own_volume_faces(const LightCap& cap, const Extrusion& extrusion);
 
-// Smallest distance from the point light to any caster triangle of the case (0 when it touches
-// one: every shadow segment then ends on that caster).
-double light_to_casters_distance(const Case& c, const glm::dvec3& light);
-
 // Smallest distance from the point light to any cap.
 double light_to_caps_distance(const Occluders& occluders, const glm::dvec3& light);
 

@@ -79,10 +79,12 @@ int facing_sign(const Triangle& t, const HardShadowLight& light) {
   return orientation(a, b, d, light.position);
 }
 
-Occluders find_occluders(const Case& c, const HardShadowLight& light) {
+Occluders find_occluders(const Case& c, const HardShadowLight& light,
+                         const std::vector<std::uint32_t>& excluded) {
   std::vector<std::vector<std::uint32_t>> by_mesh(c.meshes.size());
   for (std::size_t i = 0; i < c.triangles.size(); ++i)
-    if (c.meshes.at(c.triangles[i].mesh).caster)
+    if (c.meshes.at(c.triangles[i].mesh).caster &&
+        !std::binary_search(excluded.begin(), excluded.end(), std::uint32_t(i)))
       by_mesh[c.triangles[i].mesh].push_back(std::uint32_t(i));
 
   Occluders out;

@@ -14,7 +14,9 @@
 //    them in opposite directions carry two opposite side quads that cancel in every count, so they
 //    are dropped: only the remaining edges (the open boundary and the creases where the facing
 //    flips) are silhouette edges. Open meshes are therefore supported, never declined.
-// Triangles edge-on to the light (including zero-area ones) enclose no volume and are dropped.
+// Triangles edge-on to the light (including zero-area ones) enclose no volume and are dropped, and
+// so are the triangles that contain the point light (`excluded`: decided exactly by the caller):
+// their volume degenerates, and a mesh that holds one is never closed around the light.
 #include <cstdint>
 #include <vector>
 
@@ -43,6 +45,8 @@ struct Occluders {
 // Sign of the light's side of triangle t: > 0 when its normal points towards the light.
 int facing_sign(const Triangle& t, const HardShadowLight& light);
 
-Occluders find_occluders(const Case& c, const HardShadowLight& light);
+// `excluded`: caster triangles that are not caps whatever they face (sorted indices).
+Occluders find_occluders(const Case& c, const HardShadowLight& light,
+                         const std::vector<std::uint32_t>& excluded = {});
 
 }  // namespace shadowcts::stencil

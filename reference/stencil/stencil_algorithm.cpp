@@ -8,6 +8,7 @@
 
 #include "oracles/hard_shadow_inputs.h"
 #include "oracles/thread_limit.h"
+#include "reference/light_on_caster.h"
 #include "reference/stencil/shadow_volume.h"
 #include "reference/stencil/silhouette.h"
 #include "reference/stencil/view_grid.h"
@@ -47,15 +48,6 @@ class StencilAlgorithm final : public Algorithm {
     return build_and_query_phases();
   }
 
-  std::optional<std::string> unsupported_reason(const Case& c, const ViewSamples& samples,
-                                                const std::string& variant) const override {
-    if (auto reason = Algorithm::unsupported_reason(c, samples, variant)) return reason;
-    const HardShadowLight light = hard_shadow_light(c);
-    if (!light.directional && !(light_to_casters_distance(c, light.position) > 0.0))
-      return "the point light touches a caster triangle: its shadow volume has no extent";
-    return std::nullopt;
-  }
-
   AlgorithmOutput run(const Case& c, const ViewSamples& samples,
                       const std::string& variant) const override {
     const CountingMode mode = parse_variant(variant);
@@ -67,12 +59,15 @@ class StencilAlgorithm final : public Algorithm {
     output.shadowed.assign(samples.samples.size(), 0);
     std::vector<std::uint32_t> faces_tested(samples.samples.size(), 0);
     std::atomic<std::uint64_t> quads_tested{0}, caps_tested{0};
+    std::uint64_t light_on_caster = 0;
     Occluders occluders;
     ShadowVolumes volumes;
     PhaseClock clock;
     run_with_thread_limit(c.parameters.threads, [&] {
       clock.restart();
-      occluders = find_occluders(c, light);
+      // A caster that contains the point light (exactly) has a degenerate volume and shadows
+      // every sample it does not receive: it is no cap, and the rule is applied after counting.
+      occluders = find_occluders(c, light, casters_containing_light(c));
       volumes = build_shadow_volumes(occluders, light, eye, samples);
       // z-pass never needs the dark caps (see volume_counting.h): leave them out of its grid.
       std::vector<VolumeFace> faces;
@@ -124,13 +119,15 @@ class StencilAlgorithm final : public Algorithm {
             quads_tested += quads;
             caps_tested += caps;
           });
+      light_on_caster = shadow_samples_by_light_on_caster(c, samples, output.shadowed);
       clock.lap(query_phase);
     });
     output.phase_ms = clock.times();
     output.counters = {{"silhouette_edges", volumes.silhouette_edges},
                        {"caps", occluders.caps.size()},
                        {"quads_tested", quads_tested.load()},
-                       {"caps_tested", caps_tested.load()}};
+                       {"caps_tested", caps_tested.load()},
+                       {"light_on_caster_samples", light_on_caster}};
     output.per_sample_counters = {{"faces_tested", std::move(faces_tested)}};
     return output;
   }
