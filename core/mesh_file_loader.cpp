@@ -111,9 +111,33 @@ struct DeclaredCounts {
       : vertices(vertices_), triangles(triangles_) {}
   std::optional<std::size_t> vertices;
   std::optional<std::size_t> triangles;              // after fan triangulation of polygons
-  std::size_t faces = 0;                             // OBJ: face lines
-  std::size_t repeated_vertex_faces = 0;             // OBJ: faces naming one vertex twice
-  std::optional<std::string> first_repeated_vertex;  // "f 2 (line 7) uses vertex 3 twice"
+  std::size_t faces = 0;                             // faces seen by the scan
+  std::size_t repeated_vertex_faces = 0;             // of them, with fewer than 3 distinct corners
+  std::optional<std::string> first_repeated_vertex;  // "f 2 (line 7) uses vertex 3 more ..."
+
+  // One face of the file at `element`, by its corners' vertex numbers (as the file numbers
+  // them). Fewer than 3 corners is an error (OpenMesh drops the face without a word); fewer than
+  // 3 distinct ones make a face OpenMesh drops (it keeps a polygon as the polygon without the
+  // repeat), remembered for the messages.
+  void face(const std::string& path, const std::string& element, std::vector<long long> corners,
+            const char* noun = "vertex") {
+    ++faces;
+    if (corners.size() < 3) {
+      throw InputError(
+          path, element,
+          "has " + std::to_string(corners.size()) + " corner(s); a face needs at least 3");
+    }
+    std::sort(corners.begin(), corners.end());
+    const auto repeated = std::adjacent_find(corners.begin(), corners.end());
+    const auto distinct = std::unique(corners.begin(), corners.end()) - corners.begin();
+    if (distinct < 3) {
+      ++repeated_vertex_faces;
+      if (!first_repeated_vertex) {
+        first_repeated_vertex =
+            element + " uses " + noun + " " + std::to_string(*repeated) + " more than once";
+      }
+    }
+  }
 };
 
 // An OBJ index: an integer, 1-based, or negative to count back from the last element so far.
@@ -182,11 +206,8 @@ DeclaredCounts scan_obj(const std::string& path, std::istream& in) {
     } else if (tokens[0] == "f") {
       const std::string element =
           "f " + std::to_string(++face) + " (line " + std::to_string(line_number) + ")";
-      ++counts.faces;
       if (tokens.size() < 4) {
-        throw InputError(
-            path, element,
-            "has " + std::to_string(tokens.size() - 1) + " corner(s); a face needs at least 3");
+        counts.face(path, element, std::vector<long long>(tokens.size() - 1));  // throws
       }
       const auto vertices_so_far = static_cast<long long>(*counts.vertices);
       std::vector<long long> corners;
@@ -209,23 +230,28 @@ DeclaredCounts scan_obj(const std::string& path, std::istream& in) {
         }
         corners.push_back(index < 0 ? vertices_so_far + 1 + index : index);
       }
-      std::vector<long long> sorted = corners;
-      std::sort(sorted.begin(), sorted.end());
-      const auto repeated = std::adjacent_find(sorted.begin(), sorted.end());
-      const auto distinct = std::unique(sorted.begin(), sorted.end()) - sorted.begin();
-      if (distinct < 3) {
-        // Fewer than 3 distinct corners: OpenMesh drops the face silently (it keeps a polygon
-        // with a repeat as the polygon without it). Remembered for the messages.
-        ++counts.repeated_vertex_faces;
-        if (!counts.first_repeated_vertex) {
-          counts.first_repeated_vertex =
-              element + " uses vertex " + std::to_string(*repeated) + " twice";
-        }
-      }
+      counts.face(path, element, corners);
       *counts.triangles += tokens.size() - 3;
     }
   }
   return counts;
+}
+
+// A facet's corners numbered by their points: {0, 0, 2} when corners 0 and 1 coincide.
+std::vector<long long> same_point_ids(const float (&points)[3][3]) {
+  std::vector<long long> ids;
+  for (long long c = 0; c < 3; ++c) {
+    long long id = c;
+    for (long long earlier = 0; earlier < c; ++earlier) {
+      if (points[earlier][0] == points[c][0] && points[earlier][1] == points[c][1] &&
+          points[earlier][2] == points[c][2]) {
+        id = earlier;
+        break;
+      }
+    }
+    ids.push_back(id);
+  }
+  return ids;
 }
 
 // True when the first non-blank characters are "solid": how an ASCII STL starts.
@@ -266,10 +292,14 @@ DeclaredCounts scan_stl(const std::string& path, std::istream& in) {
     if (file_size == 84 + 50 * static_cast<std::uintmax_t>(facets)) {
       // Binary: OpenMesh silently drops facets with NaN corners, so they are named here.
       char facet[50];
+      DeclaredCounts counts(std::nullopt, facets);
       for (std::uint32_t f = 0; f < facets && in.read(facet, sizeof facet); ++f) {
+        float points[3][3];
+        std::memcpy(points, facet + 12, sizeof points);
+        counts.face(path, "facet " + std::to_string(f), same_point_ids(points),
+                    "the point of corner");
         for (std::size_t corner = 0; corner < 3; ++corner) {
-          float xyz[3];
-          std::memcpy(xyz, facet + 12 + 12 * corner, sizeof xyz);
+          const float(&xyz)[3] = points[corner];
           const std::string element =
               "facet " + std::to_string(f) + " vertex " + std::to_string(corner);
           if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2])) {
@@ -284,7 +314,7 @@ DeclaredCounts scan_stl(const std::string& path, std::istream& in) {
           }
         }
       }
-      return {std::nullopt, facets};
+      return counts;
     }
   }
   if (!error && !starts_like_ascii_stl(header, header_bytes)) {
@@ -302,6 +332,7 @@ DeclaredCounts scan_stl(const std::string& path, std::istream& in) {
   DeclaredCounts counts{std::nullopt, 0};
   std::string line;
   std::size_t line_number = 0, vertex = 0;
+  float points[3][3] = {};
   while (std::getline(in, line)) {
     ++line_number;
     const auto tokens = split_whitespace(line);
@@ -311,7 +342,16 @@ DeclaredCounts scan_stl(const std::string& path, std::istream& in) {
     if (keyword != "vertex") continue;
     const std::string element = vertex_element(vertex++, line_number);
     if (tokens.size() < 4) throw InputError(path, element, "fewer than 3 coordinates");
-    for (std::size_t axis = 1; axis <= 3; ++axis) check_position_token(path, tokens[axis], element);
+    for (std::size_t axis = 1; axis <= 3; ++axis) {
+      check_position_token(path, tokens[axis], element);
+      points[(vertex - 1) % 3][axis - 1] = std::strtof(tokens[axis].c_str(), nullptr);
+    }
+    if (vertex % 3 == 0) {
+      counts.face(path,
+                  "facet " + std::to_string(vertex / 3 - 1) + " (line " +
+                      std::to_string(line_number - 2) + ")",
+                  same_point_ids(points), "the point of corner");
+    }
   }
   if (*counts.triangles == 0 && header_bytes == sizeof header && !error) {
     // Binary STLs often start with "solid" too.
@@ -501,6 +541,7 @@ DeclaredCounts scan_binary_off(const std::string& path, std::istream& in, const 
       throw InputError(path, "vertex " + std::to_string(vertex), "non-finite coordinate");
     in.ignore(static_cast<std::streamsize>(vertex_bytes - sizeof xyz));
   }
+  DeclaredCounts counts;
   std::size_t triangles = 0;
   for (std::uint32_t face = 0; face < faces; ++face) {
     const std::string element = "face " + std::to_string(face);
@@ -517,6 +558,7 @@ DeclaredCounts scan_binary_off(const std::string& path, std::istream& in, const 
                            std::to_string(std::uint64_t(*corners) * 4) + " bytes, only " +
                            std::to_string(left) + " are left");
     }
+    std::vector<long long> indices;
     for (std::uint32_t corner = 0; corner < *corners; ++corner) {
       const std::uint32_t index = *read_binary_u32(in, 4, false);
       if (index >= vertices) {
@@ -524,10 +566,14 @@ DeclaredCounts scan_binary_off(const std::string& path, std::istream& in, const 
                          "vertex index " + std::to_string(index) + " is out of range (" +
                              std::to_string(vertices) + " vertices)");
       }
+      indices.push_back(index);
     }
-    if (*corners >= 3) triangles += *corners - 2;
+    counts.face(path, element, std::move(indices));
+    triangles += *corners - 2;
   }
-  return {vertices, triangles};
+  counts.vertices = vertices;
+  counts.triangles = triangles;
+  return counts;
 }
 
 // OFF: the keyword line, counts "vertices faces edges", vertices (3 coordinates, 3 more with N,
@@ -585,6 +631,7 @@ DeclaredCounts scan_off(const std::string& path, std::istream& in) {
     }
     tokens.skip_rest_of_line();
   }
+  DeclaredCounts counts;
   std::size_t triangles = 0;
   for (std::uint32_t face = 0; face < faces; ++face) {
     const std::string element = "face " + std::to_string(face);
@@ -595,6 +642,7 @@ DeclaredCounts scan_off(const std::string& path, std::istream& in) {
     if (!corners) {
       throw InputError(path, located, "malformed face (vertex count, then that many indices)");
     }
+    std::vector<long long> indices;
     for (std::uint32_t corner = 0; corner < *corners; ++corner) {
       const std::string token = required_token(path, tokens, located, what);
       const auto index = parse_u32(token);
@@ -603,11 +651,15 @@ DeclaredCounts scan_off(const std::string& path, std::istream& in) {
                          "vertex index '" + token + "' is out of range (" +
                              std::to_string(vertices) + " vertices)");
       }
+      indices.push_back(*index);
     }
+    counts.face(path, located, std::move(indices));
     if (keyword.colors) tokens.skip_rest_of_line();
-    if (*corners >= 3) triangles += *corners - 2;
+    triangles += *corners - 2;
   }
-  return {vertices, triangles};
+  counts.vertices = vertices;
+  counts.triangles = triangles;
+  return counts;
 }
 
 // -- PLY ----------------------------------------------------------------------------------------
@@ -887,6 +939,7 @@ DeclaredCounts scan_ply(const std::string& path, std::istream& in) {
   }
 
   if (header.binary) in.seekg(static_cast<std::streamoff>(header.body_start));
+  DeclaredCounts counts;
   for (const PlyElement& element : header.elements) {
     const std::string what = "the " + std::to_string(element.count) + " '" + element.name +
                              "' elements its header declares";
@@ -907,6 +960,7 @@ DeclaredCounts scan_ply(const std::string& path, std::istream& in) {
             const auto corners = parse_u32(token);
             if (!corners)
               throw InputError(path, located, "vertex count '" + token + "' is not a number");
+            std::vector<long long> indices;
             for (std::uint32_t corner = 0; corner < *corners; ++corner) {
               const std::string index = required_token(path, tokens, located, what);
               const auto value = parse_u32(index);
@@ -915,7 +969,9 @@ DeclaredCounts scan_ply(const std::string& path, std::istream& in) {
                                  "vertex index '" + index + "' is out of range (" +
                                      std::to_string(vertices) + " vertices)");
               }
+              indices.push_back(*value);
             }
+            counts.face(path, located, std::move(indices));
           }
           continue;
         }
@@ -933,6 +989,7 @@ DeclaredCounts scan_ply(const std::string& path, std::istream& in) {
                              std::to_string(n) + " vertex indices need " + std::to_string(bytes) +
                                  " bytes, only " + std::to_string(left) + " are left");
           }
+          std::vector<long long> indices;
           for (std::uint32_t corner = 0; corner < n; ++corner) {
             std::uint32_t index = *read_binary_u32(in, ply_size(p.type), header.big_endian);
             if (p.type == PlyType::int8) index = std::uint32_t(std::int32_t(std::int8_t(index)));
@@ -941,7 +998,9 @@ DeclaredCounts scan_ply(const std::string& path, std::istream& in) {
                                "vertex index " + std::to_string(index) + " is out of range (" +
                                    std::to_string(vertices) + " vertices)");
             }
+            indices.push_back(index);
           }
+          counts.face(path, located, std::move(indices));
           continue;
         }
         if (!in.ignore(ply_size(p.type)) || in.gcount() != ply_size(p.type))
@@ -950,7 +1009,8 @@ DeclaredCounts scan_ply(const std::string& path, std::istream& in) {
     }
     if (element.name == "face") break;  // OpenMesh reads nothing after the faces
   }
-  return {vertices, std::nullopt};
+  counts.vertices = vertices;
+  return counts;
 }
 
 std::size_t count_occurrences(const std::string& text, std::string_view what) {
@@ -1019,8 +1079,12 @@ LoadedScene load_mesh_file(const std::string& path) {
   // failed to read) are missing geometry: the file is malformed.
   const std::size_t invalid_index_faces =
       count_occurrences(diagnostics, "Face contains invalid vertex index");
+  // The scans check every index, so faces OpenMesh "could not add" after one of them found
+  // repeated vertices are those (the PLY reader reports them so).
+  const bool repeats_explain_it = invalid_index_faces == 0 && declared.repeated_vertex_faces > 0;
   if (invalid_index_faces > 0 ||
-      diagnostics.find("invalid faces, that could not be added") != std::string::npos) {
+      (!repeats_explain_it &&
+       diagnostics.find("invalid faces, that could not be added") != std::string::npos)) {
     throw InputError(path, "faces",
                      std::to_string(invalid_index_faces > 0 ? invalid_index_faces : 1) +
                          " face(s) reference a vertex that does not exist (index out of range, "

@@ -1018,7 +1018,7 @@ TEST(MeshFilesHostile, ObjFacesSayWhatIsWrongAndWhere) {
   for (const Shape& shape : std::vector<Shape>{
            {"repeats", vertices + "f 1 1 2\nf 2 3 3\n",
             "faces: every face (2) repeats a vertex, so none has area (first: f 1 (line 4) uses "
-            "vertex 1 twice)"},
+            "vertex 1 more than once)"},
            {"two_corners", vertices + "f 1 2\n", "f 1 (line 4): has 2 corner(s)"},
            {"face_first", "f 1 2 3\n" + vertices,
             "f 1 (line 1): vertex index 1 is out of range (0 vertices so far; a face must come "
@@ -1039,7 +1039,39 @@ TEST(MeshFilesHostile, ObjFacesSayWhatIsWrongAndWhere) {
   const LoadedScene scene =
       load_scene_file(dir.write("some.obj", vertices + "f 1 2 3\nf 1 1 2\n").string());
   EXPECT_EQ(scene.triangles.size(), 1u);
-  EXPECT_TRUE(any_warning_contains(scene, "first: f 2 (line 5) uses vertex 1 twice"));
+  EXPECT_TRUE(any_warning_contains(scene, "first: f 2 (line 5) uses vertex 1 more than once"));
+}
+
+TEST(MeshFilesHostile, RepeatedVerticesAndShortFacesAreNamedInEveryFormat) {
+  const TempDir dir;
+  const std::string ply_header =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n1 0 0\n0 1 0\n";
+  struct Shape {
+    std::string name, text, expected;
+  };
+  for (const Shape& shape : std::vector<Shape>{
+           {"repeat.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 0 1\n",
+            "every face (1) repeats a vertex, so none has area (first: face 0 (line 6) uses "
+            "vertex 0 more than once)"},
+           {"two.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n",
+            "face 0 (line 6): has 2 corner(s); a face needs at least 3"},
+           {"repeat.ply", ply_header + "3 0 0 1\n",
+            "every face (1) repeats a vertex, so none has area (first: face 0 (line 13) uses "
+            "vertex 0 more than once)"},
+           {"two.ply", ply_header + "2 0 1\n", "face 0 (line 13): has 2 corner(s)"},
+           {"repeat.stl",
+            "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 0 0 0\nvertex 1 0 "
+            "0\nendloop\nendfacet\nendsolid x\n",
+            "every face (1) repeats a vertex, so none has area (first: facet 0 (line 4) uses the "
+            "point of corner 0 more than once)"},
+       }) {
+    const fs::path file = dir.write(shape.name, shape.text);
+    const std::string message = load_error(file);
+    EXPECT_NE(message.find(file.string()), std::string::npos) << shape.name << ": " << message;
+    EXPECT_NE(message.find(shape.expected), std::string::npos) << shape.name << ": " << message;
+  }
 }
 
 TEST(MeshFilesHostile, Utf16ObjIsNamedAsUtf16) {
