@@ -270,7 +270,8 @@ std::string binary_stl_size_problem(std::uint32_t facets, std::uintmax_t file_si
                         std::to_string(facets) + " = " + std::to_string(needed) +
                         " bytes), the file has " + std::to_string(file_size) + " bytes";
   if (file_size >= 84) {
-    problem += " (room for " + std::to_string((file_size - 84) / 50) + " triangles" +
+    const std::uintmax_t room = (file_size - 84) / 50;
+    problem += " (room for " + std::to_string(room) + (room == 1 ? " triangle" : " triangles") +
                ((file_size - 84) % 50 != 0
                     ? " and " + std::to_string((file_size - 84) % 50) + " stray bytes)"
                     : ")");

@@ -993,7 +993,7 @@ TEST(MeshFilesHostile, BinaryStlCountThatDisagreesWithTheSizeSaysSo) {
   std::string message = load_error(five);
   EXPECT_NE(message.find(five.string() +
                          ": binary STL header: declares 5 triangles (84 + 50 x 5 = 334 bytes), "
-                         "the file has 134 bytes (room for 1 triangles)"),
+                         "the file has 134 bytes (room for 1 triangle)"),
             std::string::npos)
       << message;
   const fs::path huge = dir.write("huge.stl", binary_stl(0xFFFFFFFFu, 1));
