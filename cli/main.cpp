@@ -1,9 +1,12 @@
 // shadowcts: conformance tests with reference oracles for shadow and light-assignment algorithms.
 #include <unistd.h>
 
-#include <cstdio>
+#include <charconv>
+#include <cstdint>
 #include <iostream>
+#include <limits>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -28,6 +31,34 @@ AlgorithmSelection parse_selection(const std::string& text) {
   if (s.id.empty() || (colon != std::string::npos && s.variant.empty()))
     throw UsageError("--algorithm '" + text + "': expected ID or ID:VARIANT");
   return s;
+}
+
+// "I/N" with decimal digits only, 0 <= I < N <= 2^32 - 1; anything else (a sign, spaces, a value
+// out of range, which sscanf's %u would wrap) is a usage error naming the value.
+void parse_shard(const std::string& text, RunOptions& options) {
+  const std::string usage = "--shard '" + text + "': ";
+  const auto slash = text.find('/');
+  if (slash == std::string::npos)
+    throw UsageError(usage + "expected I/N (0-based shard I of N), e.g. 0/4");
+  auto number = [&](std::string_view digits, const char* what) {
+    if (digits.empty() || digits.find_first_not_of("0123456789") != std::string_view::npos)
+      throw UsageError(usage + what + " must be a decimal number, is '" + std::string(digits) +
+                       "'");
+    std::uint64_t value = 0;
+    const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+    if (error != std::errc() || end != digits.data() + digits.size() ||
+        value > std::numeric_limits<std::uint32_t>::max())
+      throw UsageError(usage + what + " " + std::string(digits) + " is out of range (at most " +
+                       std::to_string(std::numeric_limits<std::uint32_t>::max()) + ")");
+    return std::uint32_t(value);
+  };
+  const std::string_view view(text);
+  const std::uint32_t index = number(view.substr(0, slash), "I");
+  const std::uint32_t count = number(view.substr(slash + 1), "N");
+  if (count == 0) throw UsageError(usage + "N must be at least 1");
+  if (index >= count) throw UsageError(usage + "I must be below N (shards are numbered 0 to N-1)");
+  options.shard_index = index;
+  options.shard_count = count;
 }
 
 int write_gbuffer(const std::string& case_file, const std::string& fixture,
@@ -71,9 +102,19 @@ int main(int argc, char** argv) {
   run->add_option("--algorithm", algorithm_texts, "ID or ID:VARIANT (repeatable); default all");
   run->add_option("--backend", options.backend, "Only this backend (reference, embree, cuda, ...)");
   run->add_option("--out", options.out_dir, "Output folder")->capture_default_str();
-  auto* eps_option = run->add_option("--eps-rel", eps_rel,
-                                     "Relative half-width of the ambiguity band (default 2^-16)")
-                         ->check(CLI::Range(0x1p-24, 0x1p-4));
+  // Not CLI::Range: it lets "nan" through (every comparison with NaN is false), and the case's
+  // validation then blamed the manifest's parameters.eps_rel for the command line's value.
+  auto* eps_option =
+      run->add_option("--eps-rel", eps_rel,
+                      "Relative half-width of the ambiguity band (default 2^-16)")
+          ->check(CLI::Validator(
+              [](std::string& text) {
+                double value = 0;
+                if (CLI::detail::lexical_cast(text, value) && value >= 0x1p-24 && value <= 0x1p-4)
+                  return std::string();
+                return "must be a number in [2^-24, 2^-4], is '" + text + "'";
+              },
+              "in [2^-24, 2^-4]"));
   auto* repeat_option = run->add_option("--repeat", repeats,
                                         "Timed repeats per algorithm after one warm-up run "
                                         "(default 2; median and min-max reported)")
@@ -126,15 +167,7 @@ int main(int argc, char** argv) {
     options.oracle = oracle == "exact"    ? OracleChoice::exact
                      : oracle == "embree" ? OracleChoice::embree
                                           : OracleChoice::automatic;
-    if (!shard.empty()) {
-      unsigned index = 0, count = 0;
-      char slash = 0, rest = 0;
-      if (std::sscanf(shard.c_str(), "%u%c%u%c", &index, &slash, &count, &rest) != 3 ||
-          slash != '/' || count == 0 || index >= count)
-        throw UsageError("--shard '" + shard + "': expected I/N with 0 <= I < N");
-      options.shard_index = index;
-      options.shard_count = count;
-    }
+    if (!shard.empty()) parse_shard(shard, options);
     options.progress = isatty(STDERR_FILENO) != 0;
     return run_suite(options, builtin_registry(), std::cout, std::cerr);
   } catch (const InputError& e) {
@@ -143,8 +176,11 @@ int main(int argc, char** argv) {
   } catch (const UsageError& e) {
     std::cerr << "shadowcts: " << e.what() << "\n";
     return exit_bad_input;
+  } catch (const OutputError& e) {
+    std::cerr << "shadowcts: cannot write output: " << e.what() << "\n";
+    return exit_internal_error;
   } catch (const std::exception& e) {
     std::cerr << "shadowcts: error: " << e.what() << "\n";
-    return 3;
+    return exit_internal_error;
   }
 }

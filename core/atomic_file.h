@@ -1,11 +1,12 @@
 #pragma once
 // Outputs are written completely or not at all: into a sibling temporary, then renamed.
 #include <filesystem>
-#include <string>
+#include <string_view>
 
 namespace shadowcts {
 
-// Throws std::runtime_error naming the path when it cannot be written.
-void write_file_atomically(const std::filesystem::path& path, const std::string& contents);
+// Every write, the close and the rename are checked (a full disk shows at any of them); throws
+// OutputError naming the path and the system's reason, leaving no temporary behind.
+void write_file_atomically(const std::filesystem::path& path, std::string_view contents);
 
 }  // namespace shadowcts

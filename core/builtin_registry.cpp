@@ -1,4 +1,5 @@
 // The built-in algorithms of this build, in the order `shadowcts list` shows them.
+#include "gpu/bruteforce/hard_shadow_bruteforce_emu.h"
 #include "reference/bruteforce/hard_shadow_bruteforce.h"
 #include "reference/embree/hard_shadow_embree.h"
 #include "reference/lightassign/lightassign_algorithm.h"
@@ -27,6 +28,8 @@ const Registry& builtin_registry() {
     r.add(make_stencil());
     r.add(make_softtile());
     r.add(make_lightassign());
+    // The device kernels run by the emulator: on every machine, in their own records.
+    r.add(make_bruteforce_hard_shadow_cuda_emu());
 #if SHADOWCTS_HAVE_CUDA
     r.add(make_bruteforce_hard_shadow_cuda());
 #endif

@@ -7,6 +7,7 @@
 
 #include "run_record.h"
 #include "shadowcts/algorithm.h"
+#include "shadowcts/view_samples.h"
 
 namespace shadowcts {
 
@@ -17,6 +18,15 @@ struct OracleSummary {
   std::string plan_line;           // what the plan prints after "oracle:"
   nlohmann::ordered_json details;  // kind-specific figures for results.json
 };
+
+// The reason of a record that ran but had nothing to judge (NotSupported, never Pass: "right on
+// all 0 robust samples" would be a false green): "no robust sample to judge: N ambiguous, M sky,
+// K back-facing".
+inline std::string nothing_to_judge(const ViewSamples& samples, std::uint64_t ambiguous) {
+  return "no robust sample to judge: " + std::to_string(ambiguous) + " ambiguous, " +
+         std::to_string(samples.count(SampleClass::sky)) + " sky, " +
+         std::to_string(samples.count(SampleClass::back_facing)) + " back-facing";
+}
 
 class CaseEvaluation {
  public:

@@ -9,6 +9,7 @@
 #include <iostream>
 #include <limits>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -17,8 +18,10 @@
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
 
+#include "json_limits.h"
 #include "shadowcts/errors.h"
 #include "shadowcts/fixtures.h"
+#include "shadowcts/gbuffer_exr.h"
 #include "shadowcts/scene_file.h"
 
 namespace shadowcts {
@@ -43,11 +46,77 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
   return row[b.size()];
 }
 
+// By type and a bounded prefix: dump() of 100,000 nested arrays overflowed the stack for a
+// 40-character message.
 std::string describe(const Json& value) {
-  std::string text = value.dump();
-  if (text.size() > 40) text = text.substr(0, 37) + "...";
-  return std::string(value.type_name()) + " " + text;
+  return describe_json(value);
 }
+
+// Duplicate keys: nlohmann keeps the last one silently, which hides a typo as well as an unknown
+// key would. A SAX pass over the (already parsed, so well-formed) text finds the first one.
+class DuplicateKeyCheck : public nlohmann::json_sax<Json> {
+ public:
+  std::optional<std::string> duplicate;  // the element, "camera.width"
+
+  bool null() override { return value(); }
+  bool boolean(bool) override { return value(); }
+  bool number_integer(number_integer_t) override { return value(); }
+  bool number_unsigned(number_unsigned_t) override { return value(); }
+  bool number_float(number_float_t, const string_t&) override { return value(); }
+  bool string(string_t&) override { return value(); }
+  bool binary(binary_t&) override { return value(); }
+  bool start_object(std::size_t) override { return open(true); }
+  bool start_array(std::size_t) override { return open(false); }
+  bool end_object() override { return close(); }
+  bool end_array() override { return close(); }
+  bool key(string_t& name) override {
+    Frame& frame = frames_.back();
+    frame.key = name;
+    if (!frame.keys.insert(name).second) {
+      duplicate = path();
+      return false;
+    }
+    return true;
+  }
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
+    return false;
+  }
+
+ private:
+  struct Frame {
+    bool object;
+    std::set<std::string> keys;
+    std::string key;        // object: the key of the value being read
+    std::size_t count = 0;  // array: values started so far
+  };
+
+  bool value() {
+    if (!frames_.empty() && !frames_.back().object) ++frames_.back().count;
+    return true;
+  }
+  bool open(bool object) {
+    value();
+    frames_.push_back({object, {}, {}, 0});
+    return true;
+  }
+  bool close() {
+    frames_.pop_back();
+    return true;
+  }
+  std::string path() const {
+    std::string text;
+    for (const Frame& frame : frames_) {
+      if (frame.object) {
+        text += (text.empty() ? "" : ".") + frame.key;
+      } else {
+        text += "[" + std::to_string(frame.count - 1) + "]";
+      }
+    }
+    return text;
+  }
+
+  std::vector<Frame> frames_;
+};
 
 // A JSON object of the manifest at `path` ("camera", "scenes[1]"); every typed read names the
 // full JSON path in its error, and keys outside the allowed set are errors (typos would
@@ -161,13 +230,15 @@ class ManifestObject {
     return result;
   }
 
-  // A vector as a unit direction; zero length is an error.
+  // A vector as a unit direction; zero length is an error. Divided by its largest component
+  // first: the length of [1e300, 1e300, 0] overflows (and that of [1e-200, 0, 0] underflows).
   std::optional<glm::vec3> direction(const char* key) const {
     const auto v = vec3(key);
     if (!v) return std::nullopt;
-    const double length = glm::length(*v);
-    if (!(length > 0.0)) throw InputError(source_, element(key), "has zero length");
-    return glm::vec3(*v / length);
+    const double largest = std::max({std::fabs(v->x), std::fabs(v->y), std::fabs(v->z)});
+    if (!(largest > 0.0)) throw InputError(source_, element(key), "has zero length");
+    const glm::dvec3 scaled = *v / largest;
+    return glm::vec3(scaled / glm::length(scaled));
   }
 
   const std::string& source() const { return source_; }
@@ -308,9 +379,10 @@ struct Placement {
   glm::dvec3 rotate(const glm::dvec3& v) const {
     return {cos_angle * v.x + sin_angle * v.z, v.y, -sin_angle * v.x + cos_angle * v.z};
   }
-  glm::vec3 point(const glm::vec3& p) const {
-    return glm::vec3(translate + scale * rotate(glm::dvec3(p)));
+  glm::dvec3 exact_point(const glm::vec3& p) const {
+    return translate + scale * rotate(glm::dvec3(p));
   }
+  glm::vec3 point(const glm::vec3& p) const { return glm::vec3(exact_point(p)); }
   glm::vec3 direction(const glm::vec3& d) const {
     return glm::vec3(glm::normalize(rotate(glm::dvec3(d))));
   }
@@ -348,13 +420,21 @@ Placement read_placement(const ManifestObject& object) {
 std::string read_text_file(const std::string& path) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error)) {
-    throw InputError(path, "file", "not found");
+    // /dev/zero, a folder, a FIFO: they exist, and reading them would never end or mean nothing.
+    throw InputError(path, "file",
+                     std::filesystem::exists(path, error) ? "not a regular file" : "not found");
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "file", "cannot be opened");
   std::ostringstream text;
   text << in.rdbuf();
+  if (in.bad()) throw InputError(path, "file", "read error");
   return text.str();
+}
+
+// The largest |coordinate| of a placed point, in double before rounding to float.
+double placed_magnitude(const glm::dvec3& p) {
+  return std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
 }
 
 std::filesystem::path resolve(const std::filesystem::path& manifest_folder,
@@ -366,13 +446,22 @@ std::filesystem::path resolve(const std::filesystem::path& manifest_folder,
 }  // namespace
 
 Case load_case_manifest(const std::string& path) {
+  const std::string text = read_text_file(path);
+  // nlohmann parses and destroys iteratively, but nothing of a manifest nests this deep.
+  check_json_nesting(text, path, "JSON");
   Json root;
   try {
-    root = Json::parse(read_text_file(path));
+    root = Json::parse(text);
   } catch (const Json::exception& e) {
     // parse_error, and out_of_range for a number beyond double's range (found by
     // fuzz_case_manifest: "4e938" escaped as a non-InputError).
     throw InputError(path, "JSON", e.what());
+  }
+  DuplicateKeyCheck duplicates;
+  Json::sax_parse(text, &duplicates);
+  if (duplicates.duplicate) {
+    throw InputError(path, *duplicates.duplicate,
+                     "duplicate key (JSON keeps only the last; give each key once)");
   }
   const ManifestObject manifest(
       path, root, "",
@@ -435,9 +524,30 @@ Case load_case_manifest(const std::string& path) {
         mesh.caster = caster;
         c.meshes.push_back(std::move(mesh));
       }
-      for (const Triangle& t : loaded.triangles) {
-        c.triangles.push_back(Triangle{placement.point(t.v0), placement.point(t.v1),
-                                       placement.point(t.v2), t.mesh + mesh_offset});
+      const std::string entry_path = "scenes[" + std::to_string(i) + "]";
+      for (std::size_t t = 0; t < loaded.triangles.size(); ++t) {
+        const Triangle& triangle = loaded.triangles[t];
+        for (const glm::vec3& corner : {triangle.v0, triangle.v1, triangle.v2}) {
+          // The loaders refuse such vertices with their line or accessor: this is the backstop.
+          if (placed_magnitude(glm::dvec3(corner)) > max_scene_coordinate) {
+            throw InputError(file, "triangle " + std::to_string(t),
+                             "a corner lies beyond 1e30 (the largest coordinate a case accepts)");
+          }
+          const glm::dvec3 placed = placement.exact_point(corner);
+          if (!(placed_magnitude(placed) <= max_scene_coordinate)) {
+            // The file's vertex is fine: the placement carries it out of range.
+            const char* culprit =
+                placed_magnitude(placement.translate) > max_scene_coordinate ? ".translate"
+                : placement.scale > 1.0                                      ? ".scale"
+                : placed_magnitude(placement.translate) > 0.0                ? ".translate"
+                                                                             : ".rotate_y_degrees";
+            throw InputError(path, entry_path + culprit,
+                             "places triangle " + std::to_string(t) + " of " + file +
+                                 " beyond 1e30 (the largest coordinate a case accepts)");
+          }
+        }
+        c.triangles.push_back(Triangle{placement.point(triangle.v0), placement.point(triangle.v1),
+                                       placement.point(triangle.v2), triangle.mesh + mesh_offset});
       }
       for (ShadowLight light : loaded.shadow_lights) {
         light.position = placement.point(light.position);
@@ -470,7 +580,11 @@ Case load_case_manifest(const std::string& path) {
     c.gbuffer_path = resolve(manifest_folder, *gbuffer).string();
     std::error_code error;
     if (!std::filesystem::is_regular_file(c.gbuffer_path, error)) {
-      throw InputError(path, "gbuffer", "file " + c.gbuffer_path + " not found");
+      throw InputError(
+          path, "gbuffer",
+          "file " + c.gbuffer_path +
+              (std::filesystem::exists(c.gbuffer_path, error) ? " is not a regular file"
+                                                              : " not found"));
     }
   }
   if (manifest.has("light")) c.light = read_light(path, manifest.raw("light"));
@@ -489,23 +603,30 @@ Case load_case_manifest(const std::string& path) {
     const ManifestObject parameters(path, manifest.raw("parameters"), "parameters",
                                     {"eps_rel", "repeats", "threads", "seed"});
     if (auto v = parameters.number("eps_rel")) {
-      if (!(*v > 0.0 && *v < 1.0)) {
-        throw InputError(path, "parameters.eps_rel",
-                         "must lie in (0, 1), is " + std::to_string(*v));
+      // validate()'s range: below 2^-24 the band is narrower than float resolution, above 2^-4
+      // it covers most of the scene.
+      if (!(*v >= 0x1p-24 && *v <= 0x1p-4)) {
+        throw InputError(
+            path, "parameters.eps_rel",
+            "must lie in [2^-24, 2^-4] (5.96e-08 to 0.0625), is " + std::to_string(*v));
       }
       c.parameters.eps_rel = *v;
     }
-    if (auto v = parameters.unsigned_integer("repeats", 1'000'000)) {
+    if (auto v = parameters.unsigned_integer("repeats", 1000)) {
       if (*v == 0) throw InputError(path, "parameters.repeats", "must be at least 1");
       c.parameters.repeats = static_cast<std::uint32_t>(*v);
     }
-    if (auto v = parameters.unsigned_integer("threads", 65'536)) {
+    if (auto v = parameters.unsigned_integer("threads", 4096)) {
       c.parameters.threads = static_cast<std::uint32_t>(*v);
     }
     if (auto v = parameters.unsigned_integer("seed", UINT64_MAX)) c.parameters.seed = *v;
   }
 
   validate(c);
+  if (!c.gbuffer_path.empty()) {
+    // Against the camera now, before a runner allocates or writes anything for this case.
+    check_gbuffer_exr_header(c.gbuffer_path, c.camera.width, c.camera.height);
+  }
   return c;
 }
 

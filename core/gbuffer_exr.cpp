@@ -1,10 +1,14 @@
 #include "shadowcts/gbuffer_exr.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <memory>
+#include <new>
+#include <optional>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -116,21 +120,193 @@ void write_gbuffer_exr(const std::string& path, const ViewSamples& samples) {
   }
 }
 
-ViewSamples read_gbuffer_exr(const std::string& path) {
+namespace {
+
+// What the first header of an OpenEXR file declares, read here because OpenEXR allocates its
+// scanline buffers from the data window as soon as OIIO opens the file (a forged 30000x30000
+// header made open() itself throw bad_alloc under a memory limit).
+struct Resolution {
+  std::int64_t width, height;
+};
+
+struct ExrWindows {
+  std::int32_t data[4] = {0, 0, -1, -1};     // xmin ymin xmax ymax
+  std::int32_t display[4] = {0, 0, -1, -1};  // xmin ymin xmax ymax
+  std::uint64_t pixel_bytes = 0;             // per pixel, all channels
+};
+
+// nullopt when the file is not a (readable) OpenEXR file: OIIO then says what it is.
+std::optional<ExrWindows> read_exr_windows(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  unsigned char magic[8] = {};
+  if (!in.read(reinterpret_cast<char*>(magic), sizeof magic)) return std::nullopt;
+  if (!(magic[0] == 0x76 && magic[1] == 0x2f && magic[2] == 0x31 && magic[3] == 0x01))
+    return std::nullopt;
+  auto read_name = [&](std::string& name) {  // NUL-terminated, at most 255 characters
+    name.clear();
+    for (char c; in.get(c);) {
+      if (c == '\0') return true;
+      if (name.size() == 255) return false;
+      name.push_back(c);
+    }
+    return false;
+  };
+  auto read_i32 = [&](std::int32_t& value) {
+    unsigned char b[4];
+    if (!in.read(reinterpret_cast<char*>(b), 4)) return false;
+    value = static_cast<std::int32_t>(static_cast<std::uint32_t>(b[0]) | std::uint32_t(b[1]) << 8 |
+                                      std::uint32_t(b[2]) << 16 | std::uint32_t(b[3]) << 24);
+    return true;
+  };
+  ExrWindows windows;
+  bool has_data = false, has_display = false;
+  std::string name, type;
+  for (int attributes = 0; attributes < 10'000; ++attributes) {
+    if (!read_name(name)) return std::nullopt;
+    if (name.empty()) break;  // end of the header
+    std::int32_t size = 0;
+    if (!read_name(type) || !read_i32(size) || size < 0) return std::nullopt;
+    const auto start = in.tellg();
+    if ((name == "dataWindow" || name == "displayWindow") && type == "box2i" && size == 16) {
+      std::int32_t* box = name == "dataWindow" ? windows.data : windows.display;
+      for (int i = 0; i < 4; ++i)
+        if (!read_i32(box[i])) return std::nullopt;
+      (name == "dataWindow" ? has_data : has_display) = true;
+    } else if (name == "channels" && type == "chlist") {
+      // name, pixel type (0 UINT, 1 HALF, 2 FLOAT), pLinear + 3 reserved, x and y sampling.
+      std::string channel;
+      while (read_name(channel) && !channel.empty()) {
+        std::int32_t pixel_type = 0, sampling = 0;
+        if (!read_i32(pixel_type)) return std::nullopt;
+        in.ignore(4);
+        if (!read_i32(sampling) || !read_i32(sampling)) return std::nullopt;
+        windows.pixel_bytes += pixel_type == 1 ? 2 : 4;
+      }
+    }
+    in.clear();
+    in.seekg(start + std::streamoff(size));
+    if (!in) return std::nullopt;
+  }
+  if (!has_data || !has_display) return std::nullopt;
+  return windows;
+}
+
+std::string box_text(const std::int32_t box[4]) {
+  return std::to_string(std::int64_t(box[2]) - box[0] + 1) + "x" +
+         std::to_string(std::int64_t(box[3]) - box[1] + 1) + " at (" + std::to_string(box[0]) +
+         ", " + std::to_string(box[1]) + ")";
+}
+
+// The header checks shared by both readers, all before any pixel is allocated: a 326 KB file
+// declaring 30000x30000 pixels took 3.65 GB when it was sized first and compared later.
+void check_declared_size(const std::string& path, std::optional<Resolution> expected) {
+  const auto windows = read_exr_windows(path);
+  if (!windows) return;  // OIIO reports what is wrong with it
+  const std::int64_t width = std::int64_t(windows->data[2]) - windows->data[0] + 1;
+  const std::int64_t height = std::int64_t(windows->data[3]) - windows->data[1] + 1;
+  if (!std::equal(windows->data, windows->data + 4, windows->display)) {
+    throw InputError(path, "dataWindow",
+                     box_text(windows->data) + " differs from the display window " +
+                         box_text(windows->display) +
+                         ": one sample per pixel of the display window is required");
+  }
+  if (width <= 0 || height <= 0) throw InputError(path, "dataWindow", "image size is zero");
+  const std::string size = std::to_string(width) + "x" + std::to_string(height);
+  if (expected && (width != expected->width || height != expected->height)) {
+    throw InputError(path, "dataWindow",
+                     size + " differs from the case camera's " + std::to_string(expected->width) +
+                         "x" + std::to_string(expected->height));
+  }
+  if (width > max_gbuffer_side || height > max_gbuffer_side) {
+    throw InputError(path, "dataWindow",
+                     size + " exceeds the largest camera resolution " +
+                         std::to_string(max_gbuffer_side) + "x" + std::to_string(max_gbuffer_side));
+  }
+  // No lossless EXR compression reaches 1:4096 (zip stays near 1:1000), so a file that small
+  // cannot hold the pixels it declares.
+  std::error_code error;
+  const std::uintmax_t file_size = std::filesystem::file_size(path, error);
+  const std::uint64_t pixel_bytes =
+      std::uint64_t(width) * std::uint64_t(height) * windows->pixel_bytes;
+  if (!error && pixel_bytes / 4096 > file_size) {
+    throw InputError(path, "dataWindow",
+                     size + " pixels need " + std::to_string(pixel_bytes) +
+                         " bytes, more than the file's " + std::to_string(file_size) +
+                         " bytes can hold (truncated or forged header)");
+  }
+}
+
+std::unique_ptr<OIIO::ImageInput> open_gbuffer(const std::string& path,
+                                               std::optional<Resolution> expected = {}) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) {
+    throw InputError(path, "file",
+                     std::filesystem::exists(path, error) ? "not a regular file" : "not found");
+  }
+  check_declared_size(path, expected);
   std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);
   if (!in) throw InputError(path, "file", "cannot be read as an image: " + OIIO::geterror());
-  const OIIO::ImageSpec spec = in->spec();
+  const OIIO::ImageSpec& spec = in->spec();
   if (std::string(in->format_name()) != "openexr") {
     throw InputError(path, "file", std::string("is ") + in->format_name() + ", not OpenEXR");
   }
   if (spec.deep) throw InputError(path, "file", "deep images are not G-buffers");
   if (spec.width <= 0 || spec.height <= 0) throw InputError(path, "file", "image size is zero");
+  const std::string size = std::to_string(spec.width) + "x" + std::to_string(spec.height);
   if (spec.x != spec.full_x || spec.y != spec.full_y || spec.width != spec.full_width ||
       spec.height != spec.full_height) {
     throw InputError(path, "dataWindow",
-                     "differs from the display window: one sample per pixel of "
-                     "the display window is required");
+                     size + " at (" + std::to_string(spec.x) + ", " + std::to_string(spec.y) +
+                         ") differs from the display window " + std::to_string(spec.full_width) +
+                         "x" + std::to_string(spec.full_height) + " at (" +
+                         std::to_string(spec.full_x) + ", " + std::to_string(spec.full_y) +
+                         "): one sample per pixel of the display window is required");
   }
+  if (spec.width > static_cast<int>(max_gbuffer_side) ||
+      spec.height > static_cast<int>(max_gbuffer_side)) {
+    throw InputError(path, "dataWindow",
+                     size + " exceeds the largest camera resolution " +
+                         std::to_string(max_gbuffer_side) + "x" + std::to_string(max_gbuffer_side));
+  }
+  return in;
+}
+
+void check_resolution(const std::string& path, const OIIO::ImageSpec& spec, std::uint32_t width,
+                      std::uint32_t height) {
+  if (static_cast<std::uint32_t>(spec.width) != width ||
+      static_cast<std::uint32_t>(spec.height) != height) {
+    throw InputError(path, "dataWindow",
+                     std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                         " differs from the case camera's " + std::to_string(width) + "x" +
+                         std::to_string(height));
+  }
+}
+
+ViewSamples read_pixels(const std::string& path, OIIO::ImageInput& input);
+
+}  // namespace
+
+void check_gbuffer_exr_header(const std::string& path, std::uint32_t width, std::uint32_t height) {
+  const std::unique_ptr<OIIO::ImageInput> in = open_gbuffer(path, Resolution{width, height});
+  check_resolution(path, in->spec(), width, height);
+}
+
+ViewSamples read_gbuffer_exr(const std::string& path) {
+  const std::unique_ptr<OIIO::ImageInput> in = open_gbuffer(path);
+  return read_pixels(path, *in);
+}
+
+ViewSamples read_gbuffer_exr(const std::string& path, std::uint32_t width, std::uint32_t height) {
+  const std::unique_ptr<OIIO::ImageInput> in = open_gbuffer(path, Resolution{width, height});
+  check_resolution(path, in->spec(), width, height);
+  return read_pixels(path, *in);
+}
+
+namespace {
+
+ViewSamples read_pixels(const std::string& path, OIIO::ImageInput& input) try {
+  OIIO::ImageInput* in = &input;
+  const OIIO::ImageSpec spec = in->spec();
 
   auto channel_index = [&](const std::string& name) {
     for (int c = 0; c < spec.nchannels; ++c) {
@@ -202,6 +378,13 @@ ViewSamples read_gbuffer_exr(const std::string& path) {
     }
   }
   return samples;
+} catch (const std::bad_alloc&) {
+  // Within the header limits but beyond this machine's memory: still this file's problem.
+  throw InputError(path, "file",
+                   "not enough memory for " + std::to_string(input.spec().width) + "x" +
+                       std::to_string(input.spec().height) + " pixels");
 }
+
+}  // namespace
 
 }  // namespace shadowcts

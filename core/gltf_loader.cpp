@@ -4,24 +4,26 @@
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iterator>
 #include <limits>
-#include <optional>
-#include <set>
 #include <span>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat4x4.hpp>
 #include <nlohmann/json.hpp>
 
+#include "json_limits.h"
 #include "mesh_closedness.h"
 #include "shadowcts/errors.h"
 
@@ -187,11 +189,7 @@ class SchemaCheck {
     return it == object_value.end() ? nullptr : &*it;
   }
 
-  static std::string describe(const Json& value) {
-    std::string text = value.dump();
-    if (text.size() > 40) text = text.substr(0, 37) + "...";
-    return std::string(value.type_name()) + " " + text;
-  }
+  static std::string describe(const Json& value) { return describe_json(value); }
 };
 
 void check_texture_info(SchemaCheck& check, const Json& parent, const char* key,
@@ -440,6 +438,24 @@ bool is_glb(const std::vector<unsigned char>& bytes) {
   return bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
 }
 
+bool has_glb_extension(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return extension == ".glb";
+}
+
+// The first four bytes as hex and, when printable, as text: "67 6c 54 46 'glTF'".
+std::string magic_text(const std::vector<unsigned char>& bytes) {
+  if (bytes.size() < 4) return "missing: the file has " + std::to_string(bytes.size()) + " bytes";
+  static constexpr char digits[] = "0123456789abcdef";
+  std::string hex, printable = "'";
+  for (std::size_t i = 0; i < 4; ++i) {
+    hex += (i ? " " : "") + std::string{digits[bytes[i] >> 4], digits[bytes[i] & 15]};
+    printable += std::isprint(bytes[i]) ? static_cast<char>(bytes[i]) : '.';
+  }
+  return hex + " " + printable + "', expected 67 6c 54 46 'glTF'";
+}
+
 // The JSON chunk of a GLB container, after checking the container's own lengths.
 std::string glb_json_chunk(const std::string& path, const std::vector<unsigned char>& bytes) {
   if (bytes.size() < 20) throw InputError(path, "GLB header", "file is shorter than a GLB header");
@@ -488,6 +504,9 @@ std::string accessor_element(const std::string& user, int accessor_index) {
 
 class ModelReader {
  public:
+  // Elements of an accessor without a bufferView (2^24: 192 MiB of float positions).
+  static constexpr std::size_t max_elements_without_view = std::size_t{1} << 24;
+
   ModelReader(const std::string& path, const tinygltf::Model& model, LoadedScene& scene)
       : path_(path), model_(model), scene_(scene) {}
 
@@ -524,24 +543,32 @@ class ModelReader {
     const std::size_t component_size = static_cast<std::size_t>(
         tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(accessor.componentType)));
     const std::size_t element_size = components * component_size;
-    std::vector<Value> values(accessor.count * components, Value(0));
 
+    // Every range is checked before anything is allocated: `count` is only a claim of the file
+    // (2^32 - 1 indices in a 598-byte file took 16.9 GB before the bounds check).
+    const unsigned char* data = nullptr;
+    std::size_t stride = 0;
     if (accessor.bufferView >= 0) {
-      const auto [data, stride] = view_range(accessor.bufferView, accessor.byteOffset,
-                                             accessor.count, element_size, element, accessor_path);
-      for (std::size_t i = 0; i < accessor.count; ++i) {
-        for (std::size_t c = 0; c < components; ++c) {
-          values[i * components + c] =
-              decode<Value>(data + i * stride + c * component_size, accessor.componentType);
-        }
-      }
+      std::tie(data, stride) = view_range(accessor.bufferView, accessor.byteOffset, accessor.count,
+                                          element_size, element, accessor_path);
     } else if (!accessor.sparse.isSparse) {
       throw InputError(path_, element, "has neither a bufferView nor sparse values");
+    } else if (accessor.count > max_elements_without_view) {
+      // Zeros but for the sparse values: no byte of the file backs them, so they are capped.
+      throw InputError(path_, element,
+                       "count " + std::to_string(accessor.count) +
+                           " without a bufferView (zeros but for the sparse values) exceeds " +
+                           std::to_string(max_elements_without_view) +
+                           " elements; give the base values in a bufferView");
     }
 
+    const unsigned char* index_data = nullptr;
+    const unsigned char* value_data = nullptr;
+    std::size_t index_size = 0, sparse_count = 0;
+    int index_type = 0;
+    const std::string sparse_element = element + " sparse";
     if (accessor.sparse.isSparse) {
       // Sparse substitution: count (index, value) pairs replace elements of the base data.
-      const std::string sparse_element = element + " sparse";
       if (accessor.sparse.count <= 0 ||
           static_cast<std::size_t>(accessor.sparse.count) > accessor.count) {
         throw InputError(path_, sparse_element,
@@ -549,38 +576,50 @@ class ModelReader {
                              " must be in [1, accessor count " + std::to_string(accessor.count) +
                              "]");
       }
-      const auto sparse_count = static_cast<std::size_t>(accessor.sparse.count);
-      const int index_type = accessor.sparse.indices.componentType;
+      sparse_count = static_cast<std::size_t>(accessor.sparse.count);
+      index_type = accessor.sparse.indices.componentType;
       if (index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
           index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
           index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
         throw InputError(path_, sparse_element + ".indices",
                          "componentType must be unsigned, is " + component_type_name(index_type));
       }
-      const std::size_t index_size = static_cast<std::size_t>(
+      index_size = static_cast<std::size_t>(
           tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(index_type)));
-      const auto [index_data, index_stride] = view_range(
-          accessor.sparse.indices.bufferView,
-          static_cast<std::size_t>(std::max(0, accessor.sparse.indices.byteOffset)), sparse_count,
-          index_size, sparse_element + ".indices", accessor_path + ".sparse.indices");
-      const auto [value_data, value_stride] = view_range(
-          accessor.sparse.values.bufferView,
-          static_cast<std::size_t>(std::max(0, accessor.sparse.values.byteOffset)), sparse_count,
-          element_size, sparse_element + ".values", accessor_path + ".sparse.values");
-      (void)index_stride;
-      (void)value_stride;
-      for (std::size_t k = 0; k < sparse_count; ++k) {
-        const std::uint32_t target = decode<std::uint32_t>(index_data + k * index_size, index_type);
-        if (target >= accessor.count) {
-          throw InputError(path_, sparse_element + ".indices",
-                           "index " + std::to_string(target) + " at position " + std::to_string(k) +
-                               " is out of range for " + std::to_string(accessor.count) +
-                               " elements");
-        }
+      index_data =
+          view_range(accessor.sparse.indices.bufferView,
+                     static_cast<std::size_t>(std::max(0, accessor.sparse.indices.byteOffset)),
+                     sparse_count, index_size, sparse_element + ".indices",
+                     accessor_path + ".sparse.indices")
+              .first;
+      value_data =
+          view_range(accessor.sparse.values.bufferView,
+                     static_cast<std::size_t>(std::max(0, accessor.sparse.values.byteOffset)),
+                     sparse_count, element_size, sparse_element + ".values",
+                     accessor_path + ".sparse.values")
+              .first;
+    }
+
+    std::vector<Value> values(accessor.count * components, Value(0));
+    if (data) {
+      for (std::size_t i = 0; i < accessor.count; ++i) {
         for (std::size_t c = 0; c < components; ++c) {
-          values[target * components + c] = decode<Value>(
-              value_data + k * element_size + c * component_size, accessor.componentType);
+          values[i * components + c] =
+              decode<Value>(data + i * stride + c * component_size, accessor.componentType);
         }
+      }
+    }
+    for (std::size_t k = 0; k < sparse_count; ++k) {
+      const std::uint32_t target = decode<std::uint32_t>(index_data + k * index_size, index_type);
+      if (target >= accessor.count) {
+        throw InputError(path_, sparse_element + ".indices",
+                         "index " + std::to_string(target) + " at position " + std::to_string(k) +
+                             " is out of range for " + std::to_string(accessor.count) +
+                             " elements");
+      }
+      for (std::size_t c = 0; c < components; ++c) {
+        values[target * components + c] = decode<Value>(
+            value_data + k * element_size + c * component_size, accessor.componentType);
       }
     }
     return values;
@@ -714,6 +753,12 @@ class ModelReader {
 // ---------------------------------------------------------------------------------------------
 // Scene graph.
 
+std::string coordinates(const glm::dvec3& p) {
+  char text[96];
+  std::snprintf(text, sizeof text, "(%.9g, %.9g, %.9g)", p.x, p.y, p.z);
+  return text;
+}
+
 bool all_finite(const glm::dmat4& m) {
   for (int c = 0; c < 4; ++c) {
     for (int r = 0; r < 4; ++r) {
@@ -728,7 +773,7 @@ class SceneBuilder {
   SceneBuilder(const std::string& path, const tinygltf::Model& model, LoadedScene& scene)
       : path_(path), model_(model), scene_(scene), reader_(path, model, scene) {}
 
-  void add_root(int node_index) { visit(node_index, glm::dmat4(1.0), std::nullopt, {}); }
+  void add_root(int node_index) { visit_tree(node_index); }
 
  private:
   // Local transform of a node: its matrix, or T * R * S (glTF 2.0, 3.5.3).
@@ -793,38 +838,79 @@ class SceneBuilder {
     return m;
   }
 
-  // `singular` names the transform property of the nearest ancestor (or this node) whose linear
-  // part is singular; meshes and lights below it are an error, empty subtrees are harmless.
-  void visit(int node_index, const glm::dmat4& parent, std::optional<std::string> singular,
-             std::vector<int> ancestors) {
+  // Depth-first in the file's child order, with an explicit stack: a chain of 20,000 nodes
+  // overflowed the call stack when this recursed (and copied the ancestor list per level, 426 MB
+  // at depth 10,000). Memory is linear in the node count: one frame per level of the current
+  // path and one on-path flag per node for the cycle check.
+  void visit_tree(int root) {
+    if (on_path_.empty()) {
+      on_path_.assign(model_.nodes.size(), 0);
+      visited_.assign(model_.nodes.size(), 0);
+    }
+    struct Frame {
+      int node;
+      glm::dmat4 world;
+      int singular;  // the nearest node at or above this one with a singular transform, or -1
+      std::size_t next_child;
+    };
+    std::vector<Frame> path;
+    auto enter = [&](int node_index, const glm::dmat4& parent, int singular) {
+      const glm::dmat4 world = place_node(node_index, parent, singular);
+      on_path_[static_cast<std::size_t>(node_index)] = 1;
+      path.push_back({node_index, world, singular, 0});
+    };
+    enter(root, glm::dmat4(1.0), -1);
+    while (!path.empty()) {
+      Frame& frame = path.back();
+      const auto& children = model_.nodes[static_cast<std::size_t>(frame.node)].children;
+      if (frame.next_child == children.size()) {
+        on_path_[static_cast<std::size_t>(frame.node)] = 0;
+        path.pop_back();
+        continue;
+      }
+      const int child = children[frame.next_child++];
+      const glm::dmat4 world = frame.world;  // `frame` dies when enter() grows `path`
+      enter(child, world, frame.singular);
+    }
+  }
+
+  // Checks one node reached below `parent` and adds its mesh and light; returns its world
+  // transform. `singular` (in/out) is the nearest ancestor, or this node, whose linear part is
+  // singular: meshes and lights below it are an error, empty subtrees are harmless.
+  glm::dmat4 place_node(int node_index, const glm::dmat4& parent, int& singular) {
     const std::string node_path = "nodes[" + std::to_string(node_index) + "]";
     if (node_index < 0 || static_cast<std::size_t>(node_index) >= model_.nodes.size()) {
       throw InputError(
           path_, node_path,
           "node index out of range (" + std::to_string(model_.nodes.size()) + " nodes)");
     }
-    if (std::find(ancestors.begin(), ancestors.end(), node_index) != ancestors.end()) {
+    const auto index = static_cast<std::size_t>(node_index);
+    if (on_path_[index]) {
       throw InputError(path_, node_path, "is its own ancestor (cycle in the node hierarchy)");
     }
-    if (!visited_.insert(node_index).second) {
+    if (visited_[index]) {
       throw InputError(path_, node_path,
                        "is reached twice (a node may have one parent and appear in one scene "
                        "only)");
     }
-    const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(node_index)];
+    visited_[index] = 1;
+    const tinygltf::Node& node = model_.nodes[index];
     const glm::dmat4 local = local_transform(node, node_path);
     const double local_determinant = glm::determinant(glm::dmat3(local));
-    if (!singular && !(std::isfinite(local_determinant) && local_determinant != 0.0)) {
-      singular = node_path + (node.matrix.empty() ? ".scale" : ".matrix");
+    if (singular < 0 && !(std::isfinite(local_determinant) && local_determinant != 0.0)) {
+      singular = node_index;
     }
     const glm::dmat4 world = parent * local;
     if (!all_finite(world)) {
       throw InputError(path_, node_path, "world transform overflows (non-finite entries)");
     }
     const bool has_light = node.extensions.count("KHR_lights_punctual") > 0;
-    if ((node.mesh >= 0 || has_light) && singular) {
+    if ((node.mesh >= 0 || has_light) && singular >= 0) {
+      const tinygltf::Node& culprit = model_.nodes[static_cast<std::size_t>(singular)];
       throw InputError(
-          path_, *singular,
+          path_,
+          "nodes[" + std::to_string(singular) + "]" +
+              (culprit.matrix.empty() ? ".scale" : ".matrix"),
           "singular transform (zero determinant) above the mesh or light of " + node_path);
     }
     if ((node.mesh >= 0 || has_light) && !(std::isfinite(glm::determinant(glm::dmat3(world))) &&
@@ -833,8 +919,7 @@ class SceneBuilder {
     }
     if (node.mesh >= 0) add_mesh_instance(node_index, node, world);
     if (has_light) add_light(node_index, node, world);
-    ancestors.push_back(node_index);
-    for (const int child : node.children) visit(child, world, singular, ancestors);
+    return world;
   }
 
   void add_mesh_instance(int node_index, const tinygltf::Node& node, const glm::dmat4& world) {
@@ -894,6 +979,15 @@ class SceneBuilder {
           throw InputError(path_, accessor_element(positions_user, position_it->second),
                            "vertex " + std::to_string(v) + " leaves float range under " +
                                node_path + "'s world transform");
+        }
+        const double largest =
+            std::max({std::fabs(placed.x), std::fabs(placed.y), std::fabs(placed.z)});
+        if (largest > max_scene_coordinate) {
+          throw InputError(path_, accessor_element(positions_user, position_it->second),
+                           "vertex " + std::to_string(v) + " lies at " + coordinates(placed) +
+                               " under " + node_path +
+                               "'s world transform, beyond 1e30 (the largest coordinate a case "
+                               "accepts)");
         }
       }
 
@@ -1029,14 +1123,20 @@ class SceneBuilder {
   const tinygltf::Model& model_;
   LoadedScene& scene_;
   ModelReader reader_;
-  std::set<int> visited_;
+  std::vector<char> on_path_, visited_;  // per node
 };
 
 LoadedScene load_gltf_checked(const std::string& path) {
   const std::vector<unsigned char> bytes = read_file_bytes(path);
   const bool binary = is_glb(bytes);
+  if (!binary && has_glb_extension(path)) {
+    // Parsed as JSON it would only say "syntax error at byte 1".
+    throw InputError(path, "GLB header", "not a GLB file (magic " + magic_text(bytes) + ")");
+  }
   const std::string json_text =
       binary ? glb_json_chunk(path, bytes) : std::string(bytes.begin(), bytes.end());
+  // tinygltf converts the JSON recursively (extras nested 100,000 deep overflowed the stack).
+  check_json_nesting(json_text, path, binary ? "GLB JSON chunk" : "JSON");
 
   LoadedScene scene;
   Json root;

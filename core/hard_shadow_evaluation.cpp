@@ -18,7 +18,7 @@ constexpr std::uint64_t exact_oracle_triangle_limit = 4'000'000;
 class HardShadowEvaluation : public CaseEvaluation {
  public:
   HardShadowEvaluation(const Case& c, const ViewSamples& samples, bool exact,
-                       const std::filesystem::path& out_dir)
+                       const std::filesystem::path& out_dir, const std::string& image_folder)
       : samples_(samples), out_dir_(out_dir) {
     const auto start = std::chrono::steady_clock::now();
     truth_ = exact ? exact_hard_shadow_oracle(c, samples) : embree_hard_shadow_oracle(c, samples);
@@ -42,7 +42,7 @@ class HardShadowEvaluation : public CaseEvaluation {
                        {"robust_lit", robust_lit},
                        {"robust_shadowed", robust_shadowed},
                        {"ambiguous", ambiguous},
-                       {"mask_image", write_oracle_images(out_dir, c.name, samples, truth_)}};
+                       {"mask_image", write_oracle_images(out_dir, image_folder, samples, truth_)}};
   }
 
   void judge(const AlgorithmOutput& output, RunRecord& record) const override {
@@ -55,6 +55,11 @@ class HardShadowEvaluation : public CaseEvaluation {
       if (approximate && h.verdict == Verdict::fail) {
         record.verdict = Verdict::quality_warning;
         record.reason = "approximate by design: " + h.reason;
+      }
+      if (h.robust == 0) {
+        record.verdict = Verdict::not_supported;
+        record.reason = nothing_to_judge(samples_, h.ambiguous) + " (" +
+                        std::to_string(h.ambiguous_disagreements) + " of the ambiguous differ)";
       }
     }
     nlohmann::ordered_json curve = nlohmann::ordered_json::array();
@@ -88,6 +93,7 @@ std::unique_ptr<CaseEvaluation> evaluate_hard_shadows(const Case& hard_case,
                                                       const ViewSamples& samples,
                                                       OracleChoice choice,
                                                       const std::filesystem::path& out_dir,
+                                                      const std::string& image_folder,
                                                       std::vector<std::string>& left_out) {
   const bool exact =
       choice == OracleChoice::exact || (choice == OracleChoice::automatic &&
@@ -99,7 +105,7 @@ std::unique_ptr<CaseEvaluation> evaluate_hard_shadows(const Case& hard_case,
             : "exact hard-shadow oracle: " + std::to_string(hard_case.triangles.size()) +
                   " triangles exceed its limit of " + std::to_string(exact_oracle_triangle_limit) +
                   "; the fast oracle's band is estimated");
-  return std::make_unique<HardShadowEvaluation>(hard_case, samples, exact, out_dir);
+  return std::make_unique<HardShadowEvaluation>(hard_case, samples, exact, out_dir, image_folder);
 }
 
 }  // namespace shadowcts

@@ -13,11 +13,12 @@ namespace shadowcts {
 
 // Computes the hard-shadow truth of `hard_case` (its light is point or directional) with the
 // exact oracle, or the fast one above its size limit or on request (noted in `left_out`), and
-// writes the oracle's mask image.
+// writes the oracle's mask image under images/<image_folder>/.
 std::unique_ptr<CaseEvaluation> evaluate_hard_shadows(const Case& hard_case,
                                                       const ViewSamples& samples,
                                                       OracleChoice choice,
                                                       const std::filesystem::path& out_dir,
+                                                      const std::string& image_folder,
                                                       std::vector<std::string>& left_out);
 
 }  // namespace shadowcts

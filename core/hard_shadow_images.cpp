@@ -55,9 +55,10 @@ RgbImage mismatch_image(const ViewSamples& samples, const std::vector<std::uint8
   });
 }
 
-std::string write_oracle_images(const std::filesystem::path& out_dir, const std::string& case_name,
-                                const ViewSamples& samples, const HardShadowTruth& truth) {
-  return write_png_and_exr(out_dir, case_image_stem(case_name) + "/oracle.mask",
+std::string write_oracle_images(const std::filesystem::path& out_dir,
+                                const std::string& image_folder, const ViewSamples& samples,
+                                const HardShadowTruth& truth) {
+  return write_png_and_exr(out_dir, case_image_stem(image_folder) + "/oracle.mask",
                            shadow_mask_image(samples, truth.shadowed));
 }
 

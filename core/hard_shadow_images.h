@@ -21,9 +21,10 @@ RgbImage shadow_mask_image(const ViewSamples& samples, const std::vector<std::ui
 RgbImage mismatch_image(const ViewSamples& samples, const std::vector<std::uint8_t>& shadowed,
                         const HardShadowTruth& truth);
 
-// Writes images/<case>/oracle.mask.{png,exr}; returns the PNG path relative to out_dir.
-std::string write_oracle_images(const std::filesystem::path& out_dir, const std::string& case_name,
-                                const ViewSamples& samples, const HardShadowTruth& truth);
+// Writes images/<image_folder>/oracle.mask.{png,exr}; returns the PNG path relative to out_dir.
+std::string write_oracle_images(const std::filesystem::path& out_dir,
+                                const std::string& image_folder, const ViewSamples& samples,
+                                const HardShadowTruth& truth);
 
 // Writes images/<case>/<algorithm>.<variant>.<backend>.{mask,mismatch}.{png,exr}; returns the
 // paths relative to out_dir.

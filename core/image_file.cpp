@@ -2,21 +2,28 @@
 
 #include <filesystem>
 #include <memory>
-#include <stdexcept>
+#include <string_view>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+
+#include "atomic_file.h"
+#include "shadowcts/errors.h"
 
 namespace shadowcts {
 
 void write_image(const std::string& path, const RgbImage& image) {
   const std::filesystem::path target(path);
-  // Keep the extension last so OpenImageIO still picks the format from it.
-  const std::filesystem::path temporary =
-      target.parent_path() / (target.stem().string() + ".partial" + target.extension().string());
   const bool exr = target.extension() == ".exr";
+  // OpenImageIO encodes into memory and the bytes go through the one checked file writer: its
+  // PNG writer does not report a failed write (a full disk gave zero-byte PNGs).
+  std::vector<unsigned char> bytes;
   {
-    auto out = OIIO::ImageOutput::create(temporary.string());
-    if (!out) throw std::runtime_error(path + ": no image writer: " + OIIO::geterror());
+    OIIO::Filesystem::IOVecOutput memory(bytes);
+    auto out = OIIO::ImageOutput::create(path);  // the format follows the extension
+    if (!out) throw OutputError(path, "no image writer: " + OIIO::geterror());
+    if (!out->supports("ioproxy"))
+      throw OutputError(path, "the image writer cannot encode into memory");
     OIIO::ImageSpec spec(int(image.width), int(image.height), 3,
                          exr ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::UINT8);
     if (exr) {
@@ -26,15 +33,14 @@ void write_image(const std::string& path, const RgbImage& image) {
       spec.attribute("DateTime", "");
     }
     // Passing UINT8 pixels lets OIIO convert them to the file's format (0..255 -> 0..1 in EXR).
-    if (!out->open(temporary.string(), spec) ||
-        !out->write_image(OIIO::TypeDesc::UINT8, image.rgb.data()) || !out->close()) {
-      const std::string error = out->geterror();
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-      throw std::runtime_error(path + ": cannot write image: " + error);
-    }
+    if (!out->set_ioproxy(&memory) || !out->open(path, spec) ||
+        !out->write_image(OIIO::TypeDesc::UINT8, image.rgb.data()) || !out->close() ||
+        out->has_error())
+      throw OutputError(path, "cannot encode image: " + out->geterror());
   }
-  std::filesystem::rename(temporary, target);
+  if (bytes.empty()) throw OutputError(path, "the image writer produced no bytes");
+  write_file_atomically(
+      target, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 }  // namespace shadowcts

@@ -1,21 +1,29 @@
 #pragma once
-// Where a run's images go: images/<case>/oracle.* and
-// images/<case>/<algorithm>.<variant>.<backend>.*
+// Where a run's images go: images/<case folder>/oracle.* and
+// images/<case folder>/<algorithm>.<variant>.<backend>.*
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "run_record.h"
 #include "shadowcts/image_file.h"
 
 namespace shadowcts {
 
-// "images/<case>", the case name made safe for paths.
-std::string case_image_stem(const std::string& case_name);
+// One image folder name per case, in case order: the name made safe for paths (only letters,
+// digits and . - _ +; never empty, never starting with a dot, so never "." or ".."), at most
+// 100 characters, and unique within the run ignoring letter case (a later case whose name is
+// taken gets "-2", "-3", ...). The same case list gives the same folders.
+std::vector<std::string> case_image_folders(const std::vector<std::string>& case_names);
 
-// "images/<case>/<algorithm>.<variant>.<backend>".
+// "images/<folder>" for a folder from case_image_folders.
+std::string case_image_stem(const std::string& image_folder);
+
+// "images/<record.image_folder>/<algorithm>.<variant>.<backend>".
 std::string algorithm_image_stem(const RunRecord& record);
 
 // Writes out_dir/stem.png and out_dir/stem.exr (creating folders); returns "stem.png".
+// Throws OutputError naming the file or folder that cannot be written.
 std::string write_png_and_exr(const std::filesystem::path& out_dir, const std::string& stem,
                               const RgbImage& image);
 

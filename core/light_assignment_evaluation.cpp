@@ -17,7 +17,7 @@ namespace {
 class LightAssignmentEvaluation : public CaseEvaluation {
  public:
   LightAssignmentEvaluation(const Case& c, const ViewSamples& samples,
-                            const std::filesystem::path& out_dir)
+                            const std::filesystem::path& out_dir, const std::string& image_folder)
       : case_(c), samples_(samples), out_dir_(out_dir) {
     const auto start = std::chrono::steady_clock::now();
     plain_ = exact_light_assignment_oracle(c, samples, false);
@@ -38,7 +38,7 @@ class LightAssignmentEvaluation : public CaseEvaluation {
       exact_count[s] = std::uint32_t(plain_.set_size(s));
     scale_ =
         std::max<std::uint32_t>(1, 4 * *std::max_element(exact_count.begin(), exact_count.end()));
-    const std::string stem = case_image_stem(c.name) + "/oracle.lights";
+    const std::string stem = case_image_stem(image_folder) + "/oracle.lights";
     write_png_and_exr(out_dir, stem, count_heat_map(samples, exact_count, scale_));
     oracle_.details = {{"eps_rel", plain_.eps_rel},
                        {"tau", plain_.tau},
@@ -56,6 +56,12 @@ class LightAssignmentEvaluation : public CaseEvaluation {
     if (record.verdict != Verdict::fail) {
       record.verdict = cmp.verdict;
       record.reason = cmp.reason;
+      // Without a regular sample there is no list to check against a truth (malformed lists
+      // still fail).
+      if (cmp.compared == 0 && cmp.verdict == Verdict::pass) {
+        record.verdict = Verdict::not_supported;
+        record.reason = nothing_to_judge(samples_, cmp.ambiguous_members);
+      }
     }
     nlohmann::ordered_json misses = nlohmann::ordered_json::array();
     for (const LightListMiss& m : cmp.first_misses)
@@ -99,8 +105,9 @@ class LightAssignmentEvaluation : public CaseEvaluation {
 }  // namespace
 
 std::unique_ptr<CaseEvaluation> evaluate_light_assignment(const Case& c, const ViewSamples& samples,
-                                                          const std::filesystem::path& out_dir) {
-  return std::make_unique<LightAssignmentEvaluation>(c, samples, out_dir);
+                                                          const std::filesystem::path& out_dir,
+                                                          const std::string& image_folder) {
+  return std::make_unique<LightAssignmentEvaluation>(c, samples, out_dir, image_folder);
 }
 
 }  // namespace shadowcts

@@ -12,8 +12,9 @@ namespace shadowcts {
 
 // Computes the exact light sets of every regular sample (with and without the normal rule) and
 // judges light lists for completeness, soundness and efficiency; writes per-sample list-length
-// images.
+// images under images/<image_folder>/.
 std::unique_ptr<CaseEvaluation> evaluate_light_assignment(const Case& c, const ViewSamples& samples,
-                                                          const std::filesystem::path& out_dir);
+                                                          const std::filesystem::path& out_dir,
+                                                          const std::string& image_folder);
 
 }  // namespace shadowcts

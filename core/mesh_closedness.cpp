@@ -77,18 +77,27 @@ std::ostringstream& openmesh_error_buffer() {
 }
 }  // namespace
 
-OpenMeshErrorCapture::OpenMeshErrorCapture() : lock_(openmesh_error_stream_mutex()) {
+OpenMeshErrorCapture::OpenMeshErrorCapture()
+    : lock_(openmesh_error_stream_mutex()), previous_cerr_(nullptr), previous_clog_(nullptr) {
   omerr().flush();
   openmesh_error_buffer().str("");
+  std::cerr.flush();
+  std::clog.flush();
+  previous_cerr_ = std::cerr.rdbuf(openmesh_error_buffer().rdbuf());
+  previous_clog_ = std::clog.rdbuf(openmesh_error_buffer().rdbuf());
 }
 
 OpenMeshErrorCapture::~OpenMeshErrorCapture() {
   omerr().flush();
+  std::cerr.rdbuf(previous_cerr_);
+  std::clog.rdbuf(previous_clog_);
   openmesh_error_buffer().str("");
 }
 
 std::string OpenMeshErrorCapture::text() {
   omerr().flush();
+  std::cerr.flush();
+  std::clog.flush();
   return openmesh_error_buffer().str();
 }
 

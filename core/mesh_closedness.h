@@ -23,7 +23,10 @@ bool is_closed_surface(std::span<const Triangle> triangles);
 // While alive, what OpenMesh reports on its error stream (omerr) is collected for text(). omerr is
 // process-global: the first capture redirects it from stderr into one process-wide buffer for
 // good (OpenMesh leaks on every reconnect), and each capture holds a process-wide lock, so
-// concurrent loads serialize here.
+// concurrent loads serialize here. Some OpenMesh readers write to std::clog or std::cerr directly
+// (the PLY reader's "Unsupported keyword" goes to std::clog): both go into the same buffer while a
+// capture lives, so nothing of OpenMesh reaches the user's terminal unfiltered. Loads run before
+// any worker thread writes to these streams.
 class OpenMeshErrorCapture {
  public:
   OpenMeshErrorCapture();
@@ -36,6 +39,8 @@ class OpenMeshErrorCapture {
 
  private:
   std::unique_lock<std::recursive_mutex> lock_;
+  std::streambuf* previous_cerr_;
+  std::streambuf* previous_clog_;
 };
 
 }  // namespace shadowcts

@@ -73,21 +73,75 @@ void check_coordinate_token(const std::string& path, const std::string& token,
   }
 }
 
+// A vertex coordinate: a number, and no larger than a case accepts.
+void check_position_token(const std::string& path, const std::string& token,
+                          const std::string& element) {
+  check_coordinate_token(path, token, element);
+  if (std::fabs(std::strtod(token.c_str(), nullptr)) > max_scene_coordinate) {
+    throw InputError(
+        path, element,
+        "coordinate '" + token + "' is beyond 1e30 (the largest coordinate a case accepts)");
+  }
+}
+
+// Text formats read byte by byte: UTF-16 (a byte-order mark or NUL bytes) reads as nothing at
+// all, which would end as "no faces".
+void require_single_byte_text(const std::string& path, const std::string& line,
+                              std::size_t line_number) {
+  const bool utf16_mark = line.size() >= 2 && ((line[0] == '\xFF' && line[1] == '\xFE') ||
+                                               (line[0] == '\xFE' && line[1] == '\xFF'));
+  if (line_number == 1 && utf16_mark) {
+    throw InputError(path, "line 1",
+                     "the file is UTF-16 (byte-order mark); it must be ASCII or UTF-8 text");
+  }
+  if (line.find('\0') != std::string::npos) {
+    throw InputError(path, "line " + std::to_string(line_number),
+                     "contains a NUL byte: not ASCII or UTF-8 text (UTF-16?)");
+  }
+}
+
 std::string vertex_element(std::size_t vertex, std::size_t line) {
   return "vertex " + std::to_string(vertex) + " (line " + std::to_string(line) + ")";
 }
 
 // What the text pre-scan learned about the file, for cross-checking what OpenMesh read.
 struct DeclaredCounts {
+  DeclaredCounts(std::optional<std::size_t> vertices_ = {},
+                 std::optional<std::size_t> triangles_ = {})
+      : vertices(vertices_), triangles(triangles_) {}
   std::optional<std::size_t> vertices;
-  std::optional<std::size_t> triangles;  // after fan triangulation of polygons
+  std::optional<std::size_t> triangles;              // after fan triangulation of polygons
+  std::size_t faces = 0;                             // faces seen by the scan
+  std::size_t repeated_vertex_faces = 0;             // of them, with fewer than 3 distinct corners
+  std::optional<std::string> first_repeated_vertex;  // "f 2 (line 7) uses vertex 3 more ..."
+
+  // One face of the file at `element`, by its corners' vertex numbers (as the file numbers
+  // them). Fewer than 3 corners is an error (OpenMesh drops the face without a word); fewer than
+  // 3 distinct ones make a face OpenMesh drops (it keeps a polygon as the polygon without the
+  // repeat), remembered for the messages.
+  void face(const std::string& path, const std::string& element, std::vector<long long> corners,
+            const char* noun = "vertex") {
+    ++faces;
+    if (corners.size() < 3) {
+      throw InputError(
+          path, element,
+          "has " + std::to_string(corners.size()) + " corner(s); a face needs at least 3");
+    }
+    std::sort(corners.begin(), corners.end());
+    const auto repeated = std::adjacent_find(corners.begin(), corners.end());
+    const auto distinct = std::unique(corners.begin(), corners.end()) - corners.begin();
+    if (distinct < 3) {
+      ++repeated_vertex_faces;
+      if (!first_repeated_vertex) {
+        first_repeated_vertex =
+            element + " uses " + noun + " " + std::to_string(*repeated) + " more than once";
+      }
+    }
+  }
 };
 
-// A face corner's vertex index as OpenMesh reads it ("i", "i/t", "i//n", "i/t/n"): an integer,
-// 1-based, or negative to count back from the last vertex read so far.
-std::optional<long long> corner_vertex_index(const std::string& corner) {
-  std::string_view text(corner);
-  text = text.substr(0, text.find('/'));
+// An OBJ index: an integer, 1-based, or negative to count back from the last element so far.
+std::optional<long long> obj_index(std::string_view text) {
   if (!text.empty() && text.front() == '+') text.remove_prefix(1);
   long long value = 0;
   const auto [rest, error] = std::from_chars(text.data(), text.data() + text.size(), value);
@@ -96,22 +150,50 @@ std::optional<long long> corner_vertex_index(const std::string& corner) {
   return value;
 }
 
+// A face corner "v", "v/t", "v//n" or "v/t/n": the vertex index, after checking that every part
+// is an index (OpenMesh reads "1/a" as vertex 1 and ignores the rest).
+long long corner_vertex_index(const std::string& path, const std::string& element,
+                              const std::string& corner) {
+  std::vector<std::string_view> parts;
+  std::string_view text(corner);
+  for (std::size_t slash; (slash = text.find('/')) != std::string_view::npos;) {
+    parts.push_back(text.substr(0, slash));
+    text.remove_prefix(slash + 1);
+  }
+  parts.push_back(text);
+  const auto vertex = obj_index(parts[0]);
+  if (!vertex) {
+    throw InputError(path, element, "corner '" + corner + "' does not start with a vertex index");
+  }
+  if (parts.size() > 3) {
+    throw InputError(path, element,
+                     "corner '" + corner + "' has more than vertex/texture/normal indices");
+  }
+  static constexpr const char* what[] = {"vertex", "texture", "normal"};
+  for (std::size_t i = 1; i < parts.size(); ++i) {
+    if (parts[i].empty() && !(i == 1 && parts.size() == 3)) {  // only "v//n" may leave one out
+      throw InputError(path, element, "corner '" + corner + "' has an empty " + what[i] + " index");
+    }
+    if (!parts[i].empty() && (!obj_index(parts[i]) || *obj_index(parts[i]) == 0)) {
+      throw InputError(path, element,
+                       "corner '" + corner + "': " + what[i] + " index '" + std::string(parts[i]) +
+                           "' is not a non-zero integer");
+    }
+  }
+  return *vertex;
+}
+
 // OBJ: "v x y z [w]" lines (vertex numbers are 1-based, as in the file); "f" lines give n - 2
-// triangles each. Every face corner must start with a vertex index that names an existing
-// vertex: OpenMesh's reader aborts on an assertion for a corner without one ("f /1 2 3", found by
-// the OBJ fuzz target) and silently drops faces with indices out of range.
+// triangles each. Every face corner must be an index of a vertex defined before the face:
+// OpenMesh's reader aborts on an assertion for a corner without one ("f /1 2 3", found by the OBJ
+// fuzz target) and silently drops faces with indices out of range.
 DeclaredCounts scan_obj(const std::string& path, std::istream& in) {
   DeclaredCounts counts{0, 0};
   std::string line;
   std::size_t line_number = 0, face = 0;
-  // Positive indices may point forward (OpenMesh reads every vertex first): checked at the end.
-  struct ForwardReference {
-    std::string element;
-    long long index;
-  };
-  std::optional<ForwardReference> furthest;
   while (std::getline(in, line)) {
     ++line_number;
+    require_single_byte_text(path, line, line_number);
     const auto tokens = split_whitespace(line);
     if (tokens.empty()) continue;
     if (tokens[0] == "v") {
@@ -120,38 +202,81 @@ DeclaredCounts scan_obj(const std::string& path, std::istream& in) {
           "v " + std::to_string(vertex) + " (line " + std::to_string(line_number) + ")";
       if (tokens.size() < 4) throw InputError(path, element, "fewer than 3 coordinates");
       for (std::size_t axis = 1; axis <= 3; ++axis)
-        check_coordinate_token(path, tokens[axis], element);
+        check_position_token(path, tokens[axis], element);
     } else if (tokens[0] == "f") {
       const std::string element =
           "f " + std::to_string(++face) + " (line " + std::to_string(line_number) + ")";
+      if (tokens.size() < 4) {
+        counts.face(path, element, std::vector<long long>(tokens.size() - 1));  // throws
+      }
       const auto vertices_so_far = static_cast<long long>(*counts.vertices);
+      std::vector<long long> corners;
       for (std::size_t corner = 1; corner < tokens.size(); ++corner) {
-        const auto index = corner_vertex_index(tokens[corner]);
-        if (!index) {
-          throw InputError(path, element,
-                           "corner '" + tokens[corner] + "' does not start with a vertex index");
-        }
-        if (*index == 0) {
+        const long long index = corner_vertex_index(path, element, tokens[corner]);
+        if (index == 0) {
           throw InputError(path, element, "vertex index 0 (OBJ indices start at 1)");
         }
-        if (*index < 0 && -*index > vertices_so_far) {
+        if (index < 0 && -index > vertices_so_far) {
           throw InputError(path, element,
-                           "relative vertex index " + std::to_string(*index) + " reaches before " +
+                           "relative vertex index " + std::to_string(index) + " reaches before " +
                                "the first vertex (" + std::to_string(vertices_so_far) +
                                " vertices so far)");
         }
-        if (*index > vertices_so_far && (!furthest || *index > furthest->index))
-          furthest = ForwardReference{element, *index};
+        if (index > vertices_so_far) {
+          throw InputError(path, element,
+                           "vertex index " + std::to_string(index) + " is out of range (" +
+                               std::to_string(vertices_so_far) +
+                               " vertices so far; a face must come after its vertices)");
+        }
+        corners.push_back(index < 0 ? vertices_so_far + 1 + index : index);
       }
-      if (tokens.size() >= 4) *counts.triangles += tokens.size() - 3;
+      counts.face(path, element, corners);
+      *counts.triangles += tokens.size() - 3;
     }
   }
-  if (furthest && furthest->index > static_cast<long long>(*counts.vertices)) {
-    throw InputError(path, furthest->element,
-                     "vertex index " + std::to_string(furthest->index) + " is out of range (" +
-                         std::to_string(*counts.vertices) + " vertices)");
-  }
   return counts;
+}
+
+// A facet's corners numbered by their points: {0, 0, 2} when corners 0 and 1 coincide.
+std::vector<long long> same_point_ids(const float (&points)[3][3]) {
+  std::vector<long long> ids;
+  for (long long c = 0; c < 3; ++c) {
+    long long id = c;
+    for (long long earlier = 0; earlier < c; ++earlier) {
+      if (points[earlier][0] == points[c][0] && points[earlier][1] == points[c][1] &&
+          points[earlier][2] == points[c][2]) {
+        id = earlier;
+        break;
+      }
+    }
+    ids.push_back(id);
+  }
+  return ids;
+}
+
+// True when the first non-blank characters are "solid": how an ASCII STL starts.
+bool starts_like_ascii_stl(const char* header, std::size_t size) {
+  std::size_t i = 0;
+  while (i < size &&
+         (header[i] == ' ' || header[i] == '\t' || header[i] == '\r' || header[i] == '\n'))
+    ++i;
+  return size - i >= 5 && std::memcmp(header + i, "solid", 5) == 0;
+}
+
+// What a binary STL's header promises against what the file holds.
+std::string binary_stl_size_problem(std::uint32_t facets, std::uintmax_t file_size) {
+  const std::uintmax_t needed = 84 + 50 * static_cast<std::uintmax_t>(facets);
+  std::string problem = "declares " + std::to_string(facets) + " triangles (84 + 50 x " +
+                        std::to_string(facets) + " = " + std::to_string(needed) +
+                        " bytes), the file has " + std::to_string(file_size) + " bytes";
+  if (file_size >= 84) {
+    const std::uintmax_t room = (file_size - 84) / 50;
+    problem += " (room for " + std::to_string(room) + (room == 1 ? " triangle" : " triangles") +
+               ((file_size - 84) % 50 != 0
+                    ? " and " + std::to_string((file_size - 84) % 50) + " stray bytes)"
+                    : ")");
+  }
+  return problem;
 }
 
 // ASCII STL: "vertex x y z" lines inside facets; binary STL is detected the way OpenMesh does,
@@ -162,31 +287,53 @@ DeclaredCounts scan_stl(const std::string& path, std::istream& in) {
   const auto header_bytes = static_cast<std::size_t>(in.gcount());
   std::error_code error;
   const auto file_size = std::filesystem::file_size(path, error);
+  std::uint32_t facets = 0;
+  std::memcpy(&facets, header + 80, sizeof facets);
   if (header_bytes == sizeof header && !error) {
-    std::uint32_t facets = 0;
-    std::memcpy(&facets, header + 80, sizeof facets);
     if (file_size == 84 + 50 * static_cast<std::uintmax_t>(facets)) {
       // Binary: OpenMesh silently drops facets with NaN corners, so they are named here.
       char facet[50];
+      DeclaredCounts counts(std::nullopt, facets);
       for (std::uint32_t f = 0; f < facets && in.read(facet, sizeof facet); ++f) {
+        float points[3][3];
+        std::memcpy(points, facet + 12, sizeof points);
+        counts.face(path, "facet " + std::to_string(f), same_point_ids(points),
+                    "the point of corner");
         for (std::size_t corner = 0; corner < 3; ++corner) {
-          float xyz[3];
-          std::memcpy(xyz, facet + 12 + 12 * corner, sizeof xyz);
+          const float(&xyz)[3] = points[corner];
+          const std::string element =
+              "facet " + std::to_string(f) + " vertex " + std::to_string(corner);
           if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2])) {
-            throw InputError(path,
-                             "facet " + std::to_string(f) + " vertex " + std::to_string(corner),
-                             "non-finite coordinate");
+            throw InputError(path, element, "non-finite coordinate");
+          }
+          for (const float v : xyz) {
+            if (std::fabs(v) > max_scene_coordinate) {
+              throw InputError(path, element,
+                               "coordinate " + std::to_string(v) +
+                                   " is beyond 1e30 (the largest coordinate a case accepts)");
+            }
           }
         }
       }
-      return {std::nullopt, facets};
+      return counts;
     }
+  }
+  if (!error && !starts_like_ascii_stl(header, header_bytes)) {
+    // Not "solid ...": a binary STL whose size does not match its count. OpenMesh would read it
+    // as text and find nothing ("no faces").
+    throw InputError(path, header_bytes < sizeof header ? "file" : "binary STL header",
+                     header_bytes < sizeof header
+                         ? "not an ASCII STL (no 'solid') and shorter than a binary STL header "
+                           "(84 bytes, the file has " +
+                               std::to_string(file_size) + ")"
+                         : binary_stl_size_problem(facets, file_size));
   }
   in.clear();
   in.seekg(0);
   DeclaredCounts counts{std::nullopt, 0};
   std::string line;
   std::size_t line_number = 0, vertex = 0;
+  float points[3][3] = {};
   while (std::getline(in, line)) {
     ++line_number;
     const auto tokens = split_whitespace(line);
@@ -196,8 +343,22 @@ DeclaredCounts scan_stl(const std::string& path, std::istream& in) {
     if (keyword != "vertex") continue;
     const std::string element = vertex_element(vertex++, line_number);
     if (tokens.size() < 4) throw InputError(path, element, "fewer than 3 coordinates");
-    for (std::size_t axis = 1; axis <= 3; ++axis)
-      check_coordinate_token(path, tokens[axis], element);
+    for (std::size_t axis = 1; axis <= 3; ++axis) {
+      check_position_token(path, tokens[axis], element);
+      points[(vertex - 1) % 3][axis - 1] = std::strtof(tokens[axis].c_str(), nullptr);
+    }
+    if (vertex % 3 == 0) {
+      counts.face(path,
+                  "facet " + std::to_string(vertex / 3 - 1) + " (line " +
+                      std::to_string(line_number - 2) + ")",
+                  same_point_ids(points), "the point of corner");
+    }
+  }
+  if (*counts.triangles == 0 && header_bytes == sizeof header && !error) {
+    // Binary STLs often start with "solid" too.
+    throw InputError(path, "file",
+                     "no 'facet' in it as ASCII STL, and as binary STL its header " +
+                         binary_stl_size_problem(facets, file_size));
   }
   return counts;
 }
@@ -381,6 +542,7 @@ DeclaredCounts scan_binary_off(const std::string& path, std::istream& in, const 
       throw InputError(path, "vertex " + std::to_string(vertex), "non-finite coordinate");
     in.ignore(static_cast<std::streamsize>(vertex_bytes - sizeof xyz));
   }
+  DeclaredCounts counts;
   std::size_t triangles = 0;
   for (std::uint32_t face = 0; face < faces; ++face) {
     const std::string element = "face " + std::to_string(face);
@@ -397,6 +559,7 @@ DeclaredCounts scan_binary_off(const std::string& path, std::istream& in, const 
                            std::to_string(std::uint64_t(*corners) * 4) + " bytes, only " +
                            std::to_string(left) + " are left");
     }
+    std::vector<long long> indices;
     for (std::uint32_t corner = 0; corner < *corners; ++corner) {
       const std::uint32_t index = *read_binary_u32(in, 4, false);
       if (index >= vertices) {
@@ -404,10 +567,14 @@ DeclaredCounts scan_binary_off(const std::string& path, std::istream& in, const 
                          "vertex index " + std::to_string(index) + " is out of range (" +
                              std::to_string(vertices) + " vertices)");
       }
+      indices.push_back(index);
     }
-    if (*corners >= 3) triangles += *corners - 2;
+    counts.face(path, element, std::move(indices));
+    triangles += *corners - 2;
   }
-  return {vertices, triangles};
+  counts.vertices = vertices;
+  counts.triangles = triangles;
+  return counts;
 }
 
 // OFF: the keyword line, counts "vertices faces edges", vertices (3 coordinates, 3 more with N,
@@ -457,10 +624,15 @@ DeclaredCounts scan_off(const std::string& path, std::istream& in) {
     const std::string what = "the " + std::to_string(vertices) + " vertices its header declares";
     for (int axis = 0; axis < (keyword.normals ? 6 : 3); ++axis) {
       const std::string token = required_token(path, tokens, element, what);
-      check_coordinate_token(path, token, element + tokens.at_line());
+      if (axis < 3) {
+        check_position_token(path, token, element + tokens.at_line());
+      } else {
+        check_coordinate_token(path, token, element + tokens.at_line());
+      }
     }
     tokens.skip_rest_of_line();
   }
+  DeclaredCounts counts;
   std::size_t triangles = 0;
   for (std::uint32_t face = 0; face < faces; ++face) {
     const std::string element = "face " + std::to_string(face);
@@ -471,6 +643,7 @@ DeclaredCounts scan_off(const std::string& path, std::istream& in) {
     if (!corners) {
       throw InputError(path, located, "malformed face (vertex count, then that many indices)");
     }
+    std::vector<long long> indices;
     for (std::uint32_t corner = 0; corner < *corners; ++corner) {
       const std::string token = required_token(path, tokens, located, what);
       const auto index = parse_u32(token);
@@ -479,11 +652,15 @@ DeclaredCounts scan_off(const std::string& path, std::istream& in) {
                          "vertex index '" + token + "' is out of range (" +
                              std::to_string(vertices) + " vertices)");
       }
+      indices.push_back(*index);
     }
+    counts.face(path, located, std::move(indices));
     if (keyword.colors) tokens.skip_rest_of_line();
-    if (*corners >= 3) triangles += *corners - 2;
+    triangles += *corners - 2;
   }
-  return {vertices, triangles};
+  counts.vertices = vertices;
+  counts.triangles = triangles;
+  return counts;
 }
 
 // -- PLY ----------------------------------------------------------------------------------------
@@ -763,6 +940,7 @@ DeclaredCounts scan_ply(const std::string& path, std::istream& in) {
   }
 
   if (header.binary) in.seekg(static_cast<std::streamoff>(header.body_start));
+  DeclaredCounts counts;
   for (const PlyElement& element : header.elements) {
     const std::string what = "the " + std::to_string(element.count) + " '" + element.name +
                              "' elements its header declares";
@@ -772,8 +950,10 @@ DeclaredCounts scan_ply(const std::string& path, std::istream& in) {
         if (!header.binary) {
           const std::string token = required_token(path, tokens, element_i, what);
           const std::string located = element_i + tokens.at_line();
-          if (p.role == PlyRole::coordinate || p.role == PlyRole::float_value ||
-              (p.role == PlyRole::color && p.type == PlyType::float32)) {
+          if (p.role == PlyRole::coordinate) {
+            check_position_token(path, token, located);
+          } else if (p.role == PlyRole::float_value ||
+                     (p.role == PlyRole::color && p.type == PlyType::float32)) {
             check_coordinate_token(path, token, located);
           } else if (p.role == PlyRole::color && !is_int32(token)) {
             throw InputError(path, located, "colour '" + token + "' is not an integer");
@@ -781,6 +961,7 @@ DeclaredCounts scan_ply(const std::string& path, std::istream& in) {
             const auto corners = parse_u32(token);
             if (!corners)
               throw InputError(path, located, "vertex count '" + token + "' is not a number");
+            std::vector<long long> indices;
             for (std::uint32_t corner = 0; corner < *corners; ++corner) {
               const std::string index = required_token(path, tokens, located, what);
               const auto value = parse_u32(index);
@@ -789,7 +970,9 @@ DeclaredCounts scan_ply(const std::string& path, std::istream& in) {
                                  "vertex index '" + index + "' is out of range (" +
                                      std::to_string(vertices) + " vertices)");
               }
+              indices.push_back(*value);
             }
+            counts.face(path, located, std::move(indices));
           }
           continue;
         }
@@ -807,6 +990,7 @@ DeclaredCounts scan_ply(const std::string& path, std::istream& in) {
                              std::to_string(n) + " vertex indices need " + std::to_string(bytes) +
                                  " bytes, only " + std::to_string(left) + " are left");
           }
+          std::vector<long long> indices;
           for (std::uint32_t corner = 0; corner < n; ++corner) {
             std::uint32_t index = *read_binary_u32(in, ply_size(p.type), header.big_endian);
             if (p.type == PlyType::int8) index = std::uint32_t(std::int32_t(std::int8_t(index)));
@@ -815,7 +999,9 @@ DeclaredCounts scan_ply(const std::string& path, std::istream& in) {
                                "vertex index " + std::to_string(index) + " is out of range (" +
                                    std::to_string(vertices) + " vertices)");
             }
+            indices.push_back(index);
           }
+          counts.face(path, located, std::move(indices));
           continue;
         }
         if (!in.ignore(ply_size(p.type)) || in.gcount() != ply_size(p.type))
@@ -824,7 +1010,8 @@ DeclaredCounts scan_ply(const std::string& path, std::istream& in) {
     }
     if (element.name == "face") break;  // OpenMesh reads nothing after the faces
   }
-  return {vertices, std::nullopt};
+  counts.vertices = vertices;
+  return counts;
 }
 
 std::size_t count_occurrences(const std::string& text, std::string_view what) {
@@ -833,6 +1020,25 @@ std::size_t count_occurrences(const std::string& text, std::string_view what) {
     ++count;
   }
   return count;
+}
+
+// OpenMesh's PLY reader prints "Unsupported keyword : <word>" for every header word it skips
+// (to std::cerr, captured with its error stream): the words, once each.
+std::string ignored_keywords(const std::string& diagnostics) {
+  static constexpr std::string_view marker = "Unsupported keyword : ";
+  std::vector<std::string> words;
+  for (auto at = diagnostics.find(marker); at != std::string::npos;
+       at = diagnostics.find(marker, at + marker.size())) {
+    const std::size_t start = at + marker.size();
+    const std::size_t end = diagnostics.find('\n', start);
+    std::string word = diagnostics.substr(start, end == std::string::npos ? end : end - start);
+    if (std::find(words.begin(), words.end(), word) == words.end()) words.push_back(word);
+  }
+  std::string list;
+  for (std::size_t i = 0; i < words.size() && i < 4; ++i)
+    list += (list.empty() ? "'" : ", '") + words[i] + "'";
+  if (words.size() > 4) list += ", ... (" + std::to_string(words.size()) + " words)";
+  return list;
 }
 
 }  // namespace
@@ -874,14 +1080,24 @@ LoadedScene load_mesh_file(const std::string& path) {
   // failed to read) are missing geometry: the file is malformed.
   const std::size_t invalid_index_faces =
       count_occurrences(diagnostics, "Face contains invalid vertex index");
+  // The scans check every index, so faces OpenMesh "could not add" after one of them found
+  // repeated vertices are those (the PLY reader reports them so).
+  const bool repeats_explain_it = invalid_index_faces == 0 && declared.repeated_vertex_faces > 0;
   if (invalid_index_faces > 0 ||
-      diagnostics.find("invalid faces, that could not be added") != std::string::npos) {
+      (!repeats_explain_it &&
+       diagnostics.find("invalid faces, that could not be added") != std::string::npos)) {
     throw InputError(path, "faces",
                      std::to_string(invalid_index_faces > 0 ? invalid_index_faces : 1) +
                          " face(s) reference a vertex that does not exist (index out of range, "
                          "or a vertex whose coordinates could not be read)");
   }
   if (mesh.n_faces() == 0) {
+    if (declared.faces > 0 && declared.repeated_vertex_faces == declared.faces) {
+      throw InputError(path, "faces",
+                       "every face (" + std::to_string(declared.faces) +
+                           ") repeats a vertex, so none has area (first: " +
+                           *declared.first_repeated_vertex + ")");
+    }
     throw InputError(path, "faces",
                      with_diagnostics("no faces: empty, or not a valid " + format + " file"));
   }
@@ -892,10 +1108,13 @@ LoadedScene load_mesh_file(const std::string& path) {
   }
 
   LoadedScene scene;
-  const std::size_t degenerate_faces = count_occurrences(diagnostics, "Face has equal vertices");
+  const std::size_t degenerate_faces = std::max(
+      count_occurrences(diagnostics, "Face has equal vertices"), declared.repeated_vertex_faces);
   if (degenerate_faces > 0) {
-    scene.warnings.push_back(path + ": faces: " + std::to_string(degenerate_faces) +
-                             " face(s) with a repeated vertex dropped (no area, no shadow)");
+    scene.warnings.push_back(
+        path + ": faces: " + std::to_string(degenerate_faces) +
+        " face(s) with a repeated vertex dropped (no area, no shadow)" +
+        (declared.first_repeated_vertex ? "; first: " + *declared.first_repeated_vertex : ""));
   }
   const std::size_t non_manifold_faces = count_occurrences(diagnostics, "complex edge") +
                                          count_occurrences(diagnostics, "complex vertex");
@@ -908,12 +1127,25 @@ LoadedScene load_mesh_file(const std::string& path) {
                              " triangles, OpenMesh read " + std::to_string(mesh.n_faces()));
   }
 
+  const std::string keywords = ignored_keywords(diagnostics);
+  if (!keywords.empty()) {
+    scene.warnings.push_back(path +
+                             ": header: words the reader does not know, skipped: " + keywords);
+  }
+
   for (const auto vertex : mesh.vertices()) {
     const auto& p = mesh.point(vertex);
+    const std::string coordinates = "(" + std::to_string(p[0]) + ", " + std::to_string(p[1]) +
+                                    ", " + std::to_string(p[2]) + ")";
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
       throw InputError(path, "vertex " + std::to_string(vertex.idx()),
-                       "non-finite coordinate (" + std::to_string(p[0]) + ", " +
-                           std::to_string(p[1]) + ", " + std::to_string(p[2]) + ")");
+                       "non-finite coordinate " + coordinates);
+    }
+    // Binary PLY coordinates are not scanned: this names them (0-based, as OpenMesh counts).
+    if (std::max({std::fabs(p[0]), std::fabs(p[1]), std::fabs(p[2])}) > max_scene_coordinate) {
+      throw InputError(
+          path, "vertex " + std::to_string(vertex.idx()),
+          "coordinate beyond 1e30 (the largest coordinate a case accepts) " + coordinates);
     }
   }
 

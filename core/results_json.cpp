@@ -53,7 +53,9 @@ ordered_json record_json(const RunRecord& r) {
   j["verdict"] = verdict_name(r.verdict);
   j["reason"] = r.reason;
   j["reproduce"] = r.reproduce;
-  if (r.verdict == Verdict::not_supported) return j;
+  // Left out by the plan: it never ran. A NotSupported that ran (nothing to judge) keeps its
+  // figures.
+  if (r.verdict == Verdict::not_supported && r.run_ms.empty()) return j;
   j["time_ms"] = timing_json(r.median_ms, r.run_ms);
   if (!r.phases.empty()) {
     ordered_json phases = ordered_json::object();

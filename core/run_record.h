@@ -32,7 +32,8 @@ struct PhaseRuns {
 
 struct RunRecord {
   std::string case_name;
-  std::string test_name;  // dotted: <output>.<algorithm>.<variant>.<backend>.<case>
+  std::string image_folder;  // the case's folder under images/ (case_image_folders)
+  std::string test_name;     // dotted: <output>.<algorithm>.<variant>.<backend>.<case>
   std::string algorithm, variant, backend;
   OutputKind output = OutputKind::hard_shadow;
   bool approximate = false;     // Capabilities::approximate

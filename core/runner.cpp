@@ -1,6 +1,10 @@
 #include "shadowcts/runner.h"
 
+#include <fcntl.h>  // AT_FDCWD; renameat2 and RENAME_EXCHANGE come with <cstdio> (glibc)
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -8,9 +12,11 @@
 #include <iomanip>
 #include <map>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <set>
 #include <sstream>
+#include <system_error>
 
 #include <tbb/global_control.h>
 #include <tbb/info.h>
@@ -114,6 +120,13 @@ bool selected(const RunOptions& options, const AlgorithmInfo& meta, const std::s
 }
 
 void check_selection(const RunOptions& options, const Registry& registry) {
+  std::set<std::string> backends;
+  for (const auto& a : registry.algorithms()) backends.insert(a->info().backend);
+  if (!options.backend.empty() && !backends.count(options.backend)) {
+    std::string known;
+    for (const std::string& b : backends) known += (known.empty() ? "" : ", ") + b;
+    throw UsageError("--backend " + options.backend + ": unknown backend (known: " + known + ")");
+  }
   for (const AlgorithmSelection& s : options.algorithms) {
     bool found = false;
     for (const auto& a : registry.algorithms()) {
@@ -128,7 +141,118 @@ void check_selection(const RunOptions& options, const Registry& registry) {
                        (options.backend.empty() ? "" : " --backend " + options.backend) +
                        ": no such registered algorithm (see `shadowcts list`)");
   }
+  // Each selector exists, but together they may still select nothing (an algorithm on another
+  // backend): a run of nothing would be a green CI job that tested nothing.
+  bool any = false;
+  for (const auto& a : registry.algorithms())
+    for (const std::string& variant : a->info().variants)
+      any |= selected(options, a->info(), variant);
+  if (!any)
+    throw UsageError(
+        "the selection (--algorithm/--backend) matches no registered algorithm "
+        "variant (see `shadowcts list`)");
 }
+
+// The names a run writes into its folder (and their temporaries): only a folder holding nothing
+// else is taken for a previous run and replaced.
+bool run_output_name(const std::string& name) {
+  for (const char* own : {"results.json", "junit.xml", "report.html", "images"})
+    if (name == own || name == std::string(own) + ".partial") return true;
+  return false;
+}
+
+// --out, checked before anything is written: where the run's folder will be. An existing folder
+// must be empty or hold a previous run, which the finished run replaces.
+std::filesystem::path checked_out_dir(const std::string& text) {
+  namespace fs = std::filesystem;
+  if (text.empty()) throw UsageError("--out '': give a folder name (e.g. --out shadowcts-out)");
+  fs::path dir = fs::absolute(fs::path(text)).lexically_normal();
+  if (!dir.has_filename()) dir = dir.parent_path();  // "out/" -> "out"
+  std::error_code ec;
+  if (fs::is_symlink(fs::symlink_status(dir, ec))) {
+    dir = fs::canonical(dir, ec);  // replace the folder, not the link
+    if (ec) throw UsageError("--out " + text + ": " + ec.message());
+  }
+  if (dir == dir.root_path() || dir.filename() == "." || dir.filename() == "..")
+    throw UsageError("--out " + text + ": give a folder of its own for the run's outputs");
+  const fs::file_status status = fs::status(dir, ec);
+  if (!fs::exists(status)) return dir;
+  if (!fs::is_directory(status)) throw UsageError("--out " + text + ": exists and is not a folder");
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir, ec))
+    if (!run_output_name(entry.path().filename().string()))
+      throw UsageError("--out " + text + ": the folder holds '" + entry.path().filename().string() +
+                       "', which is not part of a shadowcts run; give an empty or new folder (a "
+                       "previous run's folder is replaced when the new run is complete)");
+  if (ec) throw UsageError("--out " + text + ": cannot read the folder: " + ec.message());
+  return dir;
+}
+
+// The run is written into <out>.partial-<pid> beside <out> and swapped in when complete, so <out>
+// always holds one whole run (the new one or the previous one), and a killed run leaves a folder
+// whose name says it is unfinished. A run that fails with an exception removes its partial
+// folder.
+class StagedOutput {
+ public:
+  explicit StagedOutput(std::filesystem::path target) : target_(std::move(target)) {
+    namespace fs = std::filesystem;
+    const std::string pid = std::to_string(::getpid());
+    staging_ = target_.parent_path() / (target_.filename().string() + ".partial-" + pid);
+    old_ = target_.parent_path() / (target_.filename().string() + ".old-" + pid);
+    std::error_code ec;
+    fs::remove_all(staging_, ec);  // a leftover of a killed run whose pid this one reuses
+    fs::create_directories(staging_ / "images", ec);
+    if (ec) throw OutputError(staging_.string(), "cannot create folder: " + ec.message());
+  }
+  StagedOutput(const StagedOutput&) = delete;
+  StagedOutput& operator=(const StagedOutput&) = delete;
+  ~StagedOutput() {
+    std::error_code ignored;
+    if (!committed_) std::filesystem::remove_all(staging_, ignored);
+  }
+  const std::filesystem::path& dir() const { return staging_; }
+
+  // Puts the finished run at the target; the previous run there is removed. Returns false (and
+  // says why on `err`) only when the previous run could not be removed.
+  bool commit(std::ostream& err) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (!fs::exists(target_, ec)) {
+      fs::rename(staging_, target_, ec);
+      if (ec)
+        throw OutputError(target_.string(), "cannot move the run into place: " + ec.message());
+      committed_ = true;
+      return true;
+    }
+    // One atomic exchange where the file system has it: no moment without a whole run there.
+    fs::path previous = staging_;
+    if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, target_.c_str(), RENAME_EXCHANGE) != 0) {
+      const int error = errno;
+      if (error != EINVAL && error != ENOSYS)
+        throw OutputError(target_.string(), "cannot swap the run into place: " +
+                                                std::generic_category().message(error));
+      // Two renames otherwise; a kill between them leaves <out>.old-<pid> and <out>.partial-<pid>.
+      previous = old_;
+      fs::rename(target_, old_, ec);
+      if (ec)
+        throw OutputError(target_.string(), "cannot move the previous run aside: " + ec.message());
+      fs::rename(staging_, target_, ec);
+      if (ec)
+        throw OutputError(target_.string(), "cannot move the run into place: " + ec.message());
+    }
+    committed_ = true;
+    fs::remove_all(previous, ec);
+    if (ec) {
+      err << "shadowcts: warning: cannot remove the previous run at " << previous.string() << ": "
+          << ec.message() << "\n";
+      return false;
+    }
+    return true;
+  }
+
+ private:
+  std::filesystem::path target_, staging_, old_;
+  bool committed_ = false;
+};
 
 class Progress {
  public:
@@ -145,11 +269,12 @@ class Progress {
   std::ostream& err_;
 };
 
-RunRecord new_record(const Case& c, const std::string& selector, const Algorithm& algorithm,
-                     const std::string& variant) {
+RunRecord new_record(const Case& c, const std::string& selector, const std::string& image_folder,
+                     const Algorithm& algorithm, const std::string& variant) {
   const AlgorithmInfo& meta = algorithm.info();
   RunRecord record;
   record.case_name = c.name;
+  record.image_folder = image_folder;
   record.algorithm = meta.id;
   record.variant = variant;
   record.backend = meta.backend;
@@ -213,14 +338,15 @@ bool same_results(const AlgorithmOutput& a, const AlgorithmOutput& b) {
 
 std::unique_ptr<CaseEvaluation> evaluate(OutputKind kind, const Case& c, const ViewSamples& samples,
                                          OracleChoice choice, const std::filesystem::path& out_dir,
+                                         const std::string& image_folder,
                                          std::vector<std::string>& left_out) {
   switch (kind) {
     case OutputKind::hard_shadow:
-      return evaluate_hard_shadows(c, samples, choice, out_dir, left_out);
+      return evaluate_hard_shadows(c, samples, choice, out_dir, image_folder, left_out);
     case OutputKind::soft_shadow:
-      return evaluate_soft_shadows(c, samples, choice, out_dir, left_out);
+      return evaluate_soft_shadows(c, samples, choice, out_dir, image_folder, left_out);
     case OutputKind::light_lists:
-      return evaluate_light_assignment(c, samples, out_dir);
+      return evaluate_light_assignment(c, samples, out_dir, image_folder);
   }
   throw std::logic_error("no evaluation for " + output_kind_name(kind) + " outputs");
 }
@@ -234,7 +360,8 @@ void print_summary(std::ostream& out, const std::vector<RunRecord>& records,
       << "verdict" << std::right << std::setw(11) << "median ms"
       << "   figures\n";
   for (const RunRecord& r : records) {
-    if (r.verdict == Verdict::not_supported) continue;  // the plan's "left out" lines say why
+    // The plan's "left out" lines say why; one that ran had nothing to judge: say so here too.
+    if (r.verdict == Verdict::not_supported && r.run_ms.empty()) continue;
     out << std::left << std::setw(34) << r.case_name << std::setw(38)
         << (r.algorithm + ":" + r.variant + " [" + r.backend + "]") << std::setw(15)
         << verdict_name(r.verdict) << std::right;
@@ -270,19 +397,36 @@ std::string output_kind_name(OutputKind kind) {
 
 int run_suite(const RunOptions& options, const Registry& registry, std::ostream& out,
               std::ostream& err) {
+  // Every input is checked before the output folder is touched: options, every case, every
+  // G-buffer.
   check_selection(options, registry);
+  const std::filesystem::path target = checked_out_dir(options.out_dir);
   std::vector<std::string> selectors;
-  const std::vector<Case> cases = load_cases(options, selectors);  // input checked before any work
+  const std::vector<Case> cases = load_cases(options, selectors);
+  if (cases.empty())
+    throw UsageError("the selection matches no case" +
+                     (options.shard_count > 1 ? " in shard " + std::to_string(options.shard_index) +
+                                                    "/" + std::to_string(options.shard_count)
+                                              : std::string()));
+  // G-buffers are read now and kept until their case runs: a bad one must fail the run before
+  // any case has written anything.
+  std::vector<std::optional<ViewSamples>> gbuffers(cases.size());
+  for (std::size_t i = 0; i < cases.size(); ++i)
+    if (!cases[i].gbuffer_path.empty()) {
+      gbuffers[i] = read_gbuffer_exr(cases[i].gbuffer_path);
+      classify_samples(cases[i], *gbuffers[i], cases[i].gbuffer_path);
+    }
+  std::vector<std::string> case_names;
+  for (const Case& c : cases) case_names.push_back(c.name);
+  const std::vector<std::string> image_folders = case_image_folders(case_names);
 
   const std::uint32_t threads = options.threads.value_or(0)
                                     ? *options.threads
                                     : std::uint32_t(tbb::info::default_concurrency());
   tbb::global_control thread_limit(tbb::global_control::max_allowed_parallelism, threads);
 
-  const std::filesystem::path out_dir(options.out_dir);
-  std::error_code ec;
-  std::filesystem::create_directories(out_dir / "images", ec);
-  if (ec) throw UsageError("--out " + options.out_dir + ": cannot create folder: " + ec.message());
+  StagedOutput staged(target);
+  const std::filesystem::path& out_dir = staged.dir();
 
   Progress progress(options.progress, err);
   std::vector<CaseSummary> summaries;
@@ -307,8 +451,8 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
       samples = generate_view_samples(c);
       summary.samples_from = "embree primary rays";
     } else {
-      samples = read_gbuffer_exr(c.gbuffer_path);
-      classify_samples(c, samples, c.gbuffer_path);
+      samples = std::move(*gbuffers[case_index]);
+      gbuffers[case_index].reset();
       summary.samples_from = c.gbuffer_path;
       summary.left_out.push_back("Embree G-buffer pass: the case brings its G-buffer");
     }
@@ -332,7 +476,8 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
         std::optional<std::string> why = a->unsupported_reason(
             kind == OutputKind::hard_shadow ? hard_case : c, samples, variant);
         if (why) {
-          RunRecord record = new_record(c, selectors[case_index], *a, variant);
+          RunRecord record =
+              new_record(c, selectors[case_index], image_folders[case_index], *a, variant);
           record.verdict = Verdict::not_supported;
           record.reason = *why;
           summary.left_out.push_back(meta.id + ":" + variant + " [" + meta.backend + "]: " + *why);
@@ -358,8 +503,9 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
     std::map<OutputKind, std::unique_ptr<CaseEvaluation>> evaluations;
     for (OutputKind kind : kinds) {
       progress.show(step + output_kind_name(kind) + " oracle");
-      evaluations[kind] = evaluate(kind, kind == OutputKind::hard_shadow ? hard_case : c, samples,
-                                   options.oracle, out_dir, summary.left_out);
+      evaluations[kind] =
+          evaluate(kind, kind == OutputKind::hard_shadow ? hard_case : c, samples, options.oracle,
+                   out_dir, image_folders[case_index], summary.left_out);
       const OracleSummary& o = evaluations[kind]->oracle();
       summary.oracles[output_kind_name(kind)] =
           nlohmann::ordered_json{{"method", o.method}, {"exact", o.exact}, {"time_ms", o.time_ms}};
@@ -379,10 +525,12 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
       out << "  run:      " << p.algorithm->info().id << ":" << p.variant << " ["
           << p.algorithm->info().backend << "]\n";
     for (const std::string& why : summary.left_out) out << "  left out: " << why << "\n";
+    out << std::flush;  // stdout may be a pipe or a CI log: show the plan before the runs
 
     for (const PlannedRun& p : planned) {
       const AlgorithmInfo& meta = p.algorithm->info();
-      RunRecord record = new_record(c, selectors[case_index], *p.algorithm, p.variant);
+      RunRecord record =
+          new_record(c, selectors[case_index], image_folders[case_index], *p.algorithm, p.variant);
       progress.show(step + meta.id + ":" + p.variant + " [" + meta.backend + "]");
       const Case& view = record.output == OutputKind::hard_shadow ? hard_case : c;
       try {
@@ -412,16 +560,18 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
         for (const auto& [name, per_sample] : first.per_sample_counters)
           record.images.push_back(
               write_counter_heat_map(out_dir, record, samples, name, per_sample));
+      } catch (const OutputError&) {
+        throw;  // the tool's failure to write an image, not the algorithm's: exit 3
       } catch (const std::exception& e) {
         record.verdict = Verdict::crash;
         record.reason = std::string("exception: ") + e.what();
       }
       out << "  " << std::left << std::setw(15) << verdict_name(record.verdict) << std::right
           << record.test_name << "  " << std::fixed << std::setprecision(2) << record.median_ms
-          << " ms" << phases_text(record) << "  " << std::defaultfloat << record.reason << "\n";
+          << " ms" << phases_text(record) << "  " << std::defaultfloat << record.reason << "\n"
+          << std::flush;  // one line per record as it finishes, also when stdout is not a TTY
       records.push_back(std::move(record));
     }
-    out << std::flush;
     summaries.push_back(std::move(summary));
   }
 
@@ -429,10 +579,12 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
   write_results_json(out_dir / "results.json", summaries, records, threads, machine);
   write_junit_xml(out_dir / "junit.xml", records);
   write_html_report({out_dir}, out_dir / "report.html");  // reads results.json back
+  staged.commit(err);
   print_summary(out, records, machine, threads);
-  out << "wrote " << (out_dir / "report.html").string() << ", "
-      << (out_dir / "results.json").string() << ", " << (out_dir / "junit.xml").string()
-      << " and images under " << (out_dir / "images").string() << "\n";
+  const std::filesystem::path shown(options.out_dir);  // as the user wrote it
+  out << "wrote " << (shown / "report.html").string() << ", " << (shown / "results.json").string()
+      << ", " << (shown / "junit.xml").string() << " and images under "
+      << (shown / "images").string() << "\n";
 
   const bool any_failure = std::any_of(records.begin(), records.end(), [](const RunRecord& r) {
     return r.verdict == Verdict::fail || r.verdict == Verdict::crash;

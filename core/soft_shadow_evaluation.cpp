@@ -67,7 +67,7 @@ RgbImage error_image(const ViewSamples& samples, const SoftShadowTruth& truth,
 class SoftShadowEvaluation : public CaseEvaluation {
  public:
   SoftShadowEvaluation(const Case& c, const ViewSamples& samples, bool exact,
-                       const std::filesystem::path& out_dir)
+                       const std::filesystem::path& out_dir, const std::string& image_folder)
       : samples_(samples), out_dir_(out_dir) {
     const auto start = std::chrono::steady_clock::now();
     truth_ = exact ? exact_soft_shadow_oracle(c, samples)
@@ -87,7 +87,7 @@ class SoftShadowEvaluation : public CaseEvaluation {
     line << truth_.method << ": " << robust << " robust, " << compared - robust << " ambiguous";
     if (!truth_.exact) line << ", error bound " << max_bound;
     oracle_.plan_line = line.str();
-    const std::string stem = case_image_stem(c.name) + "/oracle.visibility";
+    const std::string stem = case_image_stem(image_folder) + "/oracle.visibility";
     write_png_and_exr(out_dir, stem, visibility_image(samples, truth_, [&](std::size_t i) {
                         return truth_.visible_fraction[i];
                       }));
@@ -106,6 +106,11 @@ class SoftShadowEvaluation : public CaseEvaluation {
     if (record.verdict != Verdict::fail) {
       record.verdict = s.verdict;
       record.reason = s.reason;
+      // Invalid outputs and a mean over budget stay failures even without robust samples.
+      if (s.robust == 0 && s.verdict == Verdict::pass) {
+        record.verdict = Verdict::not_supported;
+        record.reason = nothing_to_judge(samples_, s.ambiguous);
+      }
     }
     record.error = {
         {"compared", s.compared},
@@ -147,6 +152,7 @@ class SoftShadowEvaluation : public CaseEvaluation {
 std::unique_ptr<CaseEvaluation> evaluate_soft_shadows(const Case& c, const ViewSamples& samples,
                                                       OracleChoice choice,
                                                       const std::filesystem::path& out_dir,
+                                                      const std::string& image_folder,
                                                       std::vector<std::string>& left_out) {
   const std::size_t regular = samples.count(SampleClass::regular);
   const bool exact = choice == OracleChoice::exact ||
@@ -158,7 +164,7 @@ std::unique_ptr<CaseEvaluation> evaluate_soft_shadows(const Case& c, const ViewS
                             : std::to_string(regular) + " samples exceed its limit of " +
                                   std::to_string(exact_oracle_sample_limit)) +
                        "; figures carry the sampled oracle's error bound");
-  return std::make_unique<SoftShadowEvaluation>(c, samples, exact, out_dir);
+  return std::make_unique<SoftShadowEvaluation>(c, samples, exact, out_dir, image_folder);
 }
 
 }  // namespace shadowcts

@@ -12,11 +12,13 @@
 namespace shadowcts {
 
 // Computes the sun-disk visibility truth of `c` with the exact oracle, or the sampled one above
-// its size limit or on request (noted in `left_out`), and writes the oracle's visibility image.
+// its size limit or on request (noted in `left_out`), and writes the oracle's visibility image
+// under images/<image_folder>/.
 // Runs are judged against the error budget their algorithm declares for the variant.
 std::unique_ptr<CaseEvaluation> evaluate_soft_shadows(const Case& c, const ViewSamples& samples,
                                                       OracleChoice choice,
                                                       const std::filesystem::path& out_dir,
+                                                      const std::string& image_folder,
                                                       std::vector<std::string>& left_out);
 
 }  // namespace shadowcts

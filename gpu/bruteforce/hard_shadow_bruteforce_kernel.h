@@ -23,8 +23,15 @@ struct BruteforceShadowInput {
   glm::vec3 light{0.0f};  // point light position, or unit direction towards a directional light
 };
 
+// Per-sample answers of the kernel.
+constexpr std::uint8_t bruteforce_sample_lit = 0;
+constexpr std::uint8_t bruteforce_sample_shadowed = 1;
+// No triangle hit in float, but the segment passes within the rounding of a triangle's edge: the
+// host decides the sample exactly.
+constexpr std::uint8_t bruteforce_sample_unsure = 2;
+
 struct BruteforceShadowResult {
-  std::vector<std::uint8_t> shadowed;  // per input sample, 1 = shadowed
+  std::vector<std::uint8_t> shadowed;  // per input sample, one of bruteforce_sample_*
   // Sample/caster pairs visited (the receiver included, as in the reference backend): each sample
   // visits casters in order and stops at its first occluder, so the count does not depend on the
   // launch configuration.
@@ -33,5 +40,10 @@ struct BruteforceShadowResult {
 
 // Runs on the current CUDA device; throws std::runtime_error if a CUDA call fails.
 BruteforceShadowResult run_bruteforce_hard_shadow_kernel(const BruteforceShadowInput& input);
+
+// The same kernel source run by the CUDA-subset emulator on the host (gpu/emulator); throws
+// shadowcts::emu::EmulatorError where a GPU would hang or race.
+BruteforceShadowResult run_bruteforce_hard_shadow_kernel_emulated(
+    const BruteforceShadowInput& input);
 
 }  // namespace shadowcts

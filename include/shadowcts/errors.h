@@ -18,4 +18,13 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// An output (the output folder, an image, results.json, junit.xml, report.html) cannot be
+// written: exit code 3, the message names the file. Kept apart from other exceptions so that a
+// full disk is never recorded as an algorithm's Crash.
+class OutputError : public std::runtime_error {
+ public:
+  OutputError(const std::string& path, const std::string& problem)
+      : std::runtime_error(path + ": " + problem) {}
+};
+
 }  // namespace shadowcts

@@ -12,7 +12,7 @@ struct RgbImage {
 };
 
 // Writes all or nothing (temporary file renamed into place); the format follows the extension
-// (.png, .exr). Throws std::runtime_error naming the path on failure.
+// (.png, .exr). Throws OutputError naming the path on failure (encoding, a full disk, ...).
 void write_image(const std::string& path, const RgbImage& image);
 
 }  // namespace shadowcts

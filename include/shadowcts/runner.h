@@ -39,8 +39,13 @@ struct RunOptions {
 inline constexpr int exit_pass = 0;
 inline constexpr int exit_conformance_failure = 1;
 inline constexpr int exit_bad_input = 2;
+inline constexpr int exit_internal_error = 3;  // e.g. an output that cannot be written
 
-// Throws InputError / UsageError before anything is written when a case or option is invalid.
+// Throws InputError / UsageError before anything is written when a case, G-buffer or option is
+// invalid (an empty --out, an --out folder holding other files, a selection of nothing).
+// The run goes into <out>.partial-<pid> and replaces <out> only when complete; an exception
+// removes it, so <out> holds the previous run untouched. Throws OutputError naming the file when
+// an output cannot be written (exit 3), never a Crash verdict.
 int run_suite(const RunOptions& options, const Registry& registry, std::ostream& out,
               std::ostream& err);
 

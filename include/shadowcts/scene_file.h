@@ -15,6 +15,11 @@ struct LoadedScene {
   std::vector<std::string> warnings;       // problems that still left valid geometry
 };
 
+// The largest absolute coordinate a case accepts (validate() refuses larger ones: float32
+// differences of such coordinates overflow). Loaders refuse larger vertices themselves, so that
+// the message names the file and the vertex rather than the manifest.
+inline constexpr double max_scene_coordinate = 1e30;
+
 // Dispatches on the extension. Throws InputError naming the file and element on malformed input.
 LoadedScene load_scene_file(const std::string& path);
 

@@ -7,12 +7,14 @@
 #include <fstream>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "shadowcts/case_manifest.h"
 #include "shadowcts/errors.h"
 #include "shadowcts/fixtures.h"
+#include "shadowcts/gbuffer_exr.h"
 
 namespace shadowcts {
 namespace {
@@ -256,6 +258,160 @@ TEST(CaseManifest, NumberBeyondDoubleRangeIsAnInputError) {
   const fs::path nested =
       dir.write("nested.json", "{\"name\": \"x\", \"parameters\": {\"eps_rel\": 1e400}}");
   EXPECT_NE(load_error(nested).find(nested.string() + ": JSON: "), std::string::npos);
+}
+
+// ---- hostile manifests (issue 14) --------------------------------------------------------------
+
+std::string nested(std::size_t depth) {
+  return std::string(depth, '[') + std::string(depth, ']');
+}
+
+TEST(CaseManifestHostile, HundredThousandNestedArraysAreAnInputErrorNotACrash) {
+  const TempDir dir;
+  const fs::path manifest = dir.write("deep.json", nested(100'000));
+  const std::string message = load_error(manifest);
+  EXPECT_NE(message.find(manifest.string() + ": JSON: nesting deeper than 512 levels"),
+            std::string::npos)
+      << message.substr(0, 300);
+  // The library itself survives such nesting (Debian's nlohmann 3.11.2 parses and destroys
+  // iteratively): the bound is for clear messages, not the only guard.
+  EXPECT_EQ(Json::parse(nested(100'000)).size(), 1u);
+}
+
+TEST(CaseManifestHostile, WrongTypeIsDescribedByABoundedPrefix) {
+  const TempDir dir;
+  const fs::path manifest = dir.write("scenes.json", R"({"scenes": )" + nested(500) + "}");
+  const std::string message = load_error(manifest);
+  EXPECT_NE(message.find(": scenes[0]: must be an object, is array [[[[[[["), std::string::npos)
+      << message;
+  EXPECT_LT(message.size(), manifest.string().size() + 100) << message;
+}
+
+TEST(CaseManifestHostile, DuplicateKeysAreInputErrorsNamingTheElement) {
+  const TempDir dir;
+  dir.write("ground.gltf", ground_with_light_gltf());
+  dir.write("tetra.off", tetrahedron_off);
+  const std::string text = file_manifest().dump();
+  struct Shape {
+    std::string name, text, element;
+  };
+  for (const Shape& shape : std::vector<Shape>{
+           {"top", R"({"name": "a", )" + text.substr(1), "name"},
+           {"camera",
+            std::string(text).replace(text.find(R"("width":64)"), 10, R"("width":64,"width":65)"),
+            "camera.width"},
+           {"array",
+            std::string(text).replace(text.find(R"("file":"tetra.off")"), 18,
+                                      R"("file":"tetra.off","file":"tetra.off")"),
+            "scenes[1].file"},
+       }) {
+    const fs::path manifest = dir.write(shape.name + ".json", shape.text);
+    const std::string message = load_error(manifest);
+    EXPECT_NE(message.find(manifest.string() + ": " + shape.element + ": duplicate key"),
+              std::string::npos)
+        << shape.name << ": " << message;
+  }
+}
+
+TEST(CaseManifestHostile, ADeviceOrFolderIsNotARegularFileRatherThanNotFound) {
+  const TempDir dir;
+  for (const std::string& path : {std::string("/dev/zero"), fs::temp_directory_path().string()}) {
+    const std::string message = load_error(path);
+    EXPECT_NE(message.find(path + ": file: not a regular file"), std::string::npos) << message;
+  }
+  EXPECT_NE(load_error(fs::temp_directory_path() / "shadowcts_no_such.json").find("not found"),
+            std::string::npos);
+}
+
+TEST(CaseManifestHostile, HugeDirectionComponentsAreNormalizedNotZeroLength) {
+  const auto& generators = fixture_generators();
+  const auto scalable = std::find_if(generators.begin(), generators.end(),
+                                     [](const FixtureGenerator& g) { return g.scalable; });
+  ASSERT_NE(scalable, generators.end());
+  const TempDir dir;
+  for (const double component : {1e300, 1e-300}) {
+    const Json m = {{"scene", {{"generator", scalable->name}, {"triangles", 200}}},
+                    {"light", {{"type", "directional"}, {"direction", {component, component, 0}}}}};
+    const Case c = load_case_manifest(dir.write("dir.json", m.dump()).string());
+    ASSERT_TRUE(c.light.has_value());
+    EXPECT_NEAR(c.light->direction.x, std::sqrt(0.5), 1e-7) << component;
+    EXPECT_NEAR(c.light->direction.y, std::sqrt(0.5), 1e-7) << component;
+  }
+}
+
+TEST(CaseManifestHostile, CoordinatesOutOfRangeBlameTheFileOrThePlacement) {
+  const TempDir dir;
+  dir.write("ground.gltf", ground_with_light_gltf());
+  dir.write("tetra.off", tetrahedron_off);
+  Json m = file_manifest();
+  m["scenes"][1]["scale"] = 1e300;
+  const fs::path scaled = dir.write("scaled.json", m.dump());
+  std::string message = load_error(scaled);
+  EXPECT_NE(message.find(scaled.string() + ": scenes[1].scale: places triangle "),
+            std::string::npos)
+      << message;
+  EXPECT_EQ(message.find("NaN"), std::string::npos) << message;
+
+  m = file_manifest();
+  m["scenes"][1]["translate"] = {1e31, 0, 0};
+  message = load_error(dir.write("moved.json", m.dump()));
+  EXPECT_NE(message.find(": scenes[1].translate: places triangle "), std::string::npos) << message;
+
+  const fs::path far = dir.write("far.obj", "v 1e38 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  m = file_manifest();
+  m["scenes"][1] = {{"file", "far.obj"}};
+  message = load_error(dir.write("far.json", m.dump()));
+  EXPECT_NE(message.find(far.string() + ": v 1 (line 1): coordinate '1e38' is beyond 1e30"),
+            std::string::npos)
+      << message;
+}
+
+TEST(CaseManifestHostile, EpsRelRangeIsTheValidatedOne) {
+  const TempDir dir;
+  dir.write("ground.gltf", ground_with_light_gltf());
+  dir.write("tetra.off", tetrahedron_off);
+  Json m = file_manifest();
+  m["parameters"]["eps_rel"] = 0.5;  // inside the old (0, 1), outside [2^-24, 2^-4]
+  const std::string message = load_error(dir.write("eps.json", m.dump()));
+  EXPECT_NE(message.find("parameters.eps_rel: must lie in [2^-24, 2^-4]"), std::string::npos)
+      << message;
+  m["parameters"]["eps_rel"] = 0x1p-4;
+  EXPECT_EQ(load_case_manifest(dir.write("edge.json", m.dump()).string()).parameters.eps_rel,
+            0x1p-4);
+  m["parameters"]["repeats"] = 1001;
+  EXPECT_NE(load_error(dir.write("repeats.json", m.dump())).find("parameters.repeats"),
+            std::string::npos);
+}
+
+TEST(CaseManifestHostile, GbufferResolutionIsCheckedAgainstTheCameraAtLoad) {
+  const TempDir dir;
+  dir.write("ground.gltf", ground_with_light_gltf());
+  dir.write("tetra.off", tetrahedron_off);
+  ViewSamples sky;
+  sky.width = 32;
+  sky.height = 24;
+  for (std::uint32_t y = 0; y < sky.height; ++y) {
+    for (std::uint32_t x = 0; x < sky.width; ++x) {
+      ViewSample sample;
+      sample.pixel_x = x;
+      sample.pixel_y = y;
+      sample.sample_class = SampleClass::sky;
+      sky.samples.push_back(sample);
+    }
+  }
+  const fs::path gbuffer = dir.write("g.exr", "");
+  write_gbuffer_exr(gbuffer.string(), sky);
+  Json m = file_manifest();
+  m["gbuffer"] = "g.exr";  // the camera is 64x48
+  const std::string message = load_error(dir.write("g.json", m.dump()));
+  EXPECT_NE(message.find(gbuffer.string() + ": dataWindow: 32x24 differs from the case camera's "
+                                            "64x48"),
+            std::string::npos)
+      << message;
+  m["camera"]["width"] = 32;
+  m["camera"]["height"] = 24;
+  EXPECT_EQ(load_case_manifest(dir.write("ok.json", m.dump()).string()).gbuffer_path,
+            gbuffer.string());
 }
 
 }  // namespace

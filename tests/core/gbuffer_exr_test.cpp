@@ -4,8 +4,10 @@
 
 #include <bit>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <memory>
 #include <string>
@@ -13,6 +15,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "memory_limited_child.h"
 #include "shadowcts/errors.h"
 #include "shadowcts/gbuffer_exr.h"
 
@@ -218,6 +221,115 @@ TEST(GBufferExr, NotAnExrIsAnInputError) {
   { std::ofstream(file) << "not an image"; }
   const std::string message = read_error(file);
   EXPECT_NE(message.find(file.string()), std::string::npos) << message;
+}
+
+// ---- hostile headers (issue 14): sizes are checked before any pixel is allocated
+
+// An all-sky width x height G-buffer.
+ViewSamples sky_samples(std::uint32_t width, std::uint32_t height) {
+  ViewSamples s;
+  s.width = width;
+  s.height = height;
+  for (std::uint32_t y = 0; y < height; ++y) {
+    for (std::uint32_t x = 0; x < width; ++x) {
+      ViewSample sample;
+      sample.pixel_x = x;
+      sample.pixel_y = y;
+      sample.sample_class = SampleClass::sky;
+      s.samples.push_back(sample);
+    }
+  }
+  return s;
+}
+
+// Rewrites the box2i attribute `name` of an EXR file to (0, 0) - (width - 1, height - 1).
+void patch_window(const fs::path& file, const std::string& name, std::int32_t width,
+                  std::int32_t height) {
+  std::string bytes;
+  {
+    std::ifstream in(file, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  const std::string key = name + std::string("\0box2i\0", 7);
+  const auto at = bytes.find(key);
+  ASSERT_NE(at, std::string::npos) << name;
+  const std::int32_t box[4] = {0, 0, width - 1, height - 1};
+  std::memcpy(bytes.data() + at + key.size() + 4, box, sizeof box);
+  std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
+}
+
+// Zeros appended up to `size` bytes: room for the longer chunk offset table a forged header
+// implies, so that OpenEXR opens the file (the reported one had 326 KB).
+void pad_to(const fs::path& file, std::size_t size) {
+  const auto current = static_cast<std::size_t>(fs::file_size(file));
+  if (current < size)
+    std::ofstream(file, std::ios::binary | std::ios::app) << std::string(size - current, '\0');
+}
+
+fs::path forged_gbuffer(const TempDir& dir, const std::string& name, std::int32_t width,
+                        std::int32_t height) {
+  const fs::path file = dir.path() / name;
+  write_gbuffer_exr(file.string(), sky_samples(64, 48));
+  patch_window(file, "dataWindow", width, height);
+  patch_window(file, "displayWindow", width, height);
+  pad_to(file, 326 * 1024);
+  return file;
+}
+
+TEST(GBufferExrHostile, ForgedHugeDataWindowIsRefusedBeforeAllocation) {
+  const TempDir dir;
+  for (const std::int32_t side : {30000, 60000}) {
+    const fs::path file = forged_gbuffer(dir, std::to_string(side) + ".exr", side, side);
+    const auto outcome = testing::run_with_memory_limit([&] { read_gbuffer_exr(file.string()); });
+    EXPECT_TRUE(outcome.input_error) << side << ": " << outcome.message;
+    EXPECT_NE(outcome.message.find(file.string() + ": dataWindow: " + std::to_string(side) + "x" +
+                                   std::to_string(side) +
+                                   " exceeds the largest camera resolution 16384x16384"),
+              std::string::npos)
+        << outcome.message;
+  }
+  // The reported case: compared with the 64x48 camera before OpenEXR sizes anything.
+  const fs::path forged = dir.path() / "30000.exr";
+  const auto against_camera =
+      testing::run_with_memory_limit([&] { check_gbuffer_exr_header(forged.string(), 64, 48); });
+  EXPECT_NE(against_camera.message.find(forged.string() +
+                                        ": dataWindow: 30000x30000 differs from the case "
+                                        "camera's 64x48"),
+            std::string::npos)
+      << against_camera.message;
+  // Within the camera limit, but far more pixels than the file can hold.
+  const fs::path file = forged_gbuffer(dir, "16000.exr", 16000, 16000);
+  const auto outcome = testing::run_with_memory_limit([&] { read_gbuffer_exr(file.string()); });
+  EXPECT_TRUE(outcome.input_error) << outcome.message;
+  EXPECT_NE(outcome.message.find("16000x16000 pixels need 7168000000 bytes, more than the file's"),
+            std::string::npos)
+      << outcome.message;
+}
+
+TEST(GBufferExrHostile, ResolutionIsComparedWithTheCameraBeforeReading) {
+  const TempDir dir;
+  const fs::path file = dir.path() / "small.exr";
+  write_gbuffer_exr(file.string(), sky_samples(64, 48));
+  EXPECT_NO_THROW(check_gbuffer_exr_header(file.string(), 64, 48));
+  EXPECT_EQ(read_gbuffer_exr(file.string(), 64, 48).samples.size(), 64u * 48u);
+  try {
+    check_gbuffer_exr_header(file.string(), 640, 480);
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(
+                  file.string() + ": dataWindow: 64x48 differs from the case camera's 640x480"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(read_gbuffer_exr(file.string(), 640, 480), InputError);
+  // Not a regular file: said so, not "not found" and not an image error.
+  try {
+    read_gbuffer_exr("/dev/zero");
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/dev/zero: file: not a regular file"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

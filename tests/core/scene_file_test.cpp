@@ -17,6 +17,7 @@
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
+#include "memory_limited_child.h"
 #include "shadowcts/errors.h"
 #include "shadowcts/scene_file.h"
 
@@ -805,7 +806,7 @@ TEST(MeshFiles, ObjCornerWithoutAVertexIndexIsAnInputErrorNotACrash) {
            {"texture_first", "f /4 3 2 1\n", "corner '/4'"},
            {"normal_first", "f //1 2//1 3//1\n", "corner '//1'"},
            {"zero", "f 0 1 2\n", "vertex index 0"},
-           {"beyond", "f 1 2 7\n", "vertex index 7 is out of range (4 vertices)"},
+           {"beyond", "f 1 2 7\n", "vertex index 7 is out of range (4 vertices so far"},
            {"before_first", "f -1 -2 -5\n", "relative vertex index -5"},
            {"garbage", "f 1 2 x3\n", "corner 'x3'"},
        }) {
@@ -815,11 +816,294 @@ TEST(MeshFiles, ObjCornerWithoutAVertexIndexIsAnInputErrorNotACrash) {
     EXPECT_NE(message.find("f 1 (line 6)"), std::string::npos) << shape.name << ": " << message;
     EXPECT_NE(message.find(shape.expected), std::string::npos) << shape.name << ": " << message;
   }
-  // Still read: texture and normal references, relative indices, forward references.
+  // Still read: texture and normal references, relative indices.
   const std::string good = "f 1/1/1 2//1 3\nf -1 -2 -3\n" + vertices + "f 5 6 7\n";
   EXPECT_EQ(load_scene_file(dir.write("good.obj", vertices + "vt 0 0\n" + good).string())
                 .triangles.size(),
             3u);
+}
+
+// ---- hostile input (issue 14): no crash, no allocation from an unchecked size, the right words
+
+// A chain of `depth` nodes, each the only child of the one before, the last holding a triangle.
+fs::path deep_node_chain(const TempDir& dir, int depth, bool cycle_at_the_end) {
+  GltfBuilder gltf;
+  const int mesh = gltf.add_mesh(gltf.add_positions({0, 0, 0, 1, 0, 0, 0, 1, 0}), -1, "tri");
+  for (int i = 0; i < depth; ++i) {
+    Json node = {{"translation", {0.0, 0.0, 0.001}}};
+    if (i + 1 < depth) node["children"] = {i + 1};
+    if (i + 1 == depth) {
+      node["mesh"] = mesh;
+      if (cycle_at_the_end) node["children"] = {depth / 2};
+    }
+    gltf.add_node(std::move(node), i == 0);
+  }
+  return gltf.write(dir, "chain.gltf");
+}
+
+TEST(GltfHostile, NodeChainTwentyThousandDeepLoads) {
+  const TempDir dir;
+  const fs::path file = deep_node_chain(dir, 20'000, false);
+  const auto outcome = testing::run_with_memory_limit([&] {
+    const LoadedScene scene = load_scene_file(file.string());
+    // 20,000 translations of 0.001 along z, rounded to float at the end.
+    if (scene.triangles.size() != 1 || std::fabs(scene.triangles[0].v0.z - 20.0f) > 1e-3f)
+      throw InputError(file.string(), "test", "wrong scene");
+    throw InputError(file.string(), "test", "loaded");
+  });
+  EXPECT_TRUE(outcome.input_error) << outcome.message;
+  EXPECT_NE(outcome.message.find("test: loaded"), std::string::npos) << outcome.message;
+}
+
+TEST(GltfHostile, CycleAtTheEndOfADeepChainIsAnInputError) {
+  const TempDir dir;
+  const fs::path file = deep_node_chain(dir, 5'000, true);
+  const std::string message = load_error(file);
+  EXPECT_NE(message.find("nodes[2500]: is its own ancestor"), std::string::npos) << message;
+}
+
+std::string nested(std::size_t depth, const std::string& inner = "0") {
+  return std::string(depth, '[') + inner + std::string(depth, ']');
+}
+
+TEST(GltfHostile, ExtrasNestedHundredThousandDeepIsAnInputError) {
+  const TempDir dir;
+  const std::string text = R"({"asset": {"version": "2.0", "extras": )" + nested(100'000) + "}}";
+  const fs::path file = dir.write("deep.gltf", text);
+  const std::string message = load_error(file);
+  EXPECT_NE(message.find(file.string() + ": JSON: nesting deeper than 512"), std::string::npos)
+      << message.substr(0, 300);
+  // Brackets inside strings do not count.
+  const std::string quoted =
+      R"({"asset": {"version": "2.0", "extras": ")" + std::string(2000, '[') + R"("}})";
+  EXPECT_EQ(load_error(dir.write("quoted.gltf", quoted)).find("nesting"), std::string::npos);
+}
+
+// A GLB container of `json` (padded) and an optional BIN chunk.
+std::string glb(std::string json, const std::string& bin = "", const char* magic = "glTF") {
+  while (json.size() % 4 != 0) json.push_back(' ');
+  std::string out(magic, 4);
+  auto u32 = [&](std::uint32_t v) {
+    for (int i = 0; i < 4; ++i) out.push_back(static_cast<char>((v >> (8 * i)) & 0xFF));
+  };
+  const std::size_t total = 12 + 8 + json.size() + (bin.empty() ? 0 : 8 + bin.size());
+  u32(2);
+  u32(static_cast<std::uint32_t>(total));
+  u32(static_cast<std::uint32_t>(json.size()));
+  out += "JSON" + json;
+  if (!bin.empty()) {
+    u32(static_cast<std::uint32_t>(bin.size()));
+    out += std::string("BIN\0", 4) + bin;
+  }
+  return out;
+}
+
+TEST(GltfHostile, GlbJsonChunkNestedTooDeepIsAnInputError) {
+  const TempDir dir;
+  const fs::path file = dir.write(
+      "deep.glb", glb(R"({"asset": {"version": "2.0", "extras": )" + nested(100'000) + "}}"));
+  const std::string message = load_error(file);
+  EXPECT_NE(message.find(file.string() + ": GLB JSON chunk: nesting deeper than 512"),
+            std::string::npos)
+      << message.substr(0, 300);
+}
+
+TEST(GltfHostile, BadGlbMagicSaysNotAGlbFile) {
+  const TempDir dir;
+  const fs::path file = dir.write("bad.glb", glb(R"({"asset": {"version": "2.0"}})", "", "glTX"));
+  const std::string message = load_error(file);
+  EXPECT_NE(message.find(file.string() + ": GLB header: not a GLB file (magic 67 6c 54 58 'glTX'"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(load_error(dir.write("short.glb", "gl")).find("not a GLB file (magic missing"),
+            std::string::npos);
+}
+
+// Indices claiming 2^32 - 1 elements in a 598-byte file: refused by the bounds check before the
+// 16 GB they would take are allocated.
+TEST(GltfHostile, HugeAccessorCountIsRefusedBeforeAllocation) {
+  const TempDir dir;
+  GltfBuilder gltf;
+  const int mesh = gltf.add_indexed_mesh(tetrahedron_positions, tetrahedron_indices, "m");
+  gltf.add_node({{"mesh", mesh}});
+  gltf.doc()["accessors"][1]["count"] = 4294967295u;
+  const fs::path file = gltf.write(dir, "huge.gltf");
+  const auto outcome = testing::run_with_memory_limit([&] { load_scene_file(file.string()); });
+  EXPECT_TRUE(outcome.input_error) << outcome.message;
+  EXPECT_NE(outcome.message.find("meshes[0].primitives[0].indices (accessor 1): byteOffset 0 + "
+                                 "4294967295 elements of 2 bytes"),
+            std::string::npos)
+      << outcome.message;
+  EXPECT_LT(outcome.seconds, 10.0);
+
+  // Without a bufferView (zeros but for sparse values) nothing backs the count: capped.
+  GltfBuilder sparse;
+  const int positions = sparse.add_positions(tetrahedron_positions);
+  const int values = sparse.add_positions({5, 5, 5});
+  const std::vector<std::uint16_t> sparse_index = {1, 0};
+  const int sparse_indices = sparse.add_indices(sparse_index);
+  Json& accessor = sparse.doc()["accessors"][positions];
+  accessor.erase("bufferView");
+  accessor["count"] = 4294967295u;
+  accessor["sparse"] = {
+      {"count", 1},
+      {"indices",
+       {{"bufferView", sparse.doc()["accessors"][sparse_indices]["bufferView"]},
+        {"componentType", 5123}}},
+      {"values", {{"bufferView", sparse.doc()["accessors"][values]["bufferView"]}}}};
+  sparse.add_node({{"mesh", sparse.add_mesh(positions, -1, "m")}});
+  const fs::path sparse_file = sparse.write(dir, "sparse.gltf");
+  const auto sparse_outcome =
+      testing::run_with_memory_limit([&] { load_scene_file(sparse_file.string()); });
+  EXPECT_TRUE(sparse_outcome.input_error) << sparse_outcome.message;
+  EXPECT_NE(sparse_outcome.message.find("without a bufferView"), std::string::npos)
+      << sparse_outcome.message;
+}
+
+TEST(GltfHostile, VertexBeyondCaseRangeNamesTheAccessorAndVertex) {
+  const TempDir dir;
+  GltfBuilder gltf;
+  std::vector<float> positions = tetrahedron_positions;
+  positions[6] = 1e38f;  // vertex 2, x
+  gltf.add_node({{"mesh", gltf.add_indexed_mesh(positions, tetrahedron_indices, "m")}});
+  const fs::path file = gltf.write(dir, "far.gltf");
+  const std::string message = load_error(file);
+  EXPECT_NE(message.find(file.string() + ": meshes[0].primitives[0].attributes.POSITION "
+                                         "(accessor 0): vertex 2 lies at"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("beyond 1e30"), std::string::npos) << message;
+}
+
+std::string binary_stl(std::uint32_t declared, std::uint32_t held, const char* header = "") {
+  std::string out(80, '\0');
+  std::memcpy(out.data(), header, std::strlen(header));
+  for (int i = 0; i < 4; ++i) out.push_back(static_cast<char>((declared >> (8 * i)) & 0xFF));
+  const float facet[12] = {0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0};
+  for (std::uint32_t f = 0; f < held; ++f) {
+    out.append(reinterpret_cast<const char*>(facet), sizeof facet);
+    out.append(2, '\0');
+  }
+  return out;
+}
+
+TEST(MeshFilesHostile, BinaryStlCountThatDisagreesWithTheSizeSaysSo) {
+  const TempDir dir;
+  const fs::path five = dir.write("five.stl", binary_stl(5, 1));
+  std::string message = load_error(five);
+  EXPECT_NE(message.find(five.string() +
+                         ": binary STL header: declares 5 triangles (84 + 50 x 5 = 334 bytes), "
+                         "the file has 134 bytes (room for 1 triangle)"),
+            std::string::npos)
+      << message;
+  const fs::path huge = dir.write("huge.stl", binary_stl(0xFFFFFFFFu, 1));
+  message = load_error(huge);
+  EXPECT_NE(message.find("declares 4294967295 triangles"), std::string::npos) << message;
+  // A binary header that starts with "solid" is read as ASCII first; the message says both.
+  const fs::path solid = dir.write("solid.stl", binary_stl(5, 1, "solid binary"));
+  message = load_error(solid);
+  EXPECT_NE(message.find("no 'facet' in it as ASCII STL, and as binary STL its header declares 5 "
+                         "triangles"),
+            std::string::npos)
+      << message;
+  EXPECT_EQ(load_scene_file(dir.write("one.stl", binary_stl(1, 1)).string()).triangles.size(), 1u);
+}
+
+TEST(MeshFilesHostile, ObjFacesSayWhatIsWrongAndWhere) {
+  const TempDir dir;
+  const std::string vertices = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  struct Shape {
+    std::string name, text, expected;
+  };
+  for (const Shape& shape : std::vector<Shape>{
+           {"repeats", vertices + "f 1 1 2\nf 2 3 3\n",
+            "faces: every face (2) repeats a vertex, so none has area (first: f 1 (line 4) uses "
+            "vertex 1 more than once)"},
+           {"two_corners", vertices + "f 1 2\n", "f 1 (line 4): has 2 corner(s)"},
+           {"face_first", "f 1 2 3\n" + vertices,
+            "f 1 (line 1): vertex index 1 is out of range (0 vertices so far; a face must come "
+            "after its vertices)"},
+           {"texture_letter", vertices + "f 1/a 2 3\n",
+            "f 1 (line 4): corner '1/a': texture index 'a' is not a non-zero integer"},
+           {"normal_letter", vertices + "f 1 2//b 3\n", "normal index 'b'"},
+           {"four_parts", vertices + "f 1/1/1/1 2 3\n", "more than vertex/texture/normal"},
+           {"far", "v 1e38 0 0\n" + vertices + "f 2 3 4\n",
+            "v 1 (line 1): coordinate '1e38' is beyond 1e30"},
+       }) {
+    const fs::path file = dir.write(shape.name + ".obj", shape.text);
+    const std::string message = load_error(file);
+    EXPECT_NE(message.find(file.string()), std::string::npos) << shape.name << ": " << message;
+    EXPECT_NE(message.find(shape.expected), std::string::npos) << shape.name << ": " << message;
+  }
+  // Some faces repeating a vertex: dropped with a warning that names the first.
+  const LoadedScene scene =
+      load_scene_file(dir.write("some.obj", vertices + "f 1 2 3\nf 1 1 2\n").string());
+  EXPECT_EQ(scene.triangles.size(), 1u);
+  EXPECT_TRUE(any_warning_contains(scene, "first: f 2 (line 5) uses vertex 1 more than once"));
+}
+
+TEST(MeshFilesHostile, RepeatedVerticesAndShortFacesAreNamedInEveryFormat) {
+  const TempDir dir;
+  const std::string ply_header =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n1 0 0\n0 1 0\n";
+  struct Shape {
+    std::string name, text, expected;
+  };
+  for (const Shape& shape : std::vector<Shape>{
+           {"repeat.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 0 1\n",
+            "every face (1) repeats a vertex, so none has area (first: face 0 (line 6) uses "
+            "vertex 0 more than once)"},
+           {"two.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n",
+            "face 0 (line 6): has 2 corner(s); a face needs at least 3"},
+           {"repeat.ply", ply_header + "3 0 0 1\n",
+            "every face (1) repeats a vertex, so none has area (first: face 0 (line 13) uses "
+            "vertex 0 more than once)"},
+           {"two.ply", ply_header + "2 0 1\n", "face 0 (line 13): has 2 corner(s)"},
+           {"repeat.stl",
+            "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 0 0 0\nvertex 1 0 "
+            "0\nendloop\nendfacet\nendsolid x\n",
+            "every face (1) repeats a vertex, so none has area (first: facet 0 (line 4) uses the "
+            "point of corner 0 more than once)"},
+       }) {
+    const fs::path file = dir.write(shape.name, shape.text);
+    const std::string message = load_error(file);
+    EXPECT_NE(message.find(file.string()), std::string::npos) << shape.name << ": " << message;
+    EXPECT_NE(message.find(shape.expected), std::string::npos) << shape.name << ": " << message;
+  }
+}
+
+TEST(MeshFilesHostile, Utf16ObjIsNamedAsUtf16) {
+  const TempDir dir;
+  const std::string ascii = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  std::string utf16 = "\xFF\xFE";
+  for (const char c : ascii) {
+    utf16.push_back(c);
+    utf16.push_back('\0');
+  }
+  const fs::path file = dir.write("utf16.obj", utf16);
+  std::string message = load_error(file);
+  EXPECT_NE(message.find(file.string() + ": line 1: the file is UTF-16"), std::string::npos)
+      << message;
+  const fs::path no_mark = dir.write("nomark.obj", utf16.substr(2));
+  message = load_error(no_mark);
+  EXPECT_NE(message.find("line 1: contains a NUL byte"), std::string::npos) << message;
+}
+
+TEST(MeshFilesHostile, OpenMeshUnsupportedKeywordDoesNotReachStderr) {
+  const TempDir dir;
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nfoo bar\n"
+      "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  const fs::path file = dir.write("keyword.ply", ply);
+  ::testing::internal::CaptureStderr();
+  const LoadedScene scene = load_scene_file(file.string());
+  const std::string printed = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(printed.find("Unsupported keyword"), std::string::npos) << printed;
+  EXPECT_EQ(scene.triangles.size(), 1u);
+  EXPECT_TRUE(any_warning_contains(scene, "words the reader does not know, skipped: 'foo', 'bar'"));
 }
 
 }  // namespace

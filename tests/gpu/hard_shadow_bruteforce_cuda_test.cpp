@@ -15,6 +15,8 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "gpu/bruteforce/hard_shadow_bruteforce_backend.h"
+#include "gpu/bruteforce/hard_shadow_bruteforce_kernel.h"
 #include "gpu/device.h"
 #include "shadowcts/geometry/segment_triangle.h"
 
@@ -203,15 +205,34 @@ TEST(BruteforceHardShadowCuda, WithDeviceMatchesHostEvaluationBitForBit) {
     const ViewSamples samples = ground_samples(61, 67);  // not a multiple of the block size
     const AlgorithmOutput output = algorithm->run(c, samples, "float32");
     const HostEvaluation host = evaluate_on_host(c, samples);
+    // Samples beside an edge are decided again exactly on the host (exact_fallback_samples):
+    // there the float answer may differ by design.
     std::size_t mismatches = 0, shadowed = 0;
     for (std::size_t i = 0; i < host.shadowed.size(); ++i) {
       mismatches += output.shadowed.at(i) != host.shadowed[i] ? 1 : 0;
       shadowed += host.shadowed[i];
     }
-    EXPECT_EQ(mismatches, 0u) << (directional ? "directional" : "point");
+    EXPECT_LE(mismatches, counter(output, "exact_fallback_samples"))
+        << (directional ? "directional" : "point");
     EXPECT_GT(shadowed, host.shadowed.size() / 10);  // the scene does cast shadows
     EXPECT_LT(shadowed, host.shadowed.size());
     EXPECT_EQ(counter(output, "pair_tests"), host.pair_tests);
+  }
+}
+
+// The same kernel source on the device and under the emulator: the raw per-sample answers
+// (unsure ones included) and the pair count agree bit for bit.
+TEST(BruteforceHardShadowCuda, WithDeviceMatchesTheEmulatorBitForBit) {
+  if (!device_present()) GTEST_SKIP() << cuda_device_summary();
+  for (const bool directional : {false, true}) {
+    const Case c = random_case(directional, directional ? 7 : 8);
+    const ViewSamples samples = ground_samples(61, 67);
+    std::vector<std::size_t> regular;
+    const BruteforceShadowInput input = bruteforce_kernel_input(c, samples, regular);
+    const BruteforceShadowResult device = run_bruteforce_hard_shadow_kernel(input);
+    const BruteforceShadowResult emulated = run_bruteforce_hard_shadow_kernel_emulated(input);
+    EXPECT_EQ(device.shadowed, emulated.shadowed) << (directional ? "directional" : "point");
+    EXPECT_EQ(device.pair_tests, emulated.pair_tests);
   }
 }
 

@@ -1,0 +1,168 @@
+#include "gpu/bruteforce/hard_shadow_bruteforce_backend.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <utility>
+
+#include "oracles/exact_segment_triangle.h"
+#include "oracles/hard_shadow_inputs.h"
+#include "oracles/shadow_segment.h"
+#include "reference/light_on_caster.h"
+
+namespace shadowcts {
+
+BruteforceShadowInput bruteforce_kernel_input(const Case& c, const ViewSamples& samples,
+                                              std::vector<std::size_t>& regular_samples) {
+  BruteforceShadowInput input;
+  for (std::size_t i = 0; i < samples.samples.size(); ++i) {
+    const ViewSample& sample = samples.samples[i];
+    if (sample.sample_class != SampleClass::regular) continue;
+    regular_samples.push_back(i);
+    input.sample_positions.push_back(sample.position);
+    input.sample_receivers.push_back(sample.receiver);
+  }
+  for (std::size_t t = 0; t < c.triangles.size(); ++t) {
+    const Triangle& triangle = c.triangles[t];
+    if (!c.meshes.at(triangle.mesh).caster) continue;
+    input.casters.push_back({triangle.v0, triangle.v1, triangle.v2, static_cast<std::uint32_t>(t)});
+  }
+  // A sun disk is shadowed as a directional light from its centre direction (the runner decides
+  // whether such hard shadows are compared).
+  const ShadowLight& light = c.light.value();
+  input.directional_light = light.kind != ShadowLightKind::point;
+  input.light = input.directional_light ? light.direction : light.position;
+  return input;
+}
+
+namespace {
+
+// The light as the exact predicate reads it, a sun disk as its centre direction (as the kernel).
+HardShadowLight exact_light(const Case& c) {
+  HardShadowLight light;
+  light.directional = c.light->kind != ShadowLightKind::point;
+  light.position = glm::dvec3(c.light->position);
+  light.direction = glm::dvec3(c.light->direction);
+  return light;
+}
+
+struct ExactFallback {
+  std::uint64_t samples = 0, predicate_calls = 0;
+};
+
+// Decides the given samples with the exact predicate over every caster, as the reference brute
+// force does (a conservative box test first).
+ExactFallback decide_exactly(const Case& c, const ViewSamples& samples,
+                             const std::vector<std::size_t>& unsure,
+                             std::vector<std::uint8_t>& shadowed) {
+  ExactFallback fallback;
+  if (unsure.empty()) return fallback;
+  const HardShadowLight light = exact_light(c);
+  const double scale = c.scale();
+  const ExactShadowPredicate predicate(light, scale);
+  std::vector<std::size_t> casters;
+  for (std::size_t t = 0; t < c.triangles.size(); ++t) {
+    if (casts_shadow(c, t)) casters.push_back(t);
+  }
+  for (const std::size_t i : unsure) {
+    ++fallback.samples;
+    const ViewSample& sample = samples.samples[i];
+    const glm::dvec3 p(sample.position);
+    const ShadowSegment segment = make_shadow_segment(p, light, scale);
+    const double padding = box_padding(segment, 0.0);
+    shadowed[i] = 0;
+    for (const std::size_t t : casters) {
+      if (t == sample.receiver) continue;
+      const Triangle& triangle = c.triangles[t];
+      float lo[3], hi[3];
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min({triangle.v0[k], triangle.v1[k], triangle.v2[k]});
+        hi[k] = std::max({triangle.v0[k], triangle.v1[k], triangle.v2[k]});
+      }
+      if (!box_may_meet(segment, lo, hi, padding)) continue;
+      ++fallback.predicate_calls;
+      if (predicate.blocks(triangle, MovedPoint{p, 0.0, {0, 0, 0}})) {
+        shadowed[i] = 1;
+        break;
+      }
+    }
+  }
+  return fallback;
+}
+
+AlgorithmInfo kernel_info(const BruteforceKernelBackend& backend) {
+  AlgorithmInfo info;
+  info.id = "bruteforce";
+  info.backend = backend.backend;
+  info.variants = {"float32"};
+  info.summary = backend.summary;
+  info.capabilities.output = OutputKind::hard_shadow;
+  info.capabilities.point_light = true;
+  info.capabilities.directional_light = true;
+  info.capabilities.max_sample_triangle_pairs = backend.max_sample_triangle_pairs;
+  return info;
+}
+
+class BruteforceKernelAlgorithm final : public Algorithm {
+ public:
+  explicit BruteforceKernelAlgorithm(BruteforceKernelBackend backend)
+      : backend_(std::move(backend)), info_(kernel_info(backend_)) {}
+
+  const AlgorithmInfo& info() const override { return info_; }
+
+  std::optional<std::string> unsupported_reason(const Case& c, const ViewSamples& samples,
+                                                const std::string& variant) const override {
+    if (auto reason = Algorithm::unsupported_reason(c, samples, variant)) return reason;
+    return backend_.unavailable_reason ? backend_.unavailable_reason() : std::nullopt;
+  }
+
+  AlgorithmOutput run(const Case& c, const ViewSamples& samples,
+                      const std::string& variant) const override {
+    const std::string name = "bruteforce/" + backend_.backend;
+    if (variant != info_.variants.front()) {
+      throw std::invalid_argument(name + ": unknown variant '" + variant + "'");
+    }
+    if (backend_.unavailable_reason) {
+      if (auto reason = backend_.unavailable_reason()) throw std::runtime_error(*reason);
+    }
+    if (!c.light) throw std::invalid_argument(name + ": the case has no shadow light");
+    check_receivers(c, samples);
+    std::vector<std::size_t> regular_samples;
+    const BruteforceShadowResult result =
+        backend_.run_kernel(bruteforce_kernel_input(c, samples, regular_samples));
+
+    AlgorithmOutput output;
+    output.shadowed.assign(samples.samples.size(), 0);  // non-regular samples stay 0
+    std::vector<std::size_t> unsure;
+    for (std::size_t i = 0; i < regular_samples.size(); ++i) {
+      const std::uint8_t state = result.shadowed[i];
+      output.shadowed[regular_samples[i]] = state == bruteforce_sample_shadowed ? 1 : 0;
+      if (state == bruteforce_sample_unsure) unsure.push_back(regular_samples[i]);
+    }
+    const ExactFallback fallback = decide_exactly(c, samples, unsure, output.shadowed);
+    // The definition's closed segment ends at L: a caster containing L shadows every sample it
+    // does not receive, which no segment/triangle test in float sees reliably.
+    const std::uint64_t light_on_caster =
+        shadow_samples_by_light_on_caster(c, samples, output.shadowed);
+    output.counters = {{"pair_tests", result.pair_tests},
+                       {"exact_fallback_samples", fallback.samples},
+                       {"exact_predicate_calls", fallback.predicate_calls},
+                       {"light_on_caster_samples", light_on_caster}};
+    if (backend_.emulated) {
+      const std::uint64_t blocks = (regular_samples.size() + 255) / 256;
+      output.counters.push_back({"emulated_threads", blocks * 256});
+    }
+    return output;
+  }
+
+ private:
+  BruteforceKernelBackend backend_;
+  AlgorithmInfo info_;
+};
+
+}  // namespace
+
+std::unique_ptr<Algorithm> make_bruteforce_kernel_algorithm(BruteforceKernelBackend backend) {
+  return std::make_unique<BruteforceKernelAlgorithm>(std::move(backend));
+}
+
+}  // namespace shadowcts

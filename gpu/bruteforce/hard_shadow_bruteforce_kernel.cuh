@@ -1,0 +1,181 @@
+#pragma once
+// Brute-force hard shadows, written once (gpu/emulator/kernel.h): nvcc builds it into the `cuda`
+// backend, the host compiler into `cuda-emu` against the emulator. One thread per view sample
+// tests every caster triangle with the shared watertight segment/triangle test; casters are
+// staged through shared memory one tile at a time, so a block reads each triangle from global
+// memory once.
+//
+// The float test is exact for one perturbation of each triangle's vertices; beside an edge its
+// miss may be a crack (a T-junction), so a sample that no triangle hits but that passes near an
+// edge comes back `unsure` and the host decides it exactly. A hit is kept: beside an edge it is
+// never wrong on a robust sample.
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "gpu/bruteforce/hard_shadow_bruteforce_kernel.h"
+#include "gpu/emulator/kernel.h"
+#include "shadowcts/geometry/segment_triangle.h"
+
+namespace shadowcts::SHADOWCTS_KERNEL_NAMESPACE {
+namespace bruteforce {
+
+constexpr int threads_per_block = 256;
+constexpr int casters_per_tile = threads_per_block;  // each thread stages one caster per tile
+
+struct TileCaster {
+  float vertices[9];
+  std::uint32_t triangle;
+};
+
+__global__ void bruteforce_hard_shadow(const glm::vec3* sample_positions,
+                                       const std::uint32_t* sample_receivers,
+                                       std::uint32_t sample_count, const BruteforceCaster* casters,
+                                       std::uint32_t caster_count, bool directional_light,
+                                       glm::vec3 light, std::uint8_t* sample_states,
+                                       unsigned long long* pair_tests) {
+  SHADOWCTS_SHARED(TileCaster[casters_per_tile], tile);
+  const std::uint32_t sample = blockIdx.x * blockDim.x + threadIdx.x;
+  const bool has_sample = sample < sample_count;
+
+  RaySpace ray;
+  std::uint32_t receiver = 0;
+  if (has_sample) {
+    const glm::vec3 position = sample_positions[sample];
+    ray = make_ray_space(directional_light ? ray_to_directional_light(position, light)
+                                           : segment_to_point_light(position, light));
+    receiver = sample_receivers[sample];
+  }
+  bool done = !has_sample;  // shadowed, or no sample to shade
+  bool hit = false, near_edge = false;
+  unsigned long long tests = 0;
+
+  for (std::uint32_t tile_start = 0; tile_start < caster_count; tile_start += casters_per_tile) {
+    // Also the barrier that keeps the previous tile alive until every thread is past it.
+    if (!__syncthreads_or(!done)) break;
+    const std::uint32_t staged = tile_start + threadIdx.x;
+    if (staged < caster_count) {
+      const BruteforceCaster& caster = casters[staged];
+      TileCaster slot;
+      slot.vertices[0] = caster.v0.x;
+      slot.vertices[1] = caster.v0.y;
+      slot.vertices[2] = caster.v0.z;
+      slot.vertices[3] = caster.v1.x;
+      slot.vertices[4] = caster.v1.y;
+      slot.vertices[5] = caster.v1.z;
+      slot.vertices[6] = caster.v2.x;
+      slot.vertices[7] = caster.v2.y;
+      slot.vertices[8] = caster.v2.z;
+      slot.triangle = caster.triangle;
+      tile[threadIdx.x] = slot;
+    }
+    __syncthreads();
+    if (done) continue;
+    const std::uint32_t remaining = caster_count - tile_start;
+    const std::uint32_t tile_size =
+        remaining < std::uint32_t{casters_per_tile} ? remaining : std::uint32_t{casters_per_tile};
+    for (std::uint32_t i = 0; i < tile_size; ++i) {
+      const TileCaster caster = tile[i];  // every lane reads the same slot: a broadcast
+      ++tests;  // the receiver counts as a visited pair, as in the reference backend
+      if (caster.triangle == receiver) continue;
+      const float* v = caster.vertices;
+      const glm::vec3 v0(v[0], v[1], v[2]), v1(v[3], v[4], v[5]), v2(v[6], v[7], v[8]);
+      if (ray_hits_triangle(ray, v0, v1, v2)) {
+        hit = true;
+        done = true;
+        break;
+      }
+      // Once unsure, only a hit can still change the answer.
+      if (!near_edge && ray_near_triangle_edge(ray, v0, v1, v2)) near_edge = true;
+    }
+  }
+
+  if (has_sample) {
+    sample_states[sample] = hit         ? bruteforce_sample_shadowed
+                            : near_edge ? bruteforce_sample_unsure
+                                        : bruteforce_sample_lit;
+  }
+  // Integer sums are order-independent, so the total is deterministic.
+  for (int offset = warpSize / 2; offset > 0; offset /= 2) {
+    tests += __shfl_down_sync(0xffffffffu, tests, offset);
+  }
+  if (threadIdx.x % warpSize == 0 && tests != 0) atomicAdd(pair_tests, tests);
+}
+
+inline void check(cudaError_t status, const char* call) {
+  if (status == cudaSuccess) return;
+  throw std::runtime_error(std::string("CUDA error in ") + call + ": " + cudaGetErrorName(status) +
+                           ": " + cudaGetErrorString(status));
+}
+
+// Owns one device allocation.
+template <typename T>
+class DeviceArray {
+ public:
+  explicit DeviceArray(std::size_t count) : count_(count) {
+    if (count_ != 0) check(cudaMalloc(&data_, count_ * sizeof(T)), "cudaMalloc");
+  }
+  DeviceArray(const DeviceArray&) = delete;
+  DeviceArray& operator=(const DeviceArray&) = delete;
+  ~DeviceArray() {
+    if (data_ != nullptr) cudaFree(data_);  // nothing useful to do with an error in a destructor
+  }
+  T* data() const { return data_; }
+
+  void upload(const std::vector<T>& host) {
+    if (count_ != 0) {
+      check(cudaMemcpy(data_, host.data(), count_ * sizeof(T), cudaMemcpyHostToDevice),
+            "cudaMemcpy to device");
+    }
+  }
+  void download(T* host) const {
+    if (count_ != 0) {
+      check(cudaMemcpy(host, data_, count_ * sizeof(T), cudaMemcpyDeviceToHost),
+            "cudaMemcpy to host");
+    }
+  }
+
+ private:
+  std::size_t count_;
+  T* data_ = nullptr;
+};
+
+inline BruteforceShadowResult run(const BruteforceShadowInput& input) {
+  const std::size_t sample_count = input.sample_positions.size();
+  BruteforceShadowResult result;
+  result.shadowed.assign(sample_count, bruteforce_sample_lit);
+  if (sample_count == 0 || input.casters.empty()) return result;
+  if (sample_count > UINT32_MAX || input.casters.size() > UINT32_MAX) {
+    throw std::length_error("bruteforce_hard_shadow: more than 2^32 samples or casters");
+  }
+
+  DeviceArray<glm::vec3> positions(sample_count);
+  DeviceArray<std::uint32_t> receivers(sample_count);
+  DeviceArray<BruteforceCaster> casters(input.casters.size());
+  DeviceArray<std::uint8_t> states(sample_count);
+  DeviceArray<unsigned long long> pair_tests(1);
+  positions.upload(input.sample_positions);
+  receivers.upload(input.sample_receivers);
+  casters.upload(input.casters);
+  check(cudaMemset(pair_tests.data(), 0, sizeof(unsigned long long)), "cudaMemset");
+
+  const auto block_count =
+      static_cast<unsigned>((sample_count + threads_per_block - 1) / threads_per_block);
+  SHADOWCTS_LAUNCH(bruteforce_hard_shadow, block_count, threads_per_block, 0)
+  (positions.data(), receivers.data(), static_cast<std::uint32_t>(sample_count), casters.data(),
+   static_cast<std::uint32_t>(input.casters.size()), input.directional_light, input.light,
+   states.data(), pair_tests.data());
+  check(cudaGetLastError(), "bruteforce_hard_shadow launch");
+  check(cudaDeviceSynchronize(), "bruteforce_hard_shadow");
+
+  states.download(result.shadowed.data());
+  unsigned long long total_tests = 0;
+  pair_tests.download(&total_tests);
+  result.pair_tests = total_tests;
+  return result;
+}
+
+}  // namespace bruteforce
+}  // namespace shadowcts::SHADOWCTS_KERNEL_NAMESPACE

@@ -1,0 +1,457 @@
+// Issue 14, items 4-8 and 10: the output folder is one whole run or visibly unfinished, output
+// failures are exit 3 naming the file (never a Crash verdict), no false greens, no partial output
+// on bad input, image folders unique and confined, strict --shard, stdout flushed per record.
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "shadowcts/errors.h"
+#include "shadowcts/image_file.h"
+#include "shadowcts/registry.h"
+#include "shadowcts/runner.h"
+
+namespace shadowcts {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("shadowcts_output_integrity_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Exit status of a shell command line run by bash in `dir` (stdout/stderr to files there); -1
+// when it did not exit (killed by a signal).
+int run_shell(const std::string& script, const fs::path& dir) {
+  std::ofstream(dir / "script.sh") << script;
+  const std::string command =
+      "cd '" + dir.string() + "' && bash script.sh > stdout.txt 2> " + "stderr.txt";
+  const int status = std::system(command.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+const std::string tool = SHADOWCTS_TOOL;
+
+int run_tool(const std::string& arguments, const fs::path& dir) {
+  return run_shell("exec '" + tool + "' " + arguments + "\n", dir);
+}
+
+std::string err_of(const fs::path& dir) {
+  return read_file(dir / "stderr.txt");
+}
+
+// Every file under `root` with its bytes, by relative path.
+std::map<std::string, std::string> snapshot(const fs::path& root) {
+  std::map<std::string, std::string> files;
+  if (!fs::exists(root)) return files;
+  for (const auto& entry : fs::recursive_directory_iterator(root))
+    if (entry.is_regular_file())
+      files[fs::relative(entry.path(), root).string()] = read_file(entry.path());
+  return files;
+}
+
+// Names in `dir` that start with `prefix` (the partial folders of a run into dir/<prefix>...).
+std::vector<std::string> entries_starting(const fs::path& dir, const std::string& prefix) {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(dir))
+    if (entry.path().filename().string().rfind(prefix, 0) == 0)
+      names.push_back(entry.path().filename().string());
+  return names;
+}
+
+const std::string small_run = "run --fixture ground_blockers.2k --algorithm embree --repeat 1";
+
+// A previous complete run in dir/out, for the tests that must leave it untouched.
+std::map<std::string, std::string> previous_run(const fs::path& dir) {
+  EXPECT_EQ(run_tool(small_run + " --out out", dir), exit_pass) << err_of(dir);
+  const auto files = snapshot(dir / "out");
+  EXPECT_TRUE(files.count("results.json"));
+  EXPECT_TRUE(files.count("junit.xml"));
+  EXPECT_TRUE(files.count("report.html"));
+  return files;
+}
+
+// Item 4: a second run replaces the first as a whole; nothing partial is left beside it.
+TEST(OutputIntegrity, ARunReplacesThePreviousRunAsAWhole) {
+  const fs::path dir = fresh_dir("replace");
+  previous_run(dir);
+  // Files of the first run that the second does not write must not survive beside it.
+  ASSERT_EQ(run_tool("run --fixture shared_edges.1k --algorithm embree --repeat 1 --out out", dir),
+            exit_pass)
+      << err_of(dir);
+  const auto results = json::parse(read_file(dir / "out" / "results.json"));
+  ASSERT_EQ(results["cases"].size(), 1u);
+  EXPECT_EQ(results["cases"][0]["name"], "shared_edges.1k");
+  EXPECT_FALSE(fs::exists(dir / "out" / "images" / "ground_blockers.2k"));
+  EXPECT_EQ(entries_starting(dir, "out."), std::vector<std::string>{});
+  EXPECT_EQ(read_file(dir / "out" / "report.html").find(".partial-"), std::string::npos);
+}
+
+// Item 4: killed in the middle, the folder still holds the previous complete run, and the new
+// run's folder says it is unfinished.
+TEST(OutputIntegrity, AKilledRunLeavesThePreviousRunAndAVisiblyUnfinishedFolder) {
+  const fs::path dir = fresh_dir("killed");
+  const auto before = previous_run(dir);
+  // Several cases and algorithms: seconds of work; it is killed once its first case's images are
+  // being written.
+  const int code = run_shell(
+      "'" + tool +
+          "' run --fixture ground_blockers.2k --fixture shared_edges.1k --fixture "
+          "closed_shapes.1k --algorithm ptsv --algorithm psv --algorithm bruteforce --repeat 3 "
+          "--out out > run.txt 2>&1 &\n"
+          "pid=$!\n"
+          "for i in $(seq 1 3000); do\n"
+          "  if [ -n \"$(ls out.partial-$pid/images 2>/dev/null)\" ]; then break; fi\n"
+          "  sleep 0.01\n"
+          "done\n"
+          "kill -9 $pid\n"
+          "wait $pid\n"
+          "echo $? > status.txt\n"
+          "echo $pid > pid.txt\n",
+      dir);
+  ASSERT_EQ(code, 0) << err_of(dir);
+  ASSERT_EQ(read_file(dir / "status.txt"), "137\n") << "the run ended before it was killed";
+  EXPECT_EQ(snapshot(dir / "out"), before) << "the previous run was changed";
+  std::string pid = read_file(dir / "pid.txt");
+  pid.pop_back();
+  EXPECT_TRUE(fs::is_directory(dir / ("out.partial-" + pid)));
+  EXPECT_FALSE(fs::exists(dir / ("out.partial-" + pid) / "results.json"));
+}
+
+// Item 4: a full disk (a real ENOSPC, on a small tmpfs in a user namespace) while an algorithm's
+// images are written: exit 3 naming the PNG, no Crash verdict, the previous run untouched and no
+// partial folder left.
+TEST(OutputIntegrity, AFullDiskIsExitThreeNamingTheFileNeverACrash) {
+  const fs::path dir = fresh_dir("full_disk");
+  const std::string mount = (dir / "disk").string();
+  fs::create_directories(mount);
+  // Room for the first run; then the disk is filled so that the new run's oracle images fit
+  // (pages of the previous run's oracle PNG and EXR) and the algorithm's first image does not.
+  const std::string script =
+      "set -e\n"
+      "unshare -rm bash -c '\n"
+      "  set -e\n"
+      "  mount -t tmpfs -o size=2m tmpfs " +
+      mount +
+      " || exit 77\n"
+      "  cd " +
+      mount +
+      "\n"
+      "  \"" +
+      tool + "\" " + small_run +
+      " --out out > /dev/null\n"
+      "  cp -r out " +
+      (dir / "before").string() +
+      "\n"
+      "  pages() { echo $(( ($(stat -c %s \"$1\") + 4095) / 4096 )); }\n"
+      "  keep=$(( $(pages out/images/ground_blockers.2k/oracle.mask.png) + "
+      "$(pages out/images/ground_blockers.2k/oracle.mask.exr) ))\n"
+      "  free=$(df --output=avail -B4096 . | tail -1)\n"
+      "  dd if=/dev/zero of=fill bs=4096 count=$(( free - keep )) 2> /dev/null\n"
+      "  set +e\n"
+      "  \"" +
+      tool + "\" " + small_run + " --out out > " + (dir / "run.txt").string() + " 2> " +
+      (dir / "run_err.txt").string() +
+      "\n"
+      "  echo $? > " +
+      (dir / "code.txt").string() +
+      "\n"
+      "  cp -r out " +
+      (dir / "after").string() +
+      "\n"
+      "  ls > " +
+      (dir / "listing.txt").string() +
+      "\n"
+      "'\n";
+  const int code = run_shell(script, dir);
+  if (code == 77 || (code != 0 && err_of(dir).find("unshare") != std::string::npos))
+    GTEST_SKIP() << "no user namespace with tmpfs here: " << err_of(dir);
+  ASSERT_EQ(code, 0) << err_of(dir);
+  EXPECT_EQ(read_file(dir / "code.txt"), "3\n");
+  const std::string message = read_file(dir / "run_err.txt");
+  EXPECT_NE(message.find("cannot write output"), std::string::npos) << message;
+  EXPECT_NE(message.find("embree.robust.embree.mask.png"), std::string::npos) << message;
+  EXPECT_NE(message.find("No space left on device"), std::string::npos) << message;
+  EXPECT_EQ(read_file(dir / "run.txt").find("Crash"), std::string::npos);
+  EXPECT_EQ(snapshot(dir / "after"), snapshot(dir / "before"));
+  EXPECT_EQ(read_file(dir / "listing.txt"), "fill\nout\n") << "a partial folder was left";
+}
+
+// Item 4, without a mount: a file size limit makes every large enough write fail (EFBIG), the
+// same checked path as ENOSPC; results and images alike.
+TEST(OutputIntegrity, AWriteErrorIsExitThreeAndKeepsThePreviousRun) {
+  const fs::path dir = fresh_dir("file_size_limit");
+  const auto before = previous_run(dir);
+  // SIGXFSZ ignored: the write fails with EFBIG instead of killing the process.
+  EXPECT_EQ(
+      run_shell("trap '' XFSZ\nulimit -f 1\nexec '" + tool + "' " + small_run + " --out out\n",
+                dir),
+      exit_internal_error);
+  const std::string message = err_of(dir);
+  EXPECT_NE(message.find("cannot write output"), std::string::npos) << message;
+  EXPECT_NE(message.find("File too large"), std::string::npos) << message;
+  EXPECT_NE(message.find("images/ground_blockers.2k/oracle.mask."), std::string::npos) << message;
+  EXPECT_EQ(read_file(dir / "stdout.txt").find("Crash"), std::string::npos);
+  EXPECT_EQ(snapshot(dir / "out"), before);
+  EXPECT_EQ(entries_starting(dir, "out."), std::vector<std::string>{});
+}
+
+// Item 4: the PNG writer itself (the zero-byte PNGs of the report came from it): a failed write
+// is an OutputError naming the file, and nothing is left at the path.
+TEST(OutputIntegrity, APngThatCannotBeWrittenThrowsOutputError) {
+  const fs::path dir = fresh_dir("png");
+  const fs::path png = dir / "image.png";
+  RgbImage image{64, 64, std::vector<std::uint8_t>(64 * 64 * 3)};
+  std::uint32_t state = 1;  // noise: it does not compress below the limit
+  for (std::uint8_t& byte : image.rgb)
+    byte = std::uint8_t((state = state * 1664525u + 1013904223u) >> 24);
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {  // the limit only in a child: the test process keeps writing freely
+    signal(SIGXFSZ, SIG_IGN);
+    const rlimit limit{1000, 1000};
+    setrlimit(RLIMIT_FSIZE, &limit);
+    try {
+      write_image(png.string(), image);
+    } catch (const OutputError& e) {
+      const std::string what = e.what();
+      _exit(what.find(png.string()) != std::string::npos &&
+                    what.find("File too large") != std::string::npos
+                ? 0
+                : 1);
+    } catch (...) {
+      _exit(2);
+    }
+    _exit(3);  // written although it cannot fit
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  EXPECT_FALSE(fs::exists(png));
+  EXPECT_TRUE(fs::is_empty(dir)) << "a temporary was left";
+  // Without the limit it is written and readable.
+  write_image(png.string(), image);
+  EXPECT_GT(fs::file_size(png), 100u);
+}
+
+// Item 4: a folder that holds anything but a previous run is not replaced.
+TEST(OutputIntegrity, AFolderWithOtherFilesIsNotReplaced) {
+  const fs::path dir = fresh_dir("foreign");
+  fs::create_directories(dir / "out");
+  std::ofstream(dir / "out" / "notes.txt") << "mine";
+  EXPECT_EQ(run_tool(small_run + " --out out", dir), exit_bad_input);
+  EXPECT_NE(err_of(dir).find("notes.txt"), std::string::npos) << err_of(dir);
+  EXPECT_EQ(snapshot(dir / "out"), (std::map<std::string, std::string>{{"notes.txt", "mine"}}));
+  EXPECT_EQ(entries_starting(dir, "out."), std::vector<std::string>{});
+}
+
+// Item 5: an unknown backend, and a selection of no case, are usage errors, not empty greens.
+TEST(OutputIntegrity, AnUnknownBackendOrAnEmptySelectionIsExitTwo) {
+  const fs::path dir = fresh_dir("empty_selection");
+  EXPECT_EQ(run_tool("run --backend vulkan --out out", dir), exit_bad_input);
+  std::string message = err_of(dir);
+  EXPECT_NE(message.find("--backend vulkan: unknown backend"), std::string::npos) << message;
+  EXPECT_NE(message.find("reference"), std::string::npos) << message;
+  EXPECT_NE(message.find("embree"), std::string::npos) << message;
+
+  EXPECT_EQ(run_tool("run --fixture ground_blockers.2k --shard 3/4 --out out", dir),
+            exit_bad_input);
+  message = err_of(dir);
+  EXPECT_NE(message.find("matches no case in shard 3/4"), std::string::npos) << message;
+
+  EXPECT_EQ(run_tool("run --algorithm embree:exact --out out", dir), exit_bad_input);
+  EXPECT_NE(err_of(dir).find("embree:exact"), std::string::npos) << err_of(dir);
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
+// Item 5: a case whose samples are all sky has nothing to judge: hard, soft and light-list
+// records are NotSupported with the reason, never "right on all 0 robust samples".
+TEST(OutputIntegrity, ACaseWithNothingToJudgeIsNotSupportedNeverPass) {
+  const fs::path dir = fresh_dir("nothing_to_judge");
+  std::ofstream(dir / "sky.json") << R"({"name": "sky",
+      "scene": {"generator": "ground_blockers", "triangles": 1000},
+      "camera": {"position": [0, 100, 0], "target": [0, 200, 0], "up": [0, 0, 1],
+                 "width": 16, "height": 12},
+      "light": {"type": "sun", "direction": [0.3, 1, 0.2], "angular_radius_degrees": 0.27},
+      "ranged_lights": [{"type": "sphere", "centre": [0, 1, 0], "range": 2}]})";
+  ASSERT_EQ(run_tool("run --case sky.json --algorithm embree --algorithm softtile:grid16 "
+                     "--algorithm lightassign:tiled --repeat 1 --out out",
+                     dir),
+            exit_pass)
+      << err_of(dir);
+  const auto results = json::parse(read_file(dir / "out" / "results.json"));
+  std::set<std::string> outputs;
+  for (const auto& r : results["results"]) {
+    EXPECT_EQ(r["verdict"], "NotSupported") << r.dump();
+    const std::string reason = r["reason"];
+    EXPECT_EQ(reason.find("no robust sample to judge: 0 ambiguous, 192 sky, 0 back-facing"), 0u)
+        << reason;
+    outputs.insert(r["output"].get<std::string>());
+  }
+  EXPECT_EQ(outputs, (std::set<std::string>{"hard", "soft", "lights"}));
+  const std::string junit = read_file(dir / "out" / "junit.xml");
+  EXPECT_NE(junit.find("tests=\"3\""), std::string::npos) << junit;
+  EXPECT_NE(junit.find("skipped=\"3\""), std::string::npos) << junit;
+  EXPECT_NE(read_file(dir / "stdout.txt").find("NotSupported"), std::string::npos);
+}
+
+// Item 6: a bad G-buffer (the second case's) is exit 2 before the output folder is touched.
+TEST(OutputIntegrity, ABadGbufferIsExitTwoBeforeAnythingIsWritten) {
+  const fs::path dir = fresh_dir("bad_gbuffer");
+  std::ofstream(dir / "good.json")
+      << R"({"name": "good", "scene": {"generator": "ground_blockers", "triangles": 1000}})";
+  std::ofstream(dir / "bad.json") << R"({"name": "bad",
+      "scene": {"generator": "ground_blockers", "triangles": 1000}, "gbuffer": "bad.exr"})";
+  std::ofstream(dir / "bad.exr") << "not an EXR file";
+  EXPECT_EQ(run_tool("run --case good.json --case bad.json --algorithm embree --out out", dir),
+            exit_bad_input);
+  EXPECT_NE(err_of(dir).find("bad.exr"), std::string::npos) << err_of(dir);
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  EXPECT_EQ(entries_starting(dir, "out."), std::vector<std::string>{});
+}
+
+// Item 6: an empty --out is a usage error and writes nothing into the current folder.
+TEST(OutputIntegrity, AnEmptyOutIsAUsageError) {
+  const fs::path dir = fresh_dir("empty_out");
+  EXPECT_EQ(run_tool(small_run + " --out ''", dir), exit_bad_input);
+  EXPECT_NE(err_of(dir).find("--out ''"), std::string::npos) << err_of(dir);
+  std::set<std::string> names;
+  for (const auto& entry : fs::directory_iterator(dir)) names.insert(entry.path().filename());
+  EXPECT_EQ(names, (std::set<std::string>{"script.sh", "stdout.txt", "stderr.txt"}));
+
+  std::ofstream(dir / "a_file") << "x";
+  EXPECT_EQ(run_tool(small_run + " --out a_file", dir), exit_bad_input);
+  EXPECT_NE(err_of(dir).find("not a folder"), std::string::npos) << err_of(dir);
+}
+
+// Item 7: names that map to one folder, and names that would leave images/, get folders of
+// their own inside images/.
+TEST(OutputIntegrity, ImageFoldersAreUniqueAndStayInsideTheOutputFolder) {
+  const fs::path dir = fresh_dir("image_folders");
+  const std::vector<std::string> names = {"a b", "a_b", "..", ".", "A_B", "a_b-2"};
+  std::string cases;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const std::string file = "case" + std::to_string(i) + ".json";
+    std::ofstream(dir / file) << json{
+        {"name", names[i]},
+        {"scene", {{"generator", "ground_blockers"}, {"triangles", 1000}}},
+        {"camera",
+         {{"width", 16},
+          {"height", 12}}}}.dump();
+    cases += " --case " + file;
+  }
+  ASSERT_EQ(run_tool("run" + cases + " --algorithm embree --repeat 1 --out out", dir), exit_pass)
+      << err_of(dir);
+  std::set<std::string> top;
+  for (const auto& entry : fs::directory_iterator(dir / "out")) top.insert(entry.path().filename());
+  EXPECT_EQ(top, (std::set<std::string>{"images", "junit.xml", "report.html", "results.json"}));
+  const auto results = json::parse(read_file(dir / "out" / "results.json"));
+  std::set<std::string> folders, images;
+  for (const auto& c : results["cases"]) {
+    const fs::path mask = c["oracles"]["hard"]["mask_image"].get<std::string>();
+    ASSERT_EQ(mask.begin()->string(), "images") << mask;
+    const std::string folder = std::next(mask.begin())->string();
+    EXPECT_FALSE(folder.empty() || folder.front() == '.') << folder;
+    EXPECT_EQ(mask.lexically_normal(), mask);
+    folders.insert(folder);
+    EXPECT_TRUE(fs::is_regular_file(dir / "out" / mask)) << mask;
+  }
+  EXPECT_EQ(folders.size(), names.size());
+  for (const auto& r : results["results"])
+    for (const auto& image : r["images"]) {
+      EXPECT_TRUE(images.insert(image.get<std::string>()).second) << image << " written twice";
+      EXPECT_TRUE(fs::is_regular_file(dir / "out" / image.get<std::string>())) << image;
+    }
+  EXPECT_EQ(images.size(), 2 * names.size());
+}
+
+// Item 8: --shard values are range-checked, never wrapped; each error names the value.
+TEST(OutputIntegrity, BadShardValuesAreExitTwoNamingTheValue) {
+  const fs::path dir = fresh_dir("shard");
+  for (const std::string shard : {"0/99999999999", "99999999999/1", "-1/4", "1/0", "4/4", "a/b",
+                                  "0/4x", " 0/4", "0/", "/4", "0", "1/2/3", "+0/4"}) {
+    EXPECT_EQ(run_tool(small_run + " --shard '" + shard + "' --out out", dir), exit_bad_input)
+        << shard;
+    EXPECT_NE(err_of(dir).find("--shard '" + shard + "'"), std::string::npos) << err_of(dir);
+  }
+  run_tool(small_run + " --shard 0/99999999999 --out out", dir);
+  EXPECT_NE(err_of(dir).find("N 99999999999 is out of range"), std::string::npos) << err_of(dir);
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  EXPECT_EQ(run_tool(small_run + " --shard 0/4294967295 --out out", dir), exit_pass) << err_of(dir);
+}
+
+// Item 10: the plan and every record line reach the stream (flushed) as they are printed, so a
+// log that is not a terminal shows progress.
+class FlushRecorder : public std::stringbuf {
+ public:
+  std::set<std::size_t> flushed_at;  // text length at each flush
+
+ protected:
+  int sync() override {
+    flushed_at.insert(str().size());
+    return 0;
+  }
+};
+
+TEST(OutputIntegrity, ThePlanAndEachRecordLineAreFlushed) {
+  const fs::path dir = fresh_dir("flush");
+  RunOptions options;
+  options.fixtures = {"ground_blockers.2k", "shared_edges.1k"};
+  options.algorithms = {{"embree", ""}, {"ptsv", "twopass"}};
+  options.repeats = 1;
+  options.out_dir = (dir / "out").string();
+  FlushRecorder buffer;
+  std::ostream out(&buffer);
+  std::ostringstream err;
+  ASSERT_EQ(run_suite(options, builtin_registry(), out, err), exit_pass);
+  const std::string all = buffer.str();
+  const std::string text = all.substr(0, all.find("\nsummary"));  // the per-case part
+  std::size_t records = 0, plans = 0, start = 0;
+  bool in_plan = false;
+  while (start < text.size()) {
+    const std::size_t end = text.find('\n', start) + 1;
+    const std::string line = text.substr(start, end - start);
+    const bool record = line.rfind("  Pass ", 0) == 0;
+    const bool plan = line.rfind("case ", 0) == 0 || line.rfind("  oracle:", 0) == 0 ||
+                      line.rfind("  run:", 0) == 0 || line.rfind("  left out:", 0) == 0;
+    if (in_plan && !plan) {  // the plan ended at `start`
+      EXPECT_TRUE(buffer.flushed_at.count(start)) << "plan not flushed before: " << line;
+      ++plans;
+    }
+    if (record) {
+      EXPECT_TRUE(buffer.flushed_at.count(end)) << "not flushed: " << line;
+      ++records;
+    }
+    in_plan = plan;
+    start = end;
+  }
+  EXPECT_EQ(records, 4u) << text;
+  EXPECT_EQ(plans, 2u) << text;
+}
+
+}  // namespace
+}  // namespace shadowcts
