@@ -37,6 +37,14 @@ inline constexpr ExpectedFailure expected_failures[] = {
     {"hard.metric.*.stiff.light_1e-6_from_caster",
      "the metric tree's final test is the float watertight segment test (shared with the device "
      "code): the same rounding at the light end as Embree"},
+    {"hard.metric.*.stiff.light_1ulp_off_caster_face",
+     "the light is one float step (5e-7) above the face, so every shadow segment crosses the "
+     "face's plane within ~1e-8 of its end at L: the float watertight segment test rounds that "
+     "crossing past the light for a few segments (its exact fallback covers segments beside an "
+     "edge, not ends beside a plane)"},
+    {"hard.bruteforce.float32.cuda*.stiff.light_1ulp_off_caster_face",
+     "the brute-force kernel's float watertight segment test, as metric's: the crossing of the "
+     "face's plane within ~1e-8 of the segment's end at L rounds past the light"},
 };
 
 inline const ExpectedFailure* expected_failure(const std::string& record) {
