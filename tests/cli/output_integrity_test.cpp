@@ -284,7 +284,14 @@ TEST(OutputIntegrity, AnUnknownBackendOrAnEmptySelectionIsExitTwo) {
   EXPECT_NE(message.find("matches no case in shard 3/4"), std::string::npos) << message;
 
   EXPECT_EQ(run_tool("run --algorithm embree:exact --out out", dir), exit_bad_input);
-  EXPECT_NE(err_of(dir).find("embree:exact"), std::string::npos) << err_of(dir);
+  message = err_of(dir);
+  EXPECT_NE(message.find("embree:exact"), std::string::npos) << message;
+  EXPECT_NE(message.find("variants of embree: robust"), std::string::npos) << message;
+
+  EXPECT_EQ(run_tool("run --algorithm vulkanrt --out out", dir), exit_bad_input);
+  message = err_of(dir);
+  EXPECT_NE(message.find("--algorithm vulkanrt"), std::string::npos) << message;
+  EXPECT_NE(message.find("known: bruteforce, embree"), std::string::npos) << message;
   EXPECT_FALSE(fs::exists(dir / "out"));
 }
 
