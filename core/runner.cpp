@@ -186,8 +186,15 @@ std::filesystem::path checked_out_dir(const std::string& text) {
     dir = fs::canonical(dir, ec);  // replace the folder, not the link
     if (ec) throw UsageError("--out " + text + ": " + ec.message());
   }
-  if (dir == dir.root_path() || dir.filename() == "." || dir.filename() == "..")
-    throw UsageError("--out " + text + ": give a folder of its own for the run's outputs");
+  // The folder is replaced as a whole: never the current folder or one holding it.
+  const fs::path here = fs::current_path(ec);
+  const bool holds_here =
+      !ec && !here.lexically_relative(dir).empty() && *here.lexically_relative(dir).begin() != "..";
+  if (dir == dir.root_path() || dir.filename() == "." || dir.filename() == ".." || holds_here)
+    throw UsageError("--out " + text +
+                     ": give a folder of its own for the run's outputs (it is replaced as a "
+                     "whole), not the current folder or one above it");
+  ec.clear();
   const fs::file_status status = fs::status(dir, ec);
   if (!fs::exists(status)) return dir;
   if (!fs::is_directory(status)) throw UsageError("--out " + text + ": exists and is not a folder");
