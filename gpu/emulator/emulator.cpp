@@ -171,7 +171,7 @@ struct Thread {
   unsigned linear = 0, warp = 0, lane = 0;
   ctx::fiber fiber, scheduler;
   Wait wait = Wait::runnable;
-  std::source_location where;  // of the barrier or collective it waits at
+  Location where;  // of the barrier or collective it waits at
   const char* what = "";
   // Collective arguments and result.
   Collective collective = Collective::syncwarp;
@@ -252,11 +252,11 @@ const char* collective_name(Collective kind) {
   return "?";
 }
 
-std::string where_text(const std::source_location& where) {
+std::string where_text(const Location& where) {
   return std::string(where.file_name()) + ":" + std::to_string(where.line());
 }
 
-bool same_site(const std::source_location& a, const std::source_location& b) {
+bool same_site(const Location& a, const Location& b) {
   return a.line() == b.line() && a.column() == b.column() &&
          std::strcmp(a.file_name(), b.file_name()) == 0;
 }
@@ -286,20 +286,19 @@ class Block {
   void run();
 
   Thread& current() { return *current_; }
-  [[noreturn]] void fail(ErrorKind kind, const Thread& thread, const std::source_location& where,
+  [[noreturn]] void fail(ErrorKind kind, const Thread& thread, const Location& where,
                          const std::string& message) const;
 
-  int barrier(Barrier kind, int predicate, const std::source_location& where);
+  int barrier(Barrier kind, int predicate, const Location& where);
   std::uint64_t collective(Collective kind, unsigned mask, std::uint64_t value, int lane_arg,
-                           int width, const std::source_location& where);
-  unsigned activemask(const std::source_location& where);
+                           int width, const Location& where);
+  unsigned activemask(const Location& where);
   void yield_point();
 
-  std::size_t shared_static(const SharedDecl& decl, const std::source_location& where);
+  std::size_t shared_static(const SharedDecl& decl, const Location& where);
   std::size_t dynamic_shared_bytes() const { return launch_.dynamic_shared; }
   std::byte* shared_base() { return storage_.arena.data(); }
-  void shared_access(std::size_t offset, std::size_t size, Access access,
-                     const std::source_location& where);
+  void shared_access(std::size_t offset, std::size_t size, Access access, const Location& where);
 
  private:
   void suspend();  // back to the scheduler; returns when this thread is resumed
@@ -321,7 +320,7 @@ class Block {
   // The barrier being gathered.
   unsigned barrier_arrived_ = 0;
   Barrier barrier_kind_ = Barrier::plain;
-  std::source_location barrier_where_;
+  Location barrier_where_;
   unsigned barrier_first_ = 0;
   int barrier_accumulator_ = 0;
   // Scheduling.
@@ -399,7 +398,7 @@ Block::~Block() {
   t_block = saved;
 }
 
-void Block::fail(ErrorKind kind, const Thread& thread, const std::source_location& where,
+void Block::fail(ErrorKind kind, const Thread& thread, const Location& where,
                  const std::string& message) const {
   throw EmulatorError(kind, launch_.kernel, index_, thread.info.thread_idx, where.file_name(),
                       where.line(), message);
@@ -476,7 +475,7 @@ void Block::yield_point() {
 
 // --- block barriers -----------------------------------------------------------------------
 
-int Block::barrier(Barrier kind, int predicate, const std::source_location& where) {
+int Block::barrier(Barrier kind, int predicate, const Location& where) {
   yield_point();
   Thread& self = *current_;
   if (exited_ != 0) {
@@ -530,7 +529,7 @@ int Block::barrier(Barrier kind, int predicate, const std::source_location& wher
 // --- warp collectives -----------------------------------------------------------------------
 
 std::uint64_t Block::collective(Collective kind, unsigned mask, std::uint64_t value, int lane_arg,
-                                int width, const std::source_location& where) {
+                                int width, const Location& where) {
   yield_point();
   Thread& self = *current_;
   Warp& warp = warps_[self.warp];
@@ -653,7 +652,7 @@ void Block::complete(Warp& warp, std::size_t group_index) {
   }
 }
 
-unsigned Block::activemask(const std::source_location& where) {
+unsigned Block::activemask(const Location& where) {
   yield_point();
   Thread& self = *current_;
   self.wait = Wait::activemask;
@@ -738,7 +737,7 @@ void Block::report_deadlock() {
 
 // --- shared memory ------------------------------------------------------------------------
 
-std::size_t Block::shared_static(const SharedDecl& decl, const std::source_location& where) {
+std::size_t Block::shared_static(const SharedDecl& decl, const Location& where) {
   for (const auto& [known, offset] : statics_) {
     if (known == &decl) return offset;
   }
@@ -766,7 +765,7 @@ bool Block::warp_ordered(const Thread& accessor, std::uint16_t other,
 }
 
 void Block::shared_access(std::size_t offset, std::size_t size, Access access,
-                          const std::source_location& where) {
+                          const Location& where) {
   yield_point();
   if (!track_) return;
   Thread& self = *current_;
@@ -850,16 +849,16 @@ const ThreadInfo& this_thread() {
   return this_block("threadIdx/blockIdx/blockDim/gridDim").current().info;
 }
 
-int block_barrier(Barrier kind, int predicate, const std::source_location& where) {
+int block_barrier(Barrier kind, int predicate, const Location& where) {
   return this_block("__syncthreads").barrier(kind, predicate, where);
 }
 
 std::uint64_t warp_collective(Collective kind, unsigned mask, std::uint64_t value, int lane_arg,
-                              int width, const std::source_location& where) {
+                              int width, const Location& where) {
   return this_block("a warp collective").collective(kind, mask, value, lane_arg, width, where);
 }
 
-unsigned active_mask(const std::source_location& where) {
+unsigned active_mask(const Location& where) {
   return this_block("__activemask").activemask(where);
 }
 
@@ -867,7 +866,7 @@ void yield_point() {
   this_block("an atomic").yield_point();
 }
 
-std::size_t shared_static(const SharedDecl& decl, const std::source_location& where) {
+std::size_t shared_static(const SharedDecl& decl, const Location& where) {
   return this_block("__shared__").shared_static(decl, where);
 }
 
@@ -879,13 +878,11 @@ std::byte* shared_base() {
   return this_block("__shared__").shared_base();
 }
 
-void shared_access(std::size_t offset, std::size_t size, Access access,
-                   const std::source_location& where) {
+void shared_access(std::size_t offset, std::size_t size, Access access, const Location& where) {
   this_block("__shared__").shared_access(offset, size, access, where);
 }
 
-void shared_out_of_bounds(std::size_t index, std::size_t extent,
-                          const std::source_location& where) {
+void shared_out_of_bounds(std::size_t index, std::size_t extent, const Location& where) {
   Block& block = this_block("__shared__");
   block.fail(ErrorKind::shared_out_of_bounds, block.current(), where,
              "index " + std::to_string(static_cast<std::ptrdiff_t>(index)) +
@@ -893,7 +890,7 @@ void shared_out_of_bounds(std::size_t index, std::size_t extent,
 }
 
 void launch(const char* kernel, Dim3 grid, Dim3 block, std::size_t dynamic_shared,
-            const std::source_location& where, ThreadEntry entry, const void* bound_kernel) {
+            const Location& where, ThreadEntry entry, const void* bound_kernel) {
   auto invalid = [&](const std::string& message) {
     throw EmulatorError(ErrorKind::invalid_launch, kernel, {}, {}, where.file_name(), where.line(),
                         message);
