@@ -14,6 +14,20 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#if defined(__SANITIZE_ADDRESS__)
+#define SHADOWCTS_EMU_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define SHADOWCTS_EMU_ASAN 1
+#endif
+#endif
+#ifndef SHADOWCTS_EMU_ASAN
+#define SHADOWCTS_EMU_ASAN 0
+#endif
+#if SHADOWCTS_EMU_ASAN
+#include <sanitizer/common_interface_defs.h>
+#endif
+
 #include <boost/context/fiber.hpp>
 #include <boost/context/protected_fixedsize_stack.hpp>
 
@@ -156,10 +170,48 @@ StackPool& stack_pool() {
   return pool;
 }
 
+// AddressSanitizer must be told of every switch between stacks; otherwise it takes a fiber's
+// frames for the scheduler's and reports false errors when an exception unwinds them.
+struct StackBounds {
+  const void* bottom = nullptr;
+  std::size_t size = 0;
+};
+
+void start_switch(void** fake_stack, const StackBounds& to) {
+#if SHADOWCTS_EMU_ASAN
+  __sanitizer_start_switch_fiber(fake_stack, to.bottom, to.size);
+#else
+  (void)fake_stack;
+  (void)to;
+#endif
+}
+
+void finish_switch(void* fake_stack, StackBounds* from) {
+#if SHADOWCTS_EMU_ASAN
+  const void* bottom = nullptr;
+  std::size_t size = 0;
+  __sanitizer_finish_switch_fiber(fake_stack, &bottom, &size);
+  if (from != nullptr) *from = {bottom, size};
+#else
+  (void)fake_stack;
+  (void)from;
+#endif
+}
+
+// Hands out pooled stacks and remembers where each fiber's stack lies (for the sanitizer).
 struct PooledStack {
-  ctx::stack_context allocate() { return stack_pool().take(); }
+  StackBounds* bounds;
+  ctx::stack_context allocate() {
+    const ctx::stack_context stack = stack_pool().take();
+    *bounds = {static_cast<const char*>(stack.sp) - stack.size, stack.size};
+    return stack;
+  }
   void deallocate(ctx::stack_context& stack) { stack_pool().give(stack); }
 };
+
+// Thrown in a suspended thread when its block is torn down after an error: the thread's frames
+// unwind on its own stack, and the fiber then ends normally (no forced unwind by Boost).
+struct Unwinding {};
 
 // ---------------------------------------------------------------------------------------------
 // One block: its threads (fibers), barrier, warps, shared arena and race tracking.
@@ -179,6 +231,7 @@ struct Thread {
   std::uint64_t value = 0, result = 0;
   int lane_arg = 0, width = warp_size;
   unsigned synced = 0;  // the warp's sync sequence after the last __syncwarp it took part in
+  StackBounds stack;
 };
 
 struct WarpGroup {
@@ -335,6 +388,8 @@ class Block {
   std::vector<std::pair<const SharedDecl*, std::size_t>> statics_;
   bool track_;
   std::uint32_t first_epoch_ = 0;
+  StackBounds scheduler_stack_;
+  bool unwinding_ = false;
 };
 
 thread_local Block* t_block = nullptr;
@@ -388,12 +443,18 @@ Block::Block(const LaunchState& launch, std::size_t linear_block)
 }
 
 Block::~Block() {
-  // Destroying a suspended fiber unwinds its stack (boost forced_unwind) on this OS thread.
+  // Threads still suspended (after an error) are resumed once more: each throws Unwinding where
+  // it waits, or ends at once if it never started.
   Block* const saved = t_block;
   t_block = this;
+  unwinding_ = true;
   for (Thread& t : threads_) {
+    if (!t.fiber) continue;
     current_ = &t;
-    t.fiber = {};
+    void* fake_stack = nullptr;
+    start_switch(&fake_stack, t.stack);
+    t.fiber = std::move(t.fiber).resume();
+    finish_switch(fake_stack, nullptr);
   }
   t_block = saved;
 }
@@ -406,7 +467,11 @@ void Block::fail(ErrorKind kind, const Thread& thread, const Location& where,
 
 void Block::suspend() {
   Thread& self = *current_;
+  void* fake_stack = nullptr;
+  start_switch(&fake_stack, scheduler_stack_);
   self.scheduler = std::move(self.scheduler).resume();
+  finish_switch(fake_stack, &scheduler_stack_);
+  if (unwinding_) throw Unwinding{};
 }
 
 void Block::make_runnable(Thread& thread) {
@@ -440,18 +505,25 @@ void Block::run() {
     ~Current() { t_block = nullptr; }
   } current(this);
   for (Thread& t : threads_) {
-    t.fiber = ctx::fiber(std::allocator_arg, PooledStack{}, [this, &t](ctx::fiber&& scheduler) {
-      t.scheduler = std::move(scheduler);
-      try {
-        launch_.entry(launch_.bound);
-        thread_exited(t);
-      } catch (const ctx::detail::forced_unwind&) {
-        throw;  // the fiber is being destroyed: let boost unwind it
-      } catch (...) {
-        error_ = std::current_exception();
-      }
-      return std::move(t.scheduler);
-    });
+    t.fiber =
+        ctx::fiber(std::allocator_arg, PooledStack{&t.stack}, [this, &t](ctx::fiber&& scheduler) {
+          finish_switch(nullptr, &scheduler_stack_);
+          t.scheduler = std::move(scheduler);
+          if (!unwinding_) {
+            try {
+              launch_.entry(launch_.bound);
+              thread_exited(t);
+            } catch (const Unwinding&) {
+              // torn down after another thread's error
+            } catch (const ctx::detail::forced_unwind&) {
+              throw;  // Boost unwinds a fiber it destroys: let it
+            } catch (...) {
+              error_ = std::current_exception();
+            }
+          }
+          start_switch(nullptr, scheduler_stack_);  // this stack is done
+          return std::move(t.scheduler);
+        });
     make_runnable(t);
   }
   while (exited_ < threads_.size()) {
@@ -462,7 +534,10 @@ void Block::run() {
     }
     current_ = next;
     t_block = this;
+    void* fake_stack = nullptr;
+    start_switch(&fake_stack, next->stack);
     next->fiber = std::move(next->fiber).resume();
+    finish_switch(fake_stack, nullptr);
     if (error_) std::rethrow_exception(error_);
   }
 }
