@@ -119,27 +119,40 @@ bool selected(const RunOptions& options, const AlgorithmInfo& meta, const std::s
   return false;
 }
 
+std::string comma_list(const std::set<std::string>& names) {
+  std::string out;
+  for (const std::string& name : names) out += (out.empty() ? "" : ", ") + name;
+  return out;
+}
+
 void check_selection(const RunOptions& options, const Registry& registry) {
-  std::set<std::string> backends;
-  for (const auto& a : registry.algorithms()) backends.insert(a->info().backend);
-  if (!options.backend.empty() && !backends.count(options.backend)) {
-    std::string known;
-    for (const std::string& b : backends) known += (known.empty() ? "" : ", ") + b;
-    throw UsageError("--backend " + options.backend + ": unknown backend (known: " + known + ")");
+  std::set<std::string> backends, ids;
+  for (const auto& a : registry.algorithms()) {
+    backends.insert(a->info().backend);
+    ids.insert(a->info().id);
   }
+  if (!options.backend.empty() && !backends.count(options.backend))
+    throw UsageError("--backend " + options.backend +
+                     ": unknown backend (known: " + comma_list(backends) + ")");
   for (const AlgorithmSelection& s : options.algorithms) {
     bool found = false;
+    std::set<std::string> variants;  // of s.id on the selected backends, for the message
     for (const auto& a : registry.algorithms()) {
       const AlgorithmInfo& meta = a->info();
       if (meta.id != s.id) continue;
       if (!options.backend.empty() && meta.backend != options.backend) continue;
+      variants.insert(meta.variants.begin(), meta.variants.end());
       if (s.variant.empty() || std::count(meta.variants.begin(), meta.variants.end(), s.variant))
         found = true;
     }
     if (!found)
       throw UsageError("--algorithm " + s.id + (s.variant.empty() ? "" : ":" + s.variant) +
                        (options.backend.empty() ? "" : " --backend " + options.backend) +
-                       ": no such registered algorithm (see `shadowcts list`)");
+                       ": no such registered algorithm (" +
+                       (!ids.count(s.id)   ? "known: " + comma_list(ids)
+                        : variants.empty() ? "not on this backend"
+                                           : "variants of " + s.id + ": " + comma_list(variants)) +
+                       "; see `shadowcts list`)");
   }
   // Each selector exists, but together they may still select nothing (an algorithm on another
   // backend): a run of nothing would be a green CI job that tested nothing.
@@ -173,8 +186,15 @@ std::filesystem::path checked_out_dir(const std::string& text) {
     dir = fs::canonical(dir, ec);  // replace the folder, not the link
     if (ec) throw UsageError("--out " + text + ": " + ec.message());
   }
-  if (dir == dir.root_path() || dir.filename() == "." || dir.filename() == "..")
-    throw UsageError("--out " + text + ": give a folder of its own for the run's outputs");
+  // The folder is replaced as a whole: never the current folder or one holding it.
+  const fs::path here = fs::current_path(ec);
+  const bool holds_here =
+      !ec && !here.lexically_relative(dir).empty() && *here.lexically_relative(dir).begin() != "..";
+  if (dir == dir.root_path() || dir.filename() == "." || dir.filename() == ".." || holds_here)
+    throw UsageError("--out " + text +
+                     ": give a folder of its own for the run's outputs (it is replaced as a "
+                     "whole), not the current folder or one above it");
+  ec.clear();
   const fs::file_status status = fs::status(dir, ec);
   if (!fs::exists(status)) return dir;
   if (!fs::is_directory(status)) throw UsageError("--out " + text + ": exists and is not a folder");

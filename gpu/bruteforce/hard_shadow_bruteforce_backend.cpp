@@ -1,12 +1,17 @@
 #include "gpu/bruteforce/hard_shadow_bruteforce_backend.h"
 
 #include <algorithm>
+#include <atomic>
 #include <stdexcept>
 #include <utility>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "oracles/exact_segment_triangle.h"
 #include "oracles/hard_shadow_inputs.h"
 #include "oracles/shadow_segment.h"
+#include "oracles/thread_limit.h"
 #include "reference/light_on_caster.h"
 
 namespace shadowcts {
@@ -63,29 +68,39 @@ ExactFallback decide_exactly(const Case& c, const ViewSamples& samples,
   for (std::size_t t = 0; t < c.triangles.size(); ++t) {
     if (casts_shadow(c, t)) casters.push_back(t);
   }
-  for (const std::size_t i : unsure) {
-    ++fallback.samples;
-    const ViewSample& sample = samples.samples[i];
-    const glm::dvec3 p(sample.position);
-    const ShadowSegment segment = make_shadow_segment(p, light, scale);
-    const double padding = box_padding(segment, 0.0);
-    shadowed[i] = 0;
-    for (const std::size_t t : casters) {
-      if (t == sample.receiver) continue;
-      const Triangle& triangle = c.triangles[t];
-      float lo[3], hi[3];
-      for (int k = 0; k < 3; ++k) {
-        lo[k] = std::min({triangle.v0[k], triangle.v1[k], triangle.v2[k]});
-        hi[k] = std::max({triangle.v0[k], triangle.v1[k], triangle.v2[k]});
-      }
-      if (!box_may_meet(segment, lo, hi, padding)) continue;
-      ++fallback.predicate_calls;
-      if (predicate.blocks(triangle, MovedPoint{p, 0.0, {0, 0, 0}})) {
-        shadowed[i] = 1;
-        break;
-      }
-    }
-  }
+  fallback.samples = unsure.size();
+  std::atomic<std::uint64_t> predicate_calls{0};
+  // Beside-edge samples are common on finely tessellated models (most samples of model.spider),
+  // so they are decided in parallel; each writes only its own sample.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, unsure.size(), 16),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      std::uint64_t calls = 0;
+                      for (std::size_t u = range.begin(); u != range.end(); ++u) {
+                        const std::size_t i = unsure[u];
+                        const ViewSample& sample = samples.samples[i];
+                        const glm::dvec3 p(sample.position);
+                        const ShadowSegment segment = make_shadow_segment(p, light, scale);
+                        const double padding = box_padding(segment, 0.0);
+                        shadowed[i] = 0;
+                        for (const std::size_t t : casters) {
+                          if (t == sample.receiver) continue;
+                          const Triangle& triangle = c.triangles[t];
+                          float lo[3], hi[3];
+                          for (int k = 0; k < 3; ++k) {
+                            lo[k] = std::min({triangle.v0[k], triangle.v1[k], triangle.v2[k]});
+                            hi[k] = std::max({triangle.v0[k], triangle.v1[k], triangle.v2[k]});
+                          }
+                          if (!box_may_meet(segment, lo, hi, padding)) continue;
+                          ++calls;
+                          if (predicate.blocks(triangle, MovedPoint{p, 0.0, {0, 0, 0}})) {
+                            shadowed[i] = 1;
+                            break;
+                          }
+                        }
+                      }
+                      predicate_calls += calls;  // an integer sum: independent of the split
+                    });
+  fallback.predicate_calls = predicate_calls.load();
   return fallback;
 }
 
@@ -127,18 +142,24 @@ class BruteforceKernelAlgorithm final : public Algorithm {
     if (!c.light) throw std::invalid_argument(name + ": the case has no shadow light");
     check_receivers(c, samples);
     std::vector<std::size_t> regular_samples;
-    const BruteforceShadowResult result =
-        backend_.run_kernel(bruteforce_kernel_input(c, samples, regular_samples));
-
+    const BruteforceShadowInput input = bruteforce_kernel_input(c, samples, regular_samples);
+    BruteforceShadowResult result;
     AlgorithmOutput output;
-    output.shadowed.assign(samples.samples.size(), 0);  // non-regular samples stay 0
     std::vector<std::size_t> unsure;
-    for (std::size_t i = 0; i < regular_samples.size(); ++i) {
-      const std::uint8_t state = result.shadowed[i];
-      output.shadowed[regular_samples[i]] = state == bruteforce_sample_shadowed ? 1 : 0;
-      if (state == bruteforce_sample_unsure) unsure.push_back(regular_samples[i]);
-    }
-    const ExactFallback fallback = decide_exactly(c, samples, unsure, output.shadowed);
+    ExactFallback fallback;
+    // The emulator spreads blocks over oneTBB and the fallback runs on it: both keep to the
+    // case's thread limit, as the reference backends do.
+    run_with_thread_limit(c.parameters.threads, [&] {
+      result = backend_.run_kernel(input);
+      output.shadowed.assign(samples.samples.size(), 0);  // non-regular samples stay 0
+      for (std::size_t i = 0; i < regular_samples.size(); ++i) {
+        const std::uint8_t state = result.shadowed[i];
+        output.shadowed[regular_samples[i]] = state == bruteforce_sample_shadowed ? 1 : 0;
+        if (state == bruteforce_sample_unsure) unsure.push_back(regular_samples[i]);
+      }
+      fallback = decide_exactly(c, samples, unsure, output.shadowed);
+    });
+
     // The definition's closed segment ends at L: a caster containing L shadows every sample it
     // does not receive, which no segment/triangle test in float sees reliably.
     const std::uint64_t light_on_caster =

@@ -5,10 +5,10 @@
 // staged through shared memory one tile at a time, so a block reads each triangle from global
 // memory once.
 //
-// The float test is exact for one perturbation of each triangle's vertices; beside an edge its
-// miss may be a crack (a T-junction), so a sample that no triangle hits but that passes near an
-// edge comes back `unsure` and the host decides it exactly. A hit is kept: beside an edge it is
-// never wrong on a robust sample.
+// The float test is exact for one perturbation of each triangle's vertices and of L - p; beside
+// an edge its miss may be a crack (a T-junction) and its hit a rounding of L - p near the light,
+// so a sample that no triangle hits away from its edges but that passes near an edge comes back
+// `unsure` and the host decides it exactly.
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
@@ -82,13 +82,17 @@ __global__ void bruteforce_hard_shadow(const glm::vec3* sample_positions,
       if (caster.triangle == receiver) continue;
       const float* v = caster.vertices;
       const glm::vec3 v0(v[0], v[1], v[2]), v1(v[3], v[4], v[5]), v2(v[6], v[7], v[8]);
-      if (ray_hits_triangle(ray, v0, v1, v2)) {
+      const bool float_hit = ray_hits_triangle(ray, v0, v1, v2);
+      // Beside an edge neither answer of the float test is certain: a miss may be a crack, a hit
+      // may come from the rounding of L - p at the light end (stiff.light_1e-6_from_caster).
+      // Only a hit away from every edge ends the search.
+      const bool beside_edge = (float_hit || !near_edge) && ray_near_triangle_edge(ray, v0, v1, v2);
+      if (float_hit && !beside_edge) {
         hit = true;
         done = true;
         break;
       }
-      // Once unsure, only a hit can still change the answer.
-      if (!near_edge && ray_near_triangle_edge(ray, v0, v1, v2)) near_edge = true;
+      near_edge = near_edge || beside_edge;
     }
   }
 

@@ -26,8 +26,8 @@ struct BruteforceShadowInput {
 // Per-sample answers of the kernel.
 constexpr std::uint8_t bruteforce_sample_lit = 0;
 constexpr std::uint8_t bruteforce_sample_shadowed = 1;
-// No triangle hit in float, but the segment passes within the rounding of a triangle's edge: the
-// host decides the sample exactly.
+// No triangle hit in float away from its edges, but the segment passes within the rounding of a
+// triangle's edge: the host decides the sample exactly.
 constexpr std::uint8_t bruteforce_sample_unsure = 2;
 
 struct BruteforceShadowResult {

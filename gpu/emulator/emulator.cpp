@@ -14,6 +14,20 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#if defined(__SANITIZE_ADDRESS__)
+#define SHADOWCTS_EMU_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define SHADOWCTS_EMU_ASAN 1
+#endif
+#endif
+#ifndef SHADOWCTS_EMU_ASAN
+#define SHADOWCTS_EMU_ASAN 0
+#endif
+#if SHADOWCTS_EMU_ASAN
+#include <sanitizer/common_interface_defs.h>
+#endif
+
 #include <boost/context/fiber.hpp>
 #include <boost/context/protected_fixedsize_stack.hpp>
 
@@ -156,10 +170,48 @@ StackPool& stack_pool() {
   return pool;
 }
 
+// AddressSanitizer must be told of every switch between stacks; otherwise it takes a fiber's
+// frames for the scheduler's and reports false errors when an exception unwinds them.
+struct StackBounds {
+  const void* bottom = nullptr;
+  std::size_t size = 0;
+};
+
+void start_switch(void** fake_stack, const StackBounds& to) {
+#if SHADOWCTS_EMU_ASAN
+  __sanitizer_start_switch_fiber(fake_stack, to.bottom, to.size);
+#else
+  (void)fake_stack;
+  (void)to;
+#endif
+}
+
+void finish_switch(void* fake_stack, StackBounds* from) {
+#if SHADOWCTS_EMU_ASAN
+  const void* bottom = nullptr;
+  std::size_t size = 0;
+  __sanitizer_finish_switch_fiber(fake_stack, &bottom, &size);
+  if (from != nullptr) *from = {bottom, size};
+#else
+  (void)fake_stack;
+  (void)from;
+#endif
+}
+
+// Hands out pooled stacks and remembers where each fiber's stack lies (for the sanitizer).
 struct PooledStack {
-  ctx::stack_context allocate() { return stack_pool().take(); }
+  StackBounds* bounds;
+  ctx::stack_context allocate() {
+    const ctx::stack_context stack = stack_pool().take();
+    *bounds = {static_cast<const char*>(stack.sp) - stack.size, stack.size};
+    return stack;
+  }
   void deallocate(ctx::stack_context& stack) { stack_pool().give(stack); }
 };
+
+// Thrown in a suspended thread when its block is torn down after an error: the thread's frames
+// unwind on its own stack, and the fiber then ends normally (no forced unwind by Boost).
+struct Unwinding {};
 
 // ---------------------------------------------------------------------------------------------
 // One block: its threads (fibers), barrier, warps, shared arena and race tracking.
@@ -171,7 +223,7 @@ struct Thread {
   unsigned linear = 0, warp = 0, lane = 0;
   ctx::fiber fiber, scheduler;
   Wait wait = Wait::runnable;
-  std::source_location where;  // of the barrier or collective it waits at
+  Location where;  // of the barrier or collective it waits at
   const char* what = "";
   // Collective arguments and result.
   Collective collective = Collective::syncwarp;
@@ -179,6 +231,7 @@ struct Thread {
   std::uint64_t value = 0, result = 0;
   int lane_arg = 0, width = warp_size;
   unsigned synced = 0;  // the warp's sync sequence after the last __syncwarp it took part in
+  StackBounds stack;
 };
 
 struct WarpGroup {
@@ -252,11 +305,11 @@ const char* collective_name(Collective kind) {
   return "?";
 }
 
-std::string where_text(const std::source_location& where) {
+std::string where_text(const Location& where) {
   return std::string(where.file_name()) + ":" + std::to_string(where.line());
 }
 
-bool same_site(const std::source_location& a, const std::source_location& b) {
+bool same_site(const Location& a, const Location& b) {
   return a.line() == b.line() && a.column() == b.column() &&
          std::strcmp(a.file_name(), b.file_name()) == 0;
 }
@@ -286,20 +339,19 @@ class Block {
   void run();
 
   Thread& current() { return *current_; }
-  [[noreturn]] void fail(ErrorKind kind, const Thread& thread, const std::source_location& where,
+  [[noreturn]] void fail(ErrorKind kind, const Thread& thread, const Location& where,
                          const std::string& message) const;
 
-  int barrier(Barrier kind, int predicate, const std::source_location& where);
+  int barrier(Barrier kind, int predicate, const Location& where);
   std::uint64_t collective(Collective kind, unsigned mask, std::uint64_t value, int lane_arg,
-                           int width, const std::source_location& where);
-  unsigned activemask(const std::source_location& where);
+                           int width, const Location& where);
+  unsigned activemask(const Location& where);
   void yield_point();
 
-  std::size_t shared_static(const SharedDecl& decl, const std::source_location& where);
+  std::size_t shared_static(const SharedDecl& decl, const Location& where);
   std::size_t dynamic_shared_bytes() const { return launch_.dynamic_shared; }
   std::byte* shared_base() { return storage_.arena.data(); }
-  void shared_access(std::size_t offset, std::size_t size, Access access,
-                     const std::source_location& where);
+  void shared_access(std::size_t offset, std::size_t size, Access access, const Location& where);
 
  private:
   void suspend();  // back to the scheduler; returns when this thread is resumed
@@ -321,7 +373,7 @@ class Block {
   // The barrier being gathered.
   unsigned barrier_arrived_ = 0;
   Barrier barrier_kind_ = Barrier::plain;
-  std::source_location barrier_where_;
+  Location barrier_where_;
   unsigned barrier_first_ = 0;
   int barrier_accumulator_ = 0;
   // Scheduling.
@@ -336,6 +388,8 @@ class Block {
   std::vector<std::pair<const SharedDecl*, std::size_t>> statics_;
   bool track_;
   std::uint32_t first_epoch_ = 0;
+  StackBounds scheduler_stack_;
+  bool unwinding_ = false;
 };
 
 thread_local Block* t_block = nullptr;
@@ -389,17 +443,23 @@ Block::Block(const LaunchState& launch, std::size_t linear_block)
 }
 
 Block::~Block() {
-  // Destroying a suspended fiber unwinds its stack (boost forced_unwind) on this OS thread.
+  // Threads still suspended (after an error) are resumed once more: each throws Unwinding where
+  // it waits, or ends at once if it never started.
   Block* const saved = t_block;
   t_block = this;
+  unwinding_ = true;
   for (Thread& t : threads_) {
+    if (!t.fiber) continue;
     current_ = &t;
-    t.fiber = {};
+    void* fake_stack = nullptr;
+    start_switch(&fake_stack, t.stack);
+    t.fiber = std::move(t.fiber).resume();
+    finish_switch(fake_stack, nullptr);
   }
   t_block = saved;
 }
 
-void Block::fail(ErrorKind kind, const Thread& thread, const std::source_location& where,
+void Block::fail(ErrorKind kind, const Thread& thread, const Location& where,
                  const std::string& message) const {
   throw EmulatorError(kind, launch_.kernel, index_, thread.info.thread_idx, where.file_name(),
                       where.line(), message);
@@ -407,7 +467,11 @@ void Block::fail(ErrorKind kind, const Thread& thread, const std::source_locatio
 
 void Block::suspend() {
   Thread& self = *current_;
+  void* fake_stack = nullptr;
+  start_switch(&fake_stack, scheduler_stack_);
   self.scheduler = std::move(self.scheduler).resume();
+  finish_switch(fake_stack, &scheduler_stack_);
+  if (unwinding_) throw Unwinding{};
 }
 
 void Block::make_runnable(Thread& thread) {
@@ -441,18 +505,25 @@ void Block::run() {
     ~Current() { t_block = nullptr; }
   } current(this);
   for (Thread& t : threads_) {
-    t.fiber = ctx::fiber(std::allocator_arg, PooledStack{}, [this, &t](ctx::fiber&& scheduler) {
-      t.scheduler = std::move(scheduler);
-      try {
-        launch_.entry(launch_.bound);
-        thread_exited(t);
-      } catch (const ctx::detail::forced_unwind&) {
-        throw;  // the fiber is being destroyed: let boost unwind it
-      } catch (...) {
-        error_ = std::current_exception();
-      }
-      return std::move(t.scheduler);
-    });
+    t.fiber =
+        ctx::fiber(std::allocator_arg, PooledStack{&t.stack}, [this, &t](ctx::fiber&& scheduler) {
+          finish_switch(nullptr, &scheduler_stack_);
+          t.scheduler = std::move(scheduler);
+          if (!unwinding_) {
+            try {
+              launch_.entry(launch_.bound);
+              thread_exited(t);
+            } catch (const Unwinding&) {
+              // torn down after another thread's error
+            } catch (const ctx::detail::forced_unwind&) {
+              throw;  // Boost unwinds a fiber it destroys: let it
+            } catch (...) {
+              error_ = std::current_exception();
+            }
+          }
+          start_switch(nullptr, scheduler_stack_);  // this stack is done
+          return std::move(t.scheduler);
+        });
     make_runnable(t);
   }
   while (exited_ < threads_.size()) {
@@ -463,7 +534,10 @@ void Block::run() {
     }
     current_ = next;
     t_block = this;
+    void* fake_stack = nullptr;
+    start_switch(&fake_stack, next->stack);
     next->fiber = std::move(next->fiber).resume();
+    finish_switch(fake_stack, nullptr);
     if (error_) std::rethrow_exception(error_);
   }
 }
@@ -476,7 +550,7 @@ void Block::yield_point() {
 
 // --- block barriers -----------------------------------------------------------------------
 
-int Block::barrier(Barrier kind, int predicate, const std::source_location& where) {
+int Block::barrier(Barrier kind, int predicate, const Location& where) {
   yield_point();
   Thread& self = *current_;
   if (exited_ != 0) {
@@ -530,7 +604,7 @@ int Block::barrier(Barrier kind, int predicate, const std::source_location& wher
 // --- warp collectives -----------------------------------------------------------------------
 
 std::uint64_t Block::collective(Collective kind, unsigned mask, std::uint64_t value, int lane_arg,
-                                int width, const std::source_location& where) {
+                                int width, const Location& where) {
   yield_point();
   Thread& self = *current_;
   Warp& warp = warps_[self.warp];
@@ -653,7 +727,7 @@ void Block::complete(Warp& warp, std::size_t group_index) {
   }
 }
 
-unsigned Block::activemask(const std::source_location& where) {
+unsigned Block::activemask(const Location& where) {
   yield_point();
   Thread& self = *current_;
   self.wait = Wait::activemask;
@@ -738,7 +812,7 @@ void Block::report_deadlock() {
 
 // --- shared memory ------------------------------------------------------------------------
 
-std::size_t Block::shared_static(const SharedDecl& decl, const std::source_location& where) {
+std::size_t Block::shared_static(const SharedDecl& decl, const Location& where) {
   for (const auto& [known, offset] : statics_) {
     if (known == &decl) return offset;
   }
@@ -766,7 +840,7 @@ bool Block::warp_ordered(const Thread& accessor, std::uint16_t other,
 }
 
 void Block::shared_access(std::size_t offset, std::size_t size, Access access,
-                          const std::source_location& where) {
+                          const Location& where) {
   yield_point();
   if (!track_) return;
   Thread& self = *current_;
@@ -850,16 +924,16 @@ const ThreadInfo& this_thread() {
   return this_block("threadIdx/blockIdx/blockDim/gridDim").current().info;
 }
 
-int block_barrier(Barrier kind, int predicate, const std::source_location& where) {
+int block_barrier(Barrier kind, int predicate, const Location& where) {
   return this_block("__syncthreads").barrier(kind, predicate, where);
 }
 
 std::uint64_t warp_collective(Collective kind, unsigned mask, std::uint64_t value, int lane_arg,
-                              int width, const std::source_location& where) {
+                              int width, const Location& where) {
   return this_block("a warp collective").collective(kind, mask, value, lane_arg, width, where);
 }
 
-unsigned active_mask(const std::source_location& where) {
+unsigned active_mask(const Location& where) {
   return this_block("__activemask").activemask(where);
 }
 
@@ -867,7 +941,7 @@ void yield_point() {
   this_block("an atomic").yield_point();
 }
 
-std::size_t shared_static(const SharedDecl& decl, const std::source_location& where) {
+std::size_t shared_static(const SharedDecl& decl, const Location& where) {
   return this_block("__shared__").shared_static(decl, where);
 }
 
@@ -879,13 +953,11 @@ std::byte* shared_base() {
   return this_block("__shared__").shared_base();
 }
 
-void shared_access(std::size_t offset, std::size_t size, Access access,
-                   const std::source_location& where) {
+void shared_access(std::size_t offset, std::size_t size, Access access, const Location& where) {
   this_block("__shared__").shared_access(offset, size, access, where);
 }
 
-void shared_out_of_bounds(std::size_t index, std::size_t extent,
-                          const std::source_location& where) {
+void shared_out_of_bounds(std::size_t index, std::size_t extent, const Location& where) {
   Block& block = this_block("__shared__");
   block.fail(ErrorKind::shared_out_of_bounds, block.current(), where,
              "index " + std::to_string(static_cast<std::ptrdiff_t>(index)) +
@@ -893,7 +965,7 @@ void shared_out_of_bounds(std::size_t index, std::size_t extent,
 }
 
 void launch(const char* kernel, Dim3 grid, Dim3 block, std::size_t dynamic_shared,
-            const std::source_location& where, ThreadEntry entry, const void* bound_kernel) {
+            const Location& where, ThreadEntry entry, const void* bound_kernel) {
   auto invalid = [&](const std::string& message) {
     throw EmulatorError(ErrorKind::invalid_launch, kernel, {}, {}, where.file_name(), where.line(),
                         message);

@@ -11,14 +11,50 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
-#include <source_location>
 #include <stdexcept>
 #include <string>
 #include <tuple>
 #include <type_traits>
 #include <utility>
+#include <version>
+#if __has_include(<source_location>)
+#include <source_location>
+#endif
 
 namespace shadowcts::emu {
+
+// Where a device-side call was written, for reports. std::source_location where the library
+// has it; clang 14 with libstdc++ 12 (the fuzz build's pair) has not, but has the builtins.
+class Location {
+ public:
+#if defined(__cpp_lib_source_location)
+  static constexpr Location current(std::source_location where = std::source_location::current()) {
+    return Location(where.file_name(), where.line(), where.column());
+  }
+#else
+  static constexpr Location current(const char* file = __builtin_FILE(),
+                                    unsigned line = __builtin_LINE(),
+                                    unsigned column = __builtin_COLUMN()) {
+    return Location(file, line, column);
+  }
+#endif
+  constexpr Location() = default;
+  constexpr const char* file_name() const {
+    return file_;
+  }
+  constexpr unsigned line() const {
+    return line_;
+  }
+  constexpr unsigned column() const {
+    return column_;
+  }
+
+ private:
+  constexpr Location(const char* file, unsigned line, unsigned column)
+      : file_(file), line_(line), column_(column) {}
+  const char* file_ = "";
+  unsigned line_ = 0, column_ = 0;
+};
 
 struct Dim3 {
   unsigned x = 1, y = 1, z = 1;
@@ -98,12 +134,12 @@ struct ThreadInfo {
 const ThreadInfo& this_thread();
 
 enum class Barrier { plain, count, and_, or_ };
-int block_barrier(Barrier kind, int predicate, const std::source_location& where);
+int block_barrier(Barrier kind, int predicate, const Location& where);
 
 enum class Collective { syncwarp, shfl, shfl_up, shfl_down, shfl_xor, ballot, any, all };
 std::uint64_t warp_collective(Collective kind, unsigned mask, std::uint64_t value, int lane_arg,
-                              int width, const std::source_location& where);
-unsigned active_mask(const std::source_location& where);
+                              int width, const Location& where);
+unsigned active_mask(const Location& where);
 
 // A point where the random schedule may switch threads (atomics on global memory).
 void yield_point();
@@ -113,20 +149,19 @@ struct SharedDecl {
   std::size_t size, align;
   const char* name;
 };
-std::size_t shared_static(const SharedDecl& decl, const std::source_location& where);
+std::size_t shared_static(const SharedDecl& decl, const Location& where);
 std::size_t dynamic_shared_bytes();
 std::byte* shared_base();
 
 enum class Access { read, write, atomic };
 // Yield point, then race/uninitialized tracking of bytes [offset, offset + size).
-void shared_access(std::size_t offset, std::size_t size, Access access,
-                   const std::source_location& where);
+void shared_access(std::size_t offset, std::size_t size, Access access, const Location& where);
 [[noreturn]] void shared_out_of_bounds(std::size_t index, std::size_t extent,
-                                       const std::source_location& where);
+                                       const Location& where);
 
 using ThreadEntry = void (*)(const void* bound_kernel);
 void launch(const char* kernel, Dim3 grid, Dim3 block, std::size_t dynamic_shared,
-            const std::source_location& where, ThreadEntry entry, const void* bound_kernel);
+            const Location& where, ThreadEntry entry, const void* bound_kernel);
 
 }  // namespace detail
 
@@ -138,24 +173,24 @@ void launch(const char* kernel, Dim3 grid, Dim3 block, std::size_t dynamic_share
 // An index that remembers where it was written, for error reports.
 struct Index {
   template <typename I>
-  requires std::is_integral_v<I> Index(
-      I i, std::source_location where = std::source_location::current())  // NOLINT: implicit
+  requires std::is_integral_v<I> Index(I i,
+                                       Location where = Location::current())  // NOLINT: implicit
       : value(static_cast<std::size_t>(i)), negative(std::cmp_less(i, 0)), loc(where) {}
   std::size_t value;
   bool negative;
-  std::source_location loc;
+  Location loc;
 };
 
 template <typename T>
 class SharedPtr {
  public:
-  SharedPtr(std::size_t offset, std::source_location where) : offset_(offset), loc_(where) {}
+  SharedPtr(std::size_t offset, Location where) : offset_(offset), loc_(where) {}
   std::size_t offset() const { return offset_; }
-  const std::source_location& where() const { return loc_; }
+  const Location& where() const { return loc_; }
 
  private:
   std::size_t offset_;
-  std::source_location loc_;
+  Location loc_;
 };
 
 template <typename T>
@@ -173,14 +208,14 @@ template <typename T>
 using element_t = std::conditional_t<std::is_array_v<T>, NotAnElement, T>;
 
 template <typename T>
-T shared_load(std::size_t offset, const std::source_location& where) {
+T shared_load(std::size_t offset, const Location& where) {
   shared_access(offset, sizeof(T), Access::read, where);
   T value;
   std::memcpy(&value, shared_base() + offset, sizeof(T));
   return value;
 }
 template <typename T>
-void shared_store(std::size_t offset, const T& value, const std::source_location& where) {
+void shared_store(std::size_t offset, const T& value, const Location& where) {
   shared_access(offset, sizeof(T), Access::write, where);
   std::memcpy(shared_base() + offset, &value, sizeof(T));
 }
@@ -190,7 +225,7 @@ void shared_store(std::size_t offset, const T& value, const std::source_location
 template <typename T>
 struct SharedLocation {
   std::size_t offset;
-  std::source_location loc;
+  Location loc;
 
   template <typename U = T>
   requires std::is_array_v<U> SharedRef<std::remove_extent_t<U>> at(const Index& i)
@@ -208,7 +243,7 @@ class SharedRef {
   static_assert(std::is_trivially_copyable_v<T>, "shared memory holds trivially copyable types");
 
  public:
-  SharedRef(std::size_t offset, std::source_location where) : at_{offset, where} {}
+  SharedRef(std::size_t offset, Location where) : at_{offset, where} {}
   SharedRef(const SharedRef&) = delete;
   SharedRef& operator=(const SharedRef&) = delete;
 
@@ -253,7 +288,7 @@ class SharedVar {
   static_assert(std::is_trivially_copyable_v<T>, "shared memory holds trivially copyable types");
 
  public:
-  SharedVar(std::size_t offset, std::source_location where) : at_{offset, where} {}
+  SharedVar(std::size_t offset, Location where) : at_{offset, where} {}
   SharedVar(const SharedVar&) = delete;
   SharedVar& operator=(const SharedVar&) = delete;
 
@@ -308,49 +343,41 @@ class SharedDynamic {
 };
 
 template <typename T>
-SharedVar<T> declare_shared(const detail::SharedDecl& decl,
-                            std::source_location where = std::source_location::current()) {
+SharedVar<T> declare_shared(const detail::SharedDecl& decl, Location where = Location::current()) {
   return SharedVar<T>(detail::shared_static(decl, where), where);
 }
 
 // ---------------------------------------------------------------------------------------------
-// Barriers and warp collectives. The source_location defaults name the caller's line in reports.
+// Barriers and warp collectives. The Location defaults name the caller's line in reports.
 
-inline void syncthreads(std::source_location where = std::source_location::current()) {
+inline void syncthreads(Location where = Location::current()) {
   detail::block_barrier(detail::Barrier::plain, 0, where);
 }
-inline int syncthreads_count(int predicate,
-                             std::source_location where = std::source_location::current()) {
+inline int syncthreads_count(int predicate, Location where = Location::current()) {
   return detail::block_barrier(detail::Barrier::count, predicate, where);
 }
-inline int syncthreads_and(int predicate,
-                           std::source_location where = std::source_location::current()) {
+inline int syncthreads_and(int predicate, Location where = Location::current()) {
   return detail::block_barrier(detail::Barrier::and_, predicate, where);
 }
-inline int syncthreads_or(int predicate,
-                          std::source_location where = std::source_location::current()) {
+inline int syncthreads_or(int predicate, Location where = Location::current()) {
   return detail::block_barrier(detail::Barrier::or_, predicate, where);
 }
-inline void syncwarp(unsigned mask = 0xffffffffu,
-                     std::source_location where = std::source_location::current()) {
+inline void syncwarp(unsigned mask = 0xffffffffu, Location where = Location::current()) {
   detail::warp_collective(detail::Collective::syncwarp, mask, 0, 0, warp_size, where);
 }
-inline unsigned ballot_sync(unsigned mask, int predicate,
-                            std::source_location where = std::source_location::current()) {
+inline unsigned ballot_sync(unsigned mask, int predicate, Location where = Location::current()) {
   return static_cast<unsigned>(detail::warp_collective(detail::Collective::ballot, mask,
                                                        predicate != 0, 0, warp_size, where));
 }
-inline int any_sync(unsigned mask, int predicate,
-                    std::source_location where = std::source_location::current()) {
+inline int any_sync(unsigned mask, int predicate, Location where = Location::current()) {
   return static_cast<int>(
       detail::warp_collective(detail::Collective::any, mask, predicate != 0, 0, warp_size, where));
 }
-inline int all_sync(unsigned mask, int predicate,
-                    std::source_location where = std::source_location::current()) {
+inline int all_sync(unsigned mask, int predicate, Location where = Location::current()) {
   return static_cast<int>(
       detail::warp_collective(detail::Collective::all, mask, predicate != 0, 0, warp_size, where));
 }
-inline unsigned activemask(std::source_location where = std::source_location::current()) {
+inline unsigned activemask(Location where = Location::current()) {
   return detail::active_mask(where);
 }
 
@@ -363,8 +390,7 @@ inline constexpr bool shuffle_type_v =
     std::is_same_v<T, unsigned long long> || std::is_same_v<T, float> || std::is_same_v<T, double>;
 
 template <typename T>
-T shuffle(Collective kind, unsigned mask, T value, int lane_arg, int width,
-          const std::source_location& where) {
+T shuffle(Collective kind, unsigned mask, T value, int lane_arg, int width, const Location& where) {
   std::uint64_t bits = 0;
   std::memcpy(&bits, &value, sizeof(T));
   bits = warp_collective(kind, mask, bits, lane_arg, width, where);
@@ -374,29 +400,29 @@ T shuffle(Collective kind, unsigned mask, T value, int lane_arg, int width,
 }  // namespace detail
 
 template <typename T>
-requires detail::shuffle_type_v<T> T
-shfl_sync(unsigned mask, T value, int src_lane, int width = warp_size,
-          std::source_location where = std::source_location::current()) {
+requires detail::shuffle_type_v<T> T shfl_sync(unsigned mask, T value, int src_lane,
+                                               int width = warp_size,
+                                               Location where = Location::current()) {
   return detail::shuffle(detail::Collective::shfl, mask, value, src_lane, width, where);
 }
 template <typename T>
-requires detail::shuffle_type_v<T> T
-shfl_up_sync(unsigned mask, T value, unsigned delta, int width = warp_size,
-             std::source_location where = std::source_location::current()) {
+requires detail::shuffle_type_v<T> T shfl_up_sync(unsigned mask, T value, unsigned delta,
+                                                  int width = warp_size,
+                                                  Location where = Location::current()) {
   return detail::shuffle(detail::Collective::shfl_up, mask, value, static_cast<int>(delta), width,
                          where);
 }
 template <typename T>
-requires detail::shuffle_type_v<T> T
-shfl_down_sync(unsigned mask, T value, unsigned delta, int width = warp_size,
-               std::source_location where = std::source_location::current()) {
+requires detail::shuffle_type_v<T> T shfl_down_sync(unsigned mask, T value, unsigned delta,
+                                                    int width = warp_size,
+                                                    Location where = Location::current()) {
   return detail::shuffle(detail::Collective::shfl_down, mask, value, static_cast<int>(delta), width,
                          where);
 }
 template <typename T>
-requires detail::shuffle_type_v<T> T
-shfl_xor_sync(unsigned mask, T value, int lane_mask, int width = warp_size,
-              std::source_location where = std::source_location::current()) {
+requires detail::shuffle_type_v<T> T shfl_xor_sync(unsigned mask, T value, int lane_mask,
+                                                   int width = warp_size,
+                                                   Location where = Location::current()) {
   return detail::shuffle(detail::Collective::shfl_xor, mask, value, lane_mask, width, where);
 }
 
@@ -507,7 +533,7 @@ class Launch {
 
  public:
   Launch(void (*kernel)(Params...), const char* name, Dim3 grid, Dim3 block,
-         std::size_t dynamic_shared, std::source_location where = std::source_location::current())
+         std::size_t dynamic_shared, Location where = Location::current())
       : kernel_(kernel),
         name_(name),
         grid_(grid),
@@ -536,7 +562,7 @@ class Launch {
   const char* name_;
   Dim3 grid_, block_;
   std::size_t shared_;
-  std::source_location where_;
+  Location where_;
 };
 
 // ---------------------------------------------------------------------------------------------

@@ -284,7 +284,14 @@ TEST(OutputIntegrity, AnUnknownBackendOrAnEmptySelectionIsExitTwo) {
   EXPECT_NE(message.find("matches no case in shard 3/4"), std::string::npos) << message;
 
   EXPECT_EQ(run_tool("run --algorithm embree:exact --out out", dir), exit_bad_input);
-  EXPECT_NE(err_of(dir).find("embree:exact"), std::string::npos) << err_of(dir);
+  message = err_of(dir);
+  EXPECT_NE(message.find("embree:exact"), std::string::npos) << message;
+  EXPECT_NE(message.find("variants of embree: robust"), std::string::npos) << message;
+
+  EXPECT_EQ(run_tool("run --algorithm vulkanrt --out out", dir), exit_bad_input);
+  message = err_of(dir);
+  EXPECT_NE(message.find("--algorithm vulkanrt"), std::string::npos) << message;
+  EXPECT_NE(message.find("known: bruteforce, embree"), std::string::npos) << message;
   EXPECT_FALSE(fs::exists(dir / "out"));
 }
 
@@ -342,6 +349,14 @@ TEST(OutputIntegrity, AnEmptyOutIsAUsageError) {
   std::set<std::string> names;
   for (const auto& entry : fs::directory_iterator(dir)) names.insert(entry.path().filename());
   EXPECT_EQ(names, (std::set<std::string>{"script.sh", "stdout.txt", "stderr.txt"}));
+
+  // The current folder, even empty, would be replaced under the user's feet.
+  fs::create_directories(dir / "empty");
+  EXPECT_EQ(run_shell("cd empty && exec '" + tool + "' " + small_run + " --out .\n", dir),
+            exit_bad_input);
+  EXPECT_NE(err_of(dir).find("not the current folder"), std::string::npos) << err_of(dir);
+  EXPECT_TRUE(fs::is_empty(dir / "empty"));
+  EXPECT_EQ(entries_starting(dir, "empty."), std::vector<std::string>{});
 
   std::ofstream(dir / "a_file") << "x";
   EXPECT_EQ(run_tool(small_run + " --out a_file", dir), exit_bad_input);

@@ -3,9 +3,12 @@
 // checking on, and the backend matches the exact oracle on every robust sample, beside a
 // T-junction and with the light on a caster included.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
-#include <chrono>
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -16,6 +19,8 @@
 #include "hand_built_case.h"
 #include "shadowcts/geometry/segment_triangle.h"
 #include "shadowcts/hard_shadow_oracle.h"
+#include "shadowcts/registry.h"
+#include "shadowcts/runner.h"
 
 namespace shadowcts {
 namespace {
@@ -30,8 +35,9 @@ std::uint64_t counter(const AlgorithmOutput& output, const std::string& name) {
   return 0;
 }
 
-// The kernel's contract on the host: the first hit in caster order, else unsure when some
-// caster passes near an edge; pair_tests counts casters visited, the receiver included.
+// The kernel's contract on the host: shadowed at the first hit away from the triangle's edges,
+// else unsure when some caster passes near an edge; pair_tests counts casters visited, the receiver
+// included.
 BruteforceShadowResult evaluate_on_host(const BruteforceShadowInput& input) {
   BruteforceShadowResult result;
   result.shadowed.assign(input.sample_positions.size(), bruteforce_sample_lit);
@@ -44,11 +50,12 @@ BruteforceShadowResult evaluate_on_host(const BruteforceShadowInput& input) {
     for (const BruteforceCaster& caster : input.casters) {
       ++result.pair_tests;
       if (caster.triangle == input.sample_receivers[i]) continue;
-      if (ray_hits_triangle(ray, caster.v0, caster.v1, caster.v2)) {
+      const bool beside_edge = ray_near_triangle_edge(ray, caster.v0, caster.v1, caster.v2);
+      if (ray_hits_triangle(ray, caster.v0, caster.v1, caster.v2) && !beside_edge) {
         result.shadowed[i] = bruteforce_sample_shadowed;
         break;
       }
-      near_edge = near_edge || ray_near_triangle_edge(ray, caster.v0, caster.v1, caster.v2);
+      near_edge = near_edge || beside_edge;
     }
     if (result.shadowed[i] != bruteforce_sample_shadowed && near_edge) {
       result.shadowed[i] = bruteforce_sample_unsure;
@@ -172,6 +179,31 @@ TEST(BruteforceHardShadowCudaEmu, LightOnACasterShadowsEverySampleItDoesNotRecei
   }
   EXPECT_GT(counter(output, "light_on_caster_samples"), 0u);
   expect_robust_samples_match(h, output);
+}
+
+// stiff.light_1e-6_from_caster: segments cross a quad's plane within ~3e-8 of its edge next to
+// the light, where the rounding of L - p makes the float test hit on samples that are robustly
+// lit. A float hit beside an edge is decided exactly too (157 false shadows before).
+TEST(BruteforceHardShadowCudaEmu, PassesTheLightBesideACasterEdgeStiffCase) {
+  namespace fs = std::filesystem;
+  const fs::path out = fs::temp_directory_path() / "shadowcts_cuda_emu_light_1e-6_from_caster";
+  fs::remove_all(out);
+  RunOptions options;
+  options.fixtures = {"stiff.light_1e-6_from_caster"};
+  options.algorithms = {{"bruteforce", "float32"}};
+  options.backend = "cuda-emu";
+  options.out_dir = out.string();
+  options.repeats = 1;
+  std::ostringstream log, err;
+  EXPECT_EQ(run_suite(options, builtin_registry(), log, err), exit_pass) << err.str();
+  std::ifstream in(out / "results.json");
+  const auto results = nlohmann::json::parse(in);
+  ASSERT_EQ(results["results"].size(), 1u) << log.str();
+  const auto& record = results["results"][0];
+  EXPECT_EQ(record["verdict"], "Pass") << record["reason"];
+  EXPECT_EQ(record["backend"], "cuda-emu");
+  EXPECT_GT(record["counters"]["exact_fallback_samples"].get<std::uint64_t>(), 0u);
+  fs::remove_all(out);
 }
 
 }  // namespace

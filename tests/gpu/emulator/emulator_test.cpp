@@ -411,6 +411,28 @@ TEST(EmulatorSchedules, RandomScheduleExposesMissingBarrier) {
   }
 }
 
+// The warp-synchronous reduction tail without __syncwarp relies on lanes moving in lockstep,
+// which neither schedule provides: its answer is wrong under both, even with race checks off.
+TEST(EmulatorSchedules, SchedulesExposeWarpSynchronousCodeWithoutSyncwarp) {
+  std::vector<int> in(64), out(1, 0);
+  std::iota(in.begin(), in.end(), 1);
+  const int sum = std::accumulate(in.begin(), in.end(), 0);
+  std::vector<Options> all{{Schedule::run_until_block, 0, false}};
+  for (std::uint64_t seed : {1, 2, 3}) all.push_back({Schedule::random, seed, false});
+  for (const Options& options : all) {
+    const emu::ScopedOptions scoped(options);
+    SHADOWCTS_LAUNCH(bug::warp_synchronous_without_syncwarp, 1, 64, 0)(in.data(), out.data());
+    EXPECT_NE(out[0], sum) << "seed " << options.seed;
+  }
+  // With __syncwarp between the steps the same reduction is right under every schedule.
+  for (const Options& options : all) {
+    const emu::ScopedOptions scoped(options);
+    std::vector<int> sums(1, 0);
+    SHADOWCTS_LAUNCH(k::warp_synchronous_reduce, 1, 64, 0)(in.data(), sums.data());
+    EXPECT_EQ(sums[0], sum) << "seed " << options.seed;
+  }
+}
+
 TEST(EmulatorSchedules, RandomScheduleIsReproducible) {
   std::vector<int> in(128), first(128, 0), second(128, 0);
   std::iota(in.begin(), in.end(), 1);
