@@ -215,7 +215,7 @@ TEST(StencilAgainstExactOracle, ZFailIsRightOnEveryRobustSampleOfTheDefaultFixtu
     EXPECT_EQ(h.leaks, 0u) << name;
     EXPECT_EQ(h.false_shadows, 0u) << name;
     EXPECT_GT(h.robust, 0u) << name;
-    ASSERT_EQ(output.counters.size(), 4u);
+    ASSERT_EQ(output.counters.size(), 5u);
     EXPECT_EQ(output.counters[0].first, "silhouette_edges");
     EXPECT_GT(output.counters[0].second, 0u) << name;
     EXPECT_EQ(output.counters[2].first, "quads_tested");
@@ -240,15 +240,26 @@ TEST(Stencil, SameResultForAnyThreadCount) {
   }
 }
 
-TEST(Stencil, DeclinesAPointLightOnACaster) {
+// A point light on a caster: that triangle (exactly decided) is no cap, and it shadows every
+// sample it does not receive (the definition's closed segment), as in ptsv and psv.
+TEST(Stencil, APointLightOnACasterShadowsEverySampleItDoesNotReceive) {
   ShadowLight light;
   light.kind = ShadowLightKind::point;
   light.position = {0.0f, 4.0f, 0.0f};  // on the box's top face
-  Case c = eye_in_shadow_case(light);
+  const Case c = eye_in_shadow_case(light);
   const ViewSamples samples = generate_view_samples(c);
-  const auto reason = make_stencil()->unsupported_reason(c, samples, "zfail");
-  ASSERT_TRUE(reason);
-  EXPECT_NE(reason->find("touches a caster"), std::string::npos);
+  const auto stencil = make_stencil();
+  ASSERT_FALSE(stencil->unsupported_reason(c, samples, "zfail"));
+  const AlgorithmOutput output = stencil->run(c, samples, "zfail");
+  const HardShadowComparison h =
+      compare_hard_shadows(output.shadowed, exact_hard_shadow_oracle(c, samples));
+  EXPECT_GT(h.robust, 0u);
+  EXPECT_EQ(h.leaks, 0u);
+  EXPECT_EQ(h.false_shadows, 0u);
+  // Every ground sample's segment already crosses the box's walls below the light: the rule
+  // changes no sample here (the stiff cases light_on_caster_edge and light_in_caster_face, where
+  // the caster is open, depend on it).
+  EXPECT_EQ(output.counters.back().first, "light_on_caster_samples");
 }
 
 // Minimal fuzz reproducers (one sample each), rebuilt in code. Each checks first that the eye
