@@ -11,6 +11,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "core/external_result.h"
 #include "list_command.h"
 #include "report_command.h"
 #include "shadowcts/case_manifest.h"
@@ -135,6 +136,14 @@ int main(int argc, char** argv) {
   gbuffer->add_option("--fixture", gbuffer_fixture, "Built-in fixture");
   gbuffer->add_option("--out", gbuffer_out, "Output EXR file")->required();
 
+  std::string check_case, check_out = "shadowcts-check";
+  CLI::App* check = app.add_subcommand(
+      "check", "Judge an engine's own frame result (the manifest's \"result\") against the oracle");
+  check->add_option("--case", check_case, "JSON case manifest with a \"result\"")
+      ->required()
+      ->check(CLI::ExistingFile);
+  check->add_option("--out", check_out, "Output folder")->capture_default_str();
+
   std::vector<std::string> report_dirs;
   std::string report_out;
   CLI::App* report = app.add_subcommand(
@@ -142,7 +151,29 @@ int main(int argc, char** argv) {
   report->add_option("dirs", report_dirs, "Result directories (each with results.json)")
       ->required()
       ->check(CLI::ExistingDirectory);
-  report->add_option("--out", report_out, "Output HTML file (default DIR/report.html for one DIR)");
+  report->add_option("--out", report_out,
+                     "Output HTML file (default DIR/report.html for one DIR); with --baseline a "
+                     "folder or FILE.html");
+  std::string report_baseline;
+  double max_slowdown = 1.5;
+  report
+      ->add_option("--baseline", report_baseline,
+                   "Compare the one DIR against this earlier run: regressions page, JUnit, exit 1 "
+                   "when a verdict got worse or a time regressed")
+      ->check(CLI::ExistingDirectory);
+  report
+      ->add_option("--max-slowdown", max_slowdown,
+                   "With --baseline: a median this many times the baseline's, with the min-max "
+                   "ranges apart, is a regression")
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            double value = 0;
+            if (CLI::detail::lexical_cast(text, value) && value >= 1 && value <= 1e6)
+              return std::string();
+            return "must be a number in [1, 1e6], is '" + text + "'";
+          },
+          "in [1, 1e6]"))
+      ->capture_default_str();
 
   try {
     app.parse(argc, argv);
@@ -157,7 +188,12 @@ int main(int argc, char** argv) {
       return exit_pass;
     }
     if (*gbuffer) return write_gbuffer(gbuffer_case, gbuffer_fixture, gbuffer_out);
+    if (*report && !report_baseline.empty())
+      return compare_report_command(report_baseline, report_dirs, report_out, max_slowdown,
+                                    std::cout);
     if (*report) return write_report_command(report_dirs, report_out, std::cout);
+    if (*check)
+      return check_frame(check_case, check_out, isatty(STDERR_FILENO) != 0, std::cout, std::cerr);
 
     for (const std::string& text : algorithm_texts)
       options.algorithms.push_back(parse_selection(text));
