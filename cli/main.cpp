@@ -12,6 +12,7 @@
 #include <CLI/CLI.hpp>
 
 #include "core/external_result.h"
+#include "core/scene_export.h"
 #include "list_command.h"
 #include "report_command.h"
 #include "shadowcts/case_manifest.h"
@@ -144,6 +145,14 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   check->add_option("--out", check_out, "Output folder")->capture_default_str();
 
+  std::string export_case_file, export_fixture, export_out;
+  CLI::App* export_command = app.add_subcommand(
+      "export", "Write a case for an engine: scene.glb, case.json and gbuffer.exr in a folder");
+  export_command->add_option("--case", export_case_file, "JSON case manifest")
+      ->check(CLI::ExistingFile);
+  export_command->add_option("--fixture", export_fixture, "Built-in fixture");
+  export_command->add_option("--out", export_out, "Output folder (new or empty)")->required();
+
   std::vector<std::string> report_dirs;
   std::string report_out;
   CLI::App* report = app.add_subcommand(
@@ -192,6 +201,14 @@ int main(int argc, char** argv) {
       return compare_report_command(report_baseline, report_dirs, report_out, max_slowdown,
                                     std::cout);
     if (*report) return write_report_command(report_dirs, report_out, std::cout);
+    if (*export_command) {
+      if (export_case_file.empty() == export_fixture.empty())
+        throw UsageError("export: give exactly one of --case FILE or --fixture NAME");
+      export_case(export_case_file.empty() ? make_fixture(export_fixture)
+                                           : load_case_manifest(export_case_file),
+                  export_out, std::cout);
+      return exit_pass;
+    }
     if (*check)
       return check_frame(check_case, check_out, isatty(STDERR_FILENO) != 0, std::cout, std::cerr);
 
