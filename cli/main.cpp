@@ -165,11 +165,13 @@ int main(int argc, char** argv) {
                      "folder or FILE.html");
   std::string report_baseline;
   double max_slowdown = 1.5;
-  report
-      ->add_option("--baseline", report_baseline,
-                   "Compare the one DIR against this earlier run: regressions page, JUnit, exit 1 "
-                   "when a verdict got worse or a time regressed")
-      ->check(CLI::ExistingDirectory);
+  CLI::Option* baseline_option =
+      report
+          ->add_option(
+              "--baseline", report_baseline,
+              "Compare the one DIR against this earlier run: regressions page, JUnit, exit 1 "
+              "when a verdict got worse or a time regressed")
+          ->check(CLI::ExistingDirectory);
   report
       ->add_option("--max-slowdown", max_slowdown,
                    "With --baseline: a median this many times the baseline's, with the min-max "
@@ -182,6 +184,7 @@ int main(int argc, char** argv) {
             return "must be a number in [1, 1e6], is '" + text + "'";
           },
           "in [1, 1e6]"))
+      ->needs(baseline_option)
       ->capture_default_str();
 
   try {

@@ -168,11 +168,11 @@ std::string table_html(const RunComparison& comparison, const std::string& id,
   }
   std::string out = "<h2>" + html_escape(title) + " (" + std::to_string(n) + ")</h2>\n";
   if (n == 0) return out + "<p class=\"reason\">none</p>\n";
+  // The runs' paths are in the heading; the columns say before and after.
   return out + "<table id=\"" + id +
-         "\"><thead><tr><th>case</th><th>algorithm:variant [backend]</th><th>" +
-         html_escape(comparison.old_label) + "</th><th>" + html_escape(comparison.new_label) +
-         "</th><th>median ms (min–max), before</th><th>after</th><th>error changes</th></tr>"
-         "</thead>\n<tbody>\n" +
+         "\"><thead><tr><th>case</th><th>algorithm:variant [backend]</th><th>verdict "
+         "before</th><th>after</th><th>median ms (min–max), before</th><th>after</th><th>error "
+         "changes</th></tr></thead>\n<tbody>\n" +
          rows + "</tbody></table>\n";
 }
 
@@ -182,6 +182,7 @@ h1 { font-size: 22px; margin: 0 0 8px; }
 h2 { font-size: 18px; margin: 24px 0 8px; border-top: 2px solid #ccc; padding-top: 10px; }
 table { border-collapse: collapse; margin: 8px 0; }
 th, td { border: 1px solid #ddd; padding: 3px 6px; vertical-align: top; text-align: left; font-size: 13px; }
+td { overflow-wrap: anywhere; }
 th { background: #f3f3f3; }
 td.num { white-space: nowrap; text-align: right; }
 .reason, .k { color: #666; }
@@ -298,10 +299,11 @@ void print_comparison(const RunComparison& comparison, std::ostream& out) {
     std::snprintf(head, sizeof head, "%-10s", kind.c_str());
     out << "  " << head << " " << c.name << ": " << describe(c) << "\n";
   }
-  out << comparison.count("regression") << " regressions, " << comparison.count("fixed")
-      << " fixed, " << comparison.count("changed") << " changed, " << comparison.count("new")
-      << " new, " << comparison.count("removed") << " removed, " << comparison.count("unchanged")
-      << " unchanged\n";
+  const std::size_t regressions = comparison.count("regression");
+  out << regressions << (regressions == 1 ? " regression, " : " regressions, ")
+      << comparison.count("fixed") << " fixed, " << comparison.count("changed") << " changed, "
+      << comparison.count("new") << " new, " << comparison.count("removed") << " removed, "
+      << comparison.count("unchanged") << " unchanged\n";
   out.flush();
 }
 

@@ -156,7 +156,7 @@ TEST(RunComparison, ToolReportsAPlantedRegressionWithExitOne) {
   EXPECT_NE(output.find("regression " + planted + ": verdict Pass -> Fail; leaks 0 -> 4"),
             std::string::npos)
       << output;
-  EXPECT_NE(output.find("1 regressions"), std::string::npos) << output;
+  EXPECT_NE(output.find("1 regression,"), std::string::npos) << output;
   const std::string page = read_text(root / "cmp" / "compare.html");
   EXPECT_NE(page.find("data-record=\"" + planted + "\" data-kind=\"regression\""),
             std::string::npos);
@@ -184,6 +184,9 @@ TEST(RunComparison, ToolReportsAPlantedRegressionWithExitOne) {
             2)
       << output;
   EXPECT_EQ(run_tool(compare + " --max-slowdown 0.5", root, output), 2) << output;
+  // --max-slowdown means nothing without a baseline.
+  EXPECT_EQ(run_tool("report '" + new_run.string() + "' --max-slowdown 2", root, output), 2)
+      << output;
 }
 
 }  // namespace
