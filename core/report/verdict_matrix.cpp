@@ -67,7 +67,8 @@ std::vector<MatrixRow> matrix_rows(const ReportData& data) {
   for (std::size_t ci = 0; ci < data.cases.size(); ++ci)
     for (std::size_t ri = 0; ri < data.cases[ci].records.size(); ++ri) {
       const ReportRecord& r = data.cases[ci].records[ri];
-      auto [it, inserted] = row_of.try_emplace(r.label(), rows.size());
+      // Keyed by output kind too, so that one label never holds two records of a case.
+      auto [it, inserted] = row_of.try_emplace(r.output + " " + r.label(), rows.size());
       if (inserted)
         rows.push_back(MatrixRow{r.label(), r.algorithm,
                                  std::vector<const ReportRecord*>(data.cases.size(), nullptr),
@@ -187,6 +188,9 @@ std::vector<Plot> overview_plots(const ReportData& data) {
       for (const ReportRecord& r : c.records) {
         if (r.output != kind.output) continue;
         const ordered_json& record = r.versions.back().json;
+        // Only judged answers: NotSupported had nothing to judge, a crash gave no answer.
+        const std::string verdict = record.value("verdict", "");
+        if (verdict == "NotSupported" || verdict == "Crash" || verdict == "Timeout") continue;
         const ordered_json* median = median_of(record);
         const auto error = record.find("error");
         if (!median || median->get<double>() <= 0 || error == record.end()) continue;

@@ -21,7 +21,8 @@ std::string record_anchor(std::size_t case_index, std::size_t record_index);
 std::string verdict_matrix_html(const ReportData& data);
 
 // Per output kind with timed records (hard, soft, lights, in that order): the record's plotted
-// error (case_plots.h) against median time over every case, both axes log10, one series per
+// error (case_plots.h) against median time over every judged record (not NotSupported, Crash or
+// Timeout) of every case, both axes log10, one series per
 // algorithm, the Pareto front over all of them. Zero errors cannot lie on a log axis: they are
 // drawn one decade below the smallest non-zero error (or at 1e-6), and the axis label says so.
 std::vector<Plot> overview_plots(const ReportData& data);
