@@ -26,6 +26,7 @@
 #include "shadowcts/case_manifest.h"
 #include "shadowcts/gbuffer_exr.h"
 #include "shadowcts/hard_shadow_oracle.h"
+#include "shadowcts/soft_shadow_oracle.h"
 
 namespace shadowcts {
 namespace {
@@ -293,6 +294,50 @@ TEST(FrameCheck, BadMasksExitTwoNamingFileChannelAndPixelAndWriteNothing) {
         << read_file(e.dir / "stderr.txt");
     EXPECT_FALSE(fs::exists(e.dir / "out")) << bad.message;
   }
+}
+
+// Soft visibility: the exact disk oracle's fractions pass; a frame without penumbrae (every
+// sample fully lit) fails beyond the declared budget; the budget key is read.
+TEST(FrameCheck, SoftVisibilityIsJudgedAgainstTheDiskOracle) {
+  const fs::path dir = fresh_dir("soft");
+  std::ofstream(dir / "source.json") << R"({"scene": {"generator": "foliage", "triangles": 100},
+    "camera": {"width": 48, "height": 48}})";
+  ASSERT_EQ(run_tool("export --case source.json --out export", dir), 0)
+      << read_file(dir / "stderr.txt");
+  const fs::path manifest = dir / "export" / "case.json";
+  const Case c = load_case_manifest(manifest.string());
+  ASSERT_TRUE(c.light && c.light->kind == ShadowLightKind::sun_disk);
+  ViewSamples samples = read_gbuffer_exr(c.gbuffer_path);
+  classify_samples(c, samples, c.gbuffer_path);
+  const SoftShadowTruth truth = exact_soft_shadow_oracle(c, samples);
+  std::vector<float> exact(samples.samples.size()), lit(samples.samples.size(), 1.0f);
+  bool penumbra = false;
+  for (std::size_t i = 0; i < exact.size(); ++i) {
+    exact[i] = float(truth.visible_fraction[i]);
+    penumbra |= truth.compared[i] && truth.robust[i] && exact[i] < 0.9f;
+  }
+  ASSERT_TRUE(penumbra)
+      << "the all-lit frame must be wrong by more than its 0.05 budget on a robust sample";
+  write_channel(dir / "export" / "exact.exr", c.camera.width, c.camera.height, exact);
+  write_channel(dir / "export" / "lit.exr", c.camera.width, c.camera.height, lit);
+  add_result(manifest, {{"visibility", "exact.exr"}});
+  EXPECT_EQ(run_tool("check --case export/case.json --out out", dir), 0)
+      << read_file(dir / "stdout.txt");
+  json record = only_record(dir / "out");
+  EXPECT_EQ(record["output"], "soft");
+  EXPECT_EQ(record["variant"], "visibility");
+  EXPECT_EQ(record["verdict"], "Pass");
+  add_result(manifest,
+             {{"visibility", "lit.exr"}, {"budget", {{"per_sample", 0.05}, {"mean", 0.1}}}});
+  EXPECT_EQ(run_tool("check --case export/case.json --out out", dir), 1);
+  record = only_record(dir / "out");
+  EXPECT_EQ(record["verdict"], "Fail");
+  EXPECT_EQ(record["error"]["budget"]["per_sample"], 0.05);
+  add_result(manifest, {{"mask", "lit.exr"}, {"budget", {{"mean", 0.1}}}});
+  EXPECT_EQ(run_tool("check --case export/case.json --out out", dir), 2);
+  EXPECT_NE(
+      read_file(dir / "stderr.txt").find("result.budget: belongs to a visibility result only"),
+      std::string::npos);
 }
 
 // Light lists: Olsson-style 2D tiles and Filament-style froxels over many_lights.
