@@ -56,7 +56,7 @@ std::string key_error(const ReportRecord& r, const ordered_json& record) {
   const std::optional<ErrorFigure> figure = plotted_error(r.output, *error);
   if (!figure || figure->value == 0) return "";
   std::string name = figure->key == "mean_abs_error"   ? "mean |e|"
-                     : figure->key == "lighting_ratio" ? "lighting ×"
+                     : figure->key == "lighting_ratio" ? "lighting/exact"
                                                        : figure->key;
   return name + " " + display_number(figure->value);
 }
