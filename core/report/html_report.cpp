@@ -75,6 +75,7 @@ nav a { margin-right: 10px; }
 #verdict-matrix td.cell a { color: #111; text-decoration: none; display: block; }
 #verdict-matrix td.cell .err { font-weight: 600; }
 #verdict-matrix td.none { background: #fff; }
+#verdict-matrix td.changed-verdict { outline: 3px solid #e67e00; outline-offset: -3px; }
 .m-Pass { background: #7bc77f; }
 .m-Fail { background: #e8675a; }
 .m-QualityWarning { background: #f2c14e; }

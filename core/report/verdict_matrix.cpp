@@ -101,9 +101,14 @@ std::string cell_html(const MatrixRow& row, std::size_t ci) {
     if (verdict == "Crash" || verdict == "Timeout")
       figures = html_escape(verdict) + (figures.empty() ? "" : "<br>" + figures);
   }
-  return "<td class=\"cell m-" + verdict_class(verdict) + "\" data-record=\"" +
-         html_escape(r->name) + "\" data-verdict=\"" + html_escape(verdict) + "\" title=\"" +
-         html_escape(r->name + ": " + verdict + " — " + record.value("reason", "")) +
+  // Runs side by side: a verdict that differs from the first directory's is outlined.
+  const std::string first = r->versions.front().json.value("verdict", "");
+  const bool changed = first != verdict;
+  return "<td class=\"cell m-" + verdict_class(verdict) + (changed ? " changed-verdict" : "") +
+         "\" data-record=\"" + html_escape(r->name) + "\" data-verdict=\"" + html_escape(verdict) +
+         "\" title=\"" +
+         html_escape(r->name + ": " + verdict + " — " + record.value("reason", "") +
+                     (changed ? " (was " + first + ")" : "")) +
          "\"><a href=\"#" + record_anchor(ci, row.record_index[ci]) + "\">" + figures + "</a></td>";
 }
 

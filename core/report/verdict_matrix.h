@@ -16,7 +16,8 @@ std::string record_anchor(std::size_t case_index, std::size_t record_index);
 // <table id="verdict-matrix">: one row per label with at least one record that is not
 // NotSupported, one cell per case (class "cell m-<verdict>", data-record, data-verdict, a link to
 // the record's row), showing the median time and, where it is not zero, the key error figure. A
-// record in several directories shows its last version. Labels that are NotSupported on every case
+// record in several directories shows its last version, outlined (class "changed-verdict") when
+// its verdict differs from the first directory's. Labels that are NotSupported on every case
 // are folded below the table into one line per algorithm with their reasons (ul.not-supported).
 std::string verdict_matrix_html(const ReportData& data);
 

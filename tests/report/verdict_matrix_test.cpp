@@ -63,6 +63,24 @@ TEST(VerdictMatrix, CellPerLabelAndCaseWithKeyFiguresAndFoldedNotSupported) {
   EXPECT_NE(html.find("<a href=\"#" + record_anchor(0, 1) + "\">4.00 ms"), std::string::npos);
 }
 
+TEST(VerdictMatrix, RunsSideBySideShowTheLastVersionAndOutlineAChangedVerdict) {
+  const fs::path root = fresh_dir("matrix_versions");
+  write_results(root / "old", {hand_case("a")},
+                {hand_hard_record("a", "same", 2, 0), hand_hard_record("a", "broke", 2, 0)});
+  write_results(root / "new", {hand_case("a")},
+                {hand_hard_record("a", "same", 3, 0), hand_hard_record("a", "broke", 2, 5)});
+  const std::string html =
+      verdict_matrix_html(load_report_data({root / "old", root / "new"}, root));
+  EXPECT_EQ(count(html, "<td class=\"cell"), 2u);
+  EXPECT_NE(html.find("<td class=\"cell m-Fail changed-verdict\" "
+                      "data-record=\"hard.broke.exact.reference.a\""),
+            std::string::npos);
+  EXPECT_NE(html.find("(was Pass)"), std::string::npos);
+  EXPECT_NE(html.find("<td class=\"cell m-Pass\" data-record=\"hard.same.exact.reference.a\""),
+            std::string::npos);
+  EXPECT_NE(html.find("3.00 ms"), std::string::npos);  // the new run's time
+}
+
 TEST(OverviewPlot, ZeroErrorsSitADecadeBelowTheSmallestAndTheFrontSpansAllCases) {
   const fs::path dir = fresh_dir("overview_hand");
   const std::vector<Plot> plots = overview_plots(two_cases(dir));
