@@ -11,6 +11,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "core/external_result.h"
+#include "core/scene_export.h"
 #include "list_command.h"
 #include "report_command.h"
 #include "shadowcts/case_manifest.h"
@@ -135,6 +137,22 @@ int main(int argc, char** argv) {
   gbuffer->add_option("--fixture", gbuffer_fixture, "Built-in fixture");
   gbuffer->add_option("--out", gbuffer_out, "Output EXR file")->required();
 
+  std::string check_case, check_out = "shadowcts-check";
+  CLI::App* check = app.add_subcommand(
+      "check", "Judge an engine's own frame result (the manifest's \"result\") against the oracle");
+  check->add_option("--case", check_case, "JSON case manifest with a \"result\"")
+      ->required()
+      ->check(CLI::ExistingFile);
+  check->add_option("--out", check_out, "Output folder")->capture_default_str();
+
+  std::string export_case_file, export_fixture, export_out;
+  CLI::App* export_command = app.add_subcommand(
+      "export", "Write a case for an engine: scene.glb, case.json and gbuffer.exr in a folder");
+  export_command->add_option("--case", export_case_file, "JSON case manifest")
+      ->check(CLI::ExistingFile);
+  export_command->add_option("--fixture", export_fixture, "Built-in fixture");
+  export_command->add_option("--out", export_out, "Output folder (new or empty)")->required();
+
   std::vector<std::string> report_dirs;
   std::string report_out;
   CLI::App* report = app.add_subcommand(
@@ -142,7 +160,32 @@ int main(int argc, char** argv) {
   report->add_option("dirs", report_dirs, "Result directories (each with results.json)")
       ->required()
       ->check(CLI::ExistingDirectory);
-  report->add_option("--out", report_out, "Output HTML file (default DIR/report.html for one DIR)");
+  report->add_option("--out", report_out,
+                     "Output HTML file (default DIR/report.html for one DIR); with --baseline a "
+                     "folder or FILE.html");
+  std::string report_baseline;
+  double max_slowdown = 1.5;
+  CLI::Option* baseline_option =
+      report
+          ->add_option(
+              "--baseline", report_baseline,
+              "Compare the one DIR against this earlier run: regressions page, JUnit, exit 1 "
+              "when a verdict got worse or a time regressed")
+          ->check(CLI::ExistingDirectory);
+  report
+      ->add_option("--max-slowdown", max_slowdown,
+                   "With --baseline: a median this many times the baseline's, with the min-max "
+                   "ranges apart, is a regression")
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            double value = 0;
+            if (CLI::detail::lexical_cast(text, value) && value >= 1 && value <= 1e6)
+              return std::string();
+            return "must be a number in [1, 1e6], is '" + text + "'";
+          },
+          "in [1, 1e6]"))
+      ->needs(baseline_option)
+      ->capture_default_str();
 
   try {
     app.parse(argc, argv);
@@ -157,7 +200,20 @@ int main(int argc, char** argv) {
       return exit_pass;
     }
     if (*gbuffer) return write_gbuffer(gbuffer_case, gbuffer_fixture, gbuffer_out);
+    if (*report && !report_baseline.empty())
+      return compare_report_command(report_baseline, report_dirs, report_out, max_slowdown,
+                                    std::cout);
     if (*report) return write_report_command(report_dirs, report_out, std::cout);
+    if (*export_command) {
+      if (export_case_file.empty() == export_fixture.empty())
+        throw UsageError("export: give exactly one of --case FILE or --fixture NAME");
+      export_case(export_case_file.empty() ? make_fixture(export_fixture)
+                                           : load_case_manifest(export_case_file),
+                  export_out, std::cout);
+      return exit_pass;
+    }
+    if (*check)
+      return check_frame(check_case, check_out, isatty(STDERR_FILENO) != 0, std::cout, std::cerr);
 
     for (const std::string& text : algorithm_texts)
       options.algorithms.push_back(parse_selection(text));

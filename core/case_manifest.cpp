@@ -443,6 +443,61 @@ std::filesystem::path resolve(const std::filesystem::path& manifest_folder,
   return p.is_absolute() ? p : manifest_folder / p;
 }
 
+// "result": exactly one of mask / visibility / light_lists, a file beside the manifest.
+ExternalResultFile read_result(const std::string& path, const ManifestObject& manifest,
+                               const std::filesystem::path& manifest_folder) {
+  const ManifestObject result(path, manifest.raw("result"), "result",
+                              {"mask", "visibility", "light_lists", "mask_values", "budget"});
+  ExternalResultFile file;
+  const char* key = nullptr;
+  for (const auto& [name, kind] : {std::pair{"mask", ExternalResultKind::mask},
+                                   std::pair{"visibility", ExternalResultKind::visibility},
+                                   std::pair{"light_lists", ExternalResultKind::light_lists}}) {
+    if (!result.has(name)) continue;
+    if (key) {
+      throw InputError(path, "result",
+                       std::string("give exactly one of mask, visibility, light_lists (has ") +
+                           key + " and " + name + ")");
+    }
+    key = name;
+    file.kind = kind;
+  }
+  if (!key) throw InputError(path, "result", "give exactly one of mask, visibility, light_lists");
+  file.path = resolve(manifest_folder, *result.string(key)).string();
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(file.path, error)) {
+    throw InputError(
+        path, result.element(key),
+        "file " + file.path +
+            (std::filesystem::exists(file.path, error) ? " is not a regular file" : " not found"));
+  }
+  if (auto values = result.string("mask_values")) {
+    if (file.kind != ExternalResultKind::mask)
+      throw InputError(path, "result.mask_values", "belongs to a mask result only");
+    if (*values != "shadowed" && *values != "visible") {
+      throw InputError(
+          path, "result.mask_values",
+          "must be \"shadowed\" (1 = shadowed) or \"visible\" (1 = lit), is \"" + *values + "\"");
+    }
+    file.mask_is_visibility = *values == "visible";
+  }
+  if (result.has("budget")) {
+    if (file.kind != ExternalResultKind::visibility)
+      throw InputError(path, "result.budget", "belongs to a visibility result only");
+    const ManifestObject budget(path, result.raw("budget"), "result.budget",
+                                {"per_sample", "mean"});
+    for (const auto& [name, target] :
+         {std::pair{"per_sample", &file.budget_per_sample}, std::pair{"mean", &file.budget_mean}}) {
+      if (auto v = budget.number(name)) {
+        if (!(*v >= 0.0 && *v <= 1.0))
+          throw InputError(path, budget.element(name), "must lie in [0, 1]");
+        *target = *v;
+      }
+    }
+  }
+  return file;
+}
+
 }  // namespace
 
 Case load_case_manifest(const std::string& path) {
@@ -463,9 +518,9 @@ Case load_case_manifest(const std::string& path) {
     throw InputError(path, *duplicates.duplicate,
                      "duplicate key (JSON keeps only the last; give each key once)");
   }
-  const ManifestObject manifest(
-      path, root, "",
-      {"name", "scene", "scenes", "gbuffer", "camera", "light", "ranged_lights", "parameters"});
+  const ManifestObject manifest(path, root, "",
+                                {"name", "scene", "scenes", "gbuffer", "result", "camera", "light",
+                                 "ranged_lights", "parameters"});
   const std::filesystem::path manifest_folder = std::filesystem::path(path).parent_path();
 
   if (manifest.has("scene") == manifest.has("scenes")) {
@@ -587,6 +642,7 @@ Case load_case_manifest(const std::string& path) {
                                                               : " not found"));
     }
   }
+  if (manifest.has("result")) c.external_result = read_result(path, manifest, manifest_folder);
   if (manifest.has("light")) c.light = read_light(path, manifest.raw("light"));
   if (manifest.has("ranged_lights")) {
     const Json& lights = manifest.raw("ranged_lights");

@@ -302,8 +302,11 @@ RunRecord new_record(const Case& c, const std::string& selector, const std::stri
   record.approximate = meta.capabilities.approximate;
   if (record.output == OutputKind::soft_shadow)
     record.soft_budget = algorithm.soft_error_budget(variant);
-  record.reproduce = "shadowcts run " + selector + " --algorithm " + meta.id + ":" + variant +
-                     " --backend " + meta.backend;
+  // An engine's result (shadowcts check) is not in any registry: its manifest reruns it.
+  record.reproduce = meta.backend == "external"
+                         ? "shadowcts check " + selector
+                         : "shadowcts run " + selector + " --algorithm " + meta.id + ":" + variant +
+                               " --backend " + meta.backend;
   record.test_name = output_kind_name(record.output) + "." + meta.id + "." + variant + "." +
                      meta.backend + "." + c.name;
   return record;

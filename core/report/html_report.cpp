@@ -7,6 +7,8 @@
 #include "html_text.h"
 #include "json_display.h"
 #include "summary_table.h"
+#include "svg_plot.h"
+#include "verdict_matrix.h"
 
 namespace shadowcts {
 namespace {
@@ -66,6 +68,21 @@ figcaption { font-size: 11px; color: #555; max-width: 256px; word-break: break-a
 div.facts { margin: 4px 0 8px; max-width: 1200px; }
 div.facts .fig { white-space: normal; }
 nav a { margin-right: 10px; }
+.matrix-wrap { overflow-x: auto; }
+#verdict-matrix th { font-size: 12px; white-space: nowrap; }
+#verdict-matrix th.case { writing-mode: vertical-rl; transform: rotate(180deg); max-height: 160px; }
+#verdict-matrix td.cell { font-size: 11px; text-align: center; white-space: nowrap; min-width: 64px; height: 30px; padding: 2px 4px; }
+#verdict-matrix td.cell a { color: #111; text-decoration: none; display: block; }
+#verdict-matrix td.cell .err { font-weight: 600; }
+#verdict-matrix td.none { background: #fff; }
+#verdict-matrix td.changed-verdict { outline: 3px solid #e67e00; outline-offset: -3px; }
+.m-Pass { background: #7bc77f; }
+.m-Fail { background: #e8675a; }
+.m-QualityWarning { background: #f2c14e; }
+.m-NotSupported { background: #cfd8dc; color: #555; }
+.m-Crash, .m-Timeout { background: #b467c0; }
+ul.not-supported { font-size: 12px; color: #444; margin: 2px 0 8px; }
+ul.not-supported .count { color: #666; }
 )";
 
 std::string sources_html(const ReportData& data) {
@@ -121,6 +138,14 @@ std::string render_html_report(const ReportData& data) {
         "per directory; a later row marks what differs from the first (outlined, the earlier "
         "value on hover) and its median time as a ratio (green: more than 10% faster, red: "
         "more than 10% slower).</p>\n";
+  // At a glance first: which algorithm passes where, then error against time over every case.
+  out += verdict_matrix_html(data);
+  const std::vector<Plot> overview = overview_plots(data);
+  if (!overview.empty()) {
+    out += "<h2>Overview</h2>\n<div class=\"plots\">\n";
+    for (const Plot& plot : overview) out += render_svg_plot(plot) + "\n";
+    out += "</div>\n";
+  }
   out += "<nav>";
   for (std::size_t i = 0; i < data.cases.size(); ++i)
     out +=

@@ -7,6 +7,7 @@
 
 #include "html_text.h"
 #include "json_display.h"
+#include "verdict_matrix.h"
 
 namespace shadowcts {
 namespace {
@@ -153,7 +154,8 @@ std::string summary_table_html(const ReportData& data) {
       "<tbody>\n";
   for (std::size_t ci = 0; ci < data.cases.size(); ++ci) {
     const ReportCase& c = data.cases[ci];
-    for (const ReportRecord& r : c.records) {
+    for (std::size_t ri = 0; ri < c.records.size(); ++ri) {
+      const ReportRecord& r = c.records[ri];
       for (std::size_t vi = 0; vi < r.versions.size(); ++vi) {
         const Version& v = r.versions[vi];
         const Cell cell{data, r, v, vi > 0 ? &r.versions.front() : nullptr};
@@ -162,7 +164,9 @@ std::string summary_table_html(const ReportData& data) {
         const std::string verdict_changed =
             change_marks(cell, "verdict", v.json.at("verdict"), verdict_title);
         const bool compared = r.versions.size() > 1;
-        out += std::string("<tr class=\"record") + (compared ? " compared" : "") +
+        // The first version's row is what the verdict matrix links to.
+        out += std::string("<tr") + (vi == 0 ? " id=\"" + record_anchor(ci, ri) + "\"" : "") +
+               " class=\"record" + (compared ? " compared" : "") +
                (vi == 0 ? " first-version" : "") + "\">";
         out +=
             "<td><a href=\"#case-" + std::to_string(ci) + "\">" + html_escape(c.name) + "</a></td>";

@@ -17,6 +17,7 @@
 
 #include "gpu/bruteforce/hard_shadow_bruteforce_kernel.h"
 #include "gpu/emulator/kernel.h"
+#include "shadowcts/geometry/edge_proximity.h"
 #include "shadowcts/geometry/segment_triangle.h"
 
 namespace shadowcts::SHADOWCTS_KERNEL_NAMESPACE {
@@ -86,7 +87,8 @@ __global__ void bruteforce_hard_shadow(const glm::vec3* sample_positions,
       // Beside an edge neither answer of the float test is certain: a miss may be a crack, a hit
       // may come from the rounding of L - p at the light end (stiff.light_1e-6_from_caster).
       // Only a hit away from every edge ends the search.
-      const bool beside_edge = (float_hit || !near_edge) && ray_near_triangle_edge(ray, v0, v1, v2);
+      const bool beside_edge =
+          (float_hit || !near_edge) && ray_within_rounding_of_triangle_edge(ray, v0, v1, v2);
       if (float_hit && !beside_edge) {
         hit = true;
         done = true;

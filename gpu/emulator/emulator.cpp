@@ -1,6 +1,7 @@
 #include "gpu/emulator/emulator.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cstdlib>
 #include <deque>
@@ -230,7 +231,9 @@ struct Thread {
   unsigned mask = 0;
   std::uint64_t value = 0, result = 0;
   int lane_arg = 0, width = warp_size;
-  unsigned synced = 0;  // the warp's sync sequence after the last __syncwarp it took part in
+  // Per lane of its warp: the warp's sync sequence after the last __syncwarp this thread took
+  // part in together with that lane.
+  std::array<unsigned, warp_size> synced_with{};
   StackBounds stack;
 };
 
@@ -363,6 +366,7 @@ class Block {
   void complete(Warp& warp, std::size_t group_index);
   std::uint16_t thread_id(const Thread& t) const { return static_cast<std::uint16_t>(t.linear); }
   bool warp_ordered(const Thread& accessor, std::uint16_t other, std::uint32_t sequence) const;
+  bool warp_ordered_with_all(const Thread& accessor, std::uint32_t sequence) const;
 
   const LaunchState& launch_;
   Uint3 index_;
@@ -698,7 +702,9 @@ void Block::complete(Warp& warp, std::size_t group_index) {
     switch (group.kind) {
       case Collective::syncwarp:
         t.result = 0;
-        t.synced = warp.sequence;
+        for (unsigned peers = group.mask; peers != 0; peers &= peers - 1) {
+          t.synced_with[static_cast<unsigned>(std::countr_zero(peers))] = warp.sequence;
+        }
         break;
       case Collective::ballot:
         t.result = votes;
@@ -836,7 +842,18 @@ bool Block::warp_ordered(const Thread& accessor, std::uint16_t other,
   // Lanes of one warp are ordered by a __syncwarp both took part in after the access.
   if (other == many || (other & atomic_bit) != 0) return false;
   const Thread& o = threads_[other];
-  return o.warp == accessor.warp && accessor.synced > sequence && o.synced > sequence;
+  return o.warp == accessor.warp && accessor.synced_with[o.lane] > sequence;
+}
+
+bool Block::warp_ordered_with_all(const Thread& accessor, std::uint32_t sequence) const {
+  // Several readers of one warp: the accessor must have synced with every lane still running
+  // after the reads (a lane that has exited reads nothing more).
+  const Warp& warp = warps_[accessor.warp];
+  for (unsigned m = warp.lanes & ~warp.exited; m != 0; m &= m - 1) {
+    const unsigned lane = static_cast<unsigned>(std::countr_zero(m));
+    if (lane != accessor.lane && accessor.synced_with[lane] <= sequence) return false;
+  }
+  return true;
 }
 
 void Block::shared_access(std::size_t offset, std::size_t size, Access access,
@@ -891,9 +908,9 @@ void Block::shared_access(std::size_t offset, std::size_t size, Access access,
           race(atomic ? "atomic" : "write", atomic_write ? "atomic" : "write", b.writer, i);
         }
         if (b.read_epoch == epoch && b.reader != me) {
-          const bool ordered = b.reader == many
-                                   ? b.reader_warp == my_warp && self.synced > b.read_sequence
-                                   : warp_ordered(self, b.reader, b.read_sequence);
+          const bool ordered = b.reader == many ? b.reader_warp == my_warp &&
+                                                      warp_ordered_with_all(self, b.read_sequence)
+                                                : warp_ordered(self, b.reader, b.read_sequence);
           if (!ordered) race(atomic ? "atomic" : "write", "read", b.reader, i);
         }
         std::uint16_t new_writer = me;

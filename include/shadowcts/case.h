@@ -61,6 +61,20 @@ struct RunParameters {
   std::uint64_t seed = 1;
 };
 
+// An engine's own result for the case's frame (`shadowcts check`, the manifest's "result"): a
+// file of per-pixel values or light lists, judged like a registered algorithm's output.
+enum class ExternalResultKind { none, mask, visibility, light_lists };
+
+struct ExternalResultFile {
+  ExternalResultKind kind = ExternalResultKind::none;
+  std::string path;  // resolved against the manifest's folder
+  // mask: the channel holds a visibility (1 lit) instead of a shadow amount (1 shadowed).
+  bool mask_is_visibility = false;
+  // visibility: the error the engine declares it may make (per robust sample, mean).
+  double budget_per_sample = 1.0 / 256.0;
+  double budget_mean = 1.0 / 1024.0;
+};
+
 struct Case {
   std::string name;    // dotted, stable: e.g. "ground_blockers.64k"
   std::string source;  // file or generator it came from, for messages
@@ -73,6 +87,8 @@ struct Case {
   // An EXR G-buffer (see gbuffer_exr.h) to take the view samples from instead of casting
   // primary rays; empty: samples are generated with Embree.
   std::string gbuffer_path;
+  // What `shadowcts check` judges; kind none for cases that only `run` algorithms.
+  ExternalResultFile external_result;
 
   // Largest absolute coordinate of the case (triangles, camera, point light): the scale S of the
   // ambiguity band.

@@ -416,3 +416,43 @@ TEST(CaseManifestHostile, GbufferResolutionIsCheckedAgainstTheCameraAtLoad) {
 
 }  // namespace
 }  // namespace shadowcts
+
+namespace shadowcts {
+namespace {
+
+// Issue 24: "result" names the engine's frame result for `shadowcts check`.
+TEST(CaseManifest, ResultNamesExactlyOneExistingFile) {
+  const TempDir dir;
+  dir.write("ground.gltf", ground_with_light_gltf());
+  dir.write("tetra.off", tetrahedron_off);
+  const fs::path mask = dir.write("mask.exr", "not read by the manifest");
+  Json m = file_manifest();
+  m["result"] = {{"mask", "mask.exr"}, {"mask_values", "visible"}};
+  const Case c = load_case_manifest(dir.write("ok.json", m.dump()).string());
+  EXPECT_EQ(c.external_result.kind, ExternalResultKind::mask);
+  EXPECT_TRUE(c.external_result.mask_is_visibility);
+  EXPECT_EQ(fs::path(c.external_result.path), mask);
+
+  struct Bad {
+    Json result;
+    const char* message;
+  };
+  for (const Bad& bad :
+       {Bad{Json::object(), "result: give exactly one of mask, visibility, light_lists"},
+        Bad{{{"mask", "mask.exr"}, {"light_lists", "mask.exr"}},
+            "result: give exactly one of mask, visibility, light_lists (has mask and light_lists)"},
+        Bad{{{"visibility", "gone.exr"}}, "result.visibility: file"},
+        Bad{{{"mask", "mask.exr"}, {"mask_values", "lit"}}, "result.mask_values: must be"},
+        Bad{{{"visibility", "mask.exr"}, {"budget", {{"mean", 2}}}},
+            "result.budget.mean: must lie in [0, 1]"},
+        Bad{{{"mask", "mask.exr"}, {"maks_values", "visible"}},
+            "result.maks_values: unknown key"}}) {
+    Json n = file_manifest();
+    n["result"] = bad.result;
+    EXPECT_NE(load_error(dir.write("bad.json", n.dump())).find(bad.message), std::string::npos)
+        << bad.message;
+  }
+}
+
+}  // namespace
+}  // namespace shadowcts

@@ -17,6 +17,7 @@
 #include "gpu/bruteforce/hard_shadow_bruteforce_kernel.h"
 #include "gpu/emulator/emulator.h"
 #include "hand_built_case.h"
+#include "shadowcts/geometry/edge_proximity.h"
 #include "shadowcts/geometry/segment_triangle.h"
 #include "shadowcts/hard_shadow_oracle.h"
 #include "shadowcts/registry.h"
@@ -50,7 +51,8 @@ BruteforceShadowResult evaluate_on_host(const BruteforceShadowInput& input) {
     for (const BruteforceCaster& caster : input.casters) {
       ++result.pair_tests;
       if (caster.triangle == input.sample_receivers[i]) continue;
-      const bool beside_edge = ray_near_triangle_edge(ray, caster.v0, caster.v1, caster.v2);
+      const bool beside_edge =
+          ray_within_rounding_of_triangle_edge(ray, caster.v0, caster.v1, caster.v2);
       if (ray_hits_triangle(ray, caster.v0, caster.v1, caster.v2) && !beside_edge) {
         result.shadowed[i] = bruteforce_sample_shadowed;
         break;

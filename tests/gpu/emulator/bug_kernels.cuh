@@ -103,6 +103,18 @@ __global__ void warp_synchronous_without_syncwarp(const int* in, int* out) {
   if (tid == 0) out[0] = s[0];
 }
 
+// Each half-warp syncs with its own half mask, then lane 16 reads lane 0's write: no
+// __syncwarp ordered the two (both halves synced, but not together).
+__global__ void half_warp_syncwarp(int* out) {
+  SHADOWCTS_SHARED(int[32], s);
+  const unsigned lane = threadIdx.x;
+  s[lane] = static_cast<int>(lane);
+  __syncwarp(lane < 16 ? 0x0000ffffu : 0xffff0000u);
+  // Within its half the read is ordered; lane 16 crosses to the other half.
+  const unsigned source = lane == 16 ? 0 : (lane < 16 ? 15 - lane : 47 - lane);
+  out[lane] = s[source];  // BUG:half_warp_syncwarp
+}
+
 // Lanes 0 and 1 wait at different collectives with the same mask: neither can complete.
 __global__ void mismatched_collectives(int* out) {
   int v = static_cast<int>(threadIdx.x);
