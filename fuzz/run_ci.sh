@@ -33,12 +33,12 @@ seed="${SHADOWCTS_FUZZ_SEED:-1}"
 # loaders of nested formats take deep-nesting seeds of several hundred KB
 # (seeds/write_nesting_seeds.cpp).
 declare -A ci_runs=(
-  [fuzz_gltf_loader]=30000
+  [fuzz_gltf_loader]=20000
   [fuzz_obj_loader]=20000
   [fuzz_off_loader]=20000
   [fuzz_ply_loader]=60000
   [fuzz_stl_loader]=14000
-  [fuzz_case_manifest]=60000
+  [fuzz_case_manifest]=20000
   [fuzz_gbuffer_exr]=700
   [fuzz_watertight]=800
   [fuzz_degenerate]=2500

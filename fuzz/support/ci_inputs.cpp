@@ -61,7 +61,10 @@ std::uint64_t SplitMix64::next() {
 
 CiInputGenerator::CiInputGenerator(std::vector<SeedInput> seeds, std::uint64_t seed,
                                    std::size_t max_len)
-    : seeds_(std::move(seeds)), random_(seed), max_len_(max_len) {}
+    : seeds_(std::move(seeds)), random_(seed), max_len_(max_len) {
+  for (std::size_t k = 0; k < seeds_.size(); ++k)
+    (seeds_[k].bytes.size() > large_seed_bytes ? large_ : ordinary_).push_back(k);
+}
 
 Bytes CiInputGenerator::random_bytes() {
   // Mostly short (structured targets read a scene from a few hundred bytes), sometimes long.
@@ -71,9 +74,15 @@ Bytes CiInputGenerator::random_bytes() {
   return bytes;
 }
 
+const SeedInput& CiInputGenerator::pick_seed() {
+  const bool large = ordinary_.empty() || (!large_.empty() && random_.below(large_seed_share) == 0);
+  const std::vector<std::size_t>& pool = large ? large_ : ordinary_;
+  return seeds_[pool[random_.below(pool.size())]];
+}
+
 Bytes CiInputGenerator::next() {
   if (seeds_.empty() || random_.below(8) == 0) return random_bytes();
-  Bytes data = seeds_[random_.below(seeds_.size())].bytes;
+  Bytes data = pick_seed().bytes;
   const std::size_t mutations = 1 + random_.below(4);
   for (std::size_t m = 0; m < mutations; ++m) mutate(data);
   return data;
@@ -148,7 +157,7 @@ void CiInputGenerator::mutate(Bytes& data) {
       break;
     }
     case 8: {  // splice: this input's head, another seed's tail
-      const Bytes& other = seeds_[random_.below(seeds_.size())].bytes;
+      const Bytes& other = pick_seed().bytes;
       data.resize(position(1));
       const std::size_t from = random_.below(other.size() + 1);
       data.insert(data.end(), other.begin() + std::ptrdiff_t(from), other.end());

@@ -48,15 +48,20 @@ class CiInputGenerator {
   // byte changes, inserted and erased ranges, copied chunks, interesting integers, number tokens
   // of text formats replaced by extreme ones, splices of two seeds, a short chunk repeated up to
   // thousands of times for deep nesting and long lists); otherwise, and sometimes anyway, random
-  // bytes.
+  // bytes. Seeds above large_seed_bytes (the deep-nesting files of several hundred KB) cost a
+  // hundred ordinary inputs each: one generated input in large_seed_share starts from one of them.
   Bytes next();
+  static constexpr std::size_t large_seed_bytes = 65536;
+  static constexpr std::size_t large_seed_share = 32;
   const std::vector<SeedInput>& seeds() const { return seeds_; }
 
  private:
   Bytes random_bytes();
+  const SeedInput& pick_seed();
   void mutate(Bytes& data);
 
   std::vector<SeedInput> seeds_;
+  std::vector<std::size_t> ordinary_, large_;  // indices into seeds_
   SplitMix64 random_;
   std::size_t max_len_;
 };

@@ -89,6 +89,18 @@ TEST(FuzzCiInputs, ReachesDeepNestingFromASmallSeed) {
   EXPECT_GE(deepest, 10000u);
 }
 
+// Deep-nesting seeds are hundreds of KB: they seed one generated input in 32, not one in two.
+TEST(FuzzCiInputs, LargeSeedsAreMutatedRarely) {
+  const Bytes large(CiInputGenerator::large_seed_bytes + 1, 'L');
+  const std::vector<SeedInput> seeds = {{"deep.json", large}, {"small.json", Bytes{'[', ']'}}};
+  std::size_t from_large = 0;
+  const std::size_t count = 6400;
+  for (const Bytes& input : generate(seeds, 9, count, 1 << 20))
+    from_large += std::count(input.begin(), input.end(), 'L') > 1000;
+  EXPECT_GT(from_large, count / CiInputGenerator::large_seed_share / 2);
+  EXPECT_LT(from_large, count / CiInputGenerator::large_seed_share * 2);
+}
+
 TEST(FuzzCiInputs, WithoutSeedsEveryInputIsRandomBytes) {
   const auto inputs = generate({}, 5, 500);
   std::size_t distinct_lengths = 0;
