@@ -27,35 +27,21 @@
 #include "shadowcts/gbuffer_exr.h"
 #include "shadowcts/hard_shadow_oracle.h"
 #include "shadowcts/soft_shadow_oracle.h"
+#include "tool_run.h"
 
 namespace shadowcts {
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-const std::string tool = SHADOWCTS_TOOL;
+using testing::read_file;
+using testing::run_tool;
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("shadowcts_frame_check_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return testing::fresh_dir("frame_check_" + name);
 }
 
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-int run_tool(const std::string& arguments, const fs::path& dir) {
-  const std::string command =
-      "cd '" + dir.string() + "' && '" + tool + "' " + arguments + " > stdout.txt 2> stderr.txt";
-  const int status = std::system(command.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
+const std::string tool = SHADOWCTS_TOOL;
 
 void write_channel(const fs::path& path, std::uint32_t w, std::uint32_t h,
                    const std::vector<float>& values, const char* name = "Y") {

@@ -22,42 +22,22 @@
 #include "shadowcts/image_file.h"
 #include "shadowcts/registry.h"
 #include "shadowcts/runner.h"
+#include "tool_run.h"
 
 namespace shadowcts {
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+using testing::read_file;
+using testing::run_shell;
+using testing::run_tool;
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("shadowcts_output_integrity_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// Exit status of a shell command line run by bash in `dir` (stdout/stderr to files there); -1
-// when it did not exit (killed by a signal).
-int run_shell(const std::string& script, const fs::path& dir) {
-  std::ofstream(dir / "script.sh") << script;
-  const std::string command =
-      "cd '" + dir.string() + "' && bash script.sh > stdout.txt 2> " + "stderr.txt";
-  const int status = std::system(command.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return testing::fresh_dir("output_integrity_" + name);
 }
 
 const std::string tool = SHADOWCTS_TOOL;
-
-int run_tool(const std::string& arguments, const fs::path& dir) {
-  return run_shell("exec '" + tool + "' " + arguments + "\n", dir);
-}
 
 std::string err_of(const fs::path& dir) {
   return read_file(dir / "stderr.txt");

@@ -14,33 +14,17 @@
 
 #include "shadowcts/errors.h"
 #include "shadowcts/registry.h"
+#include "tool_run.h"
 
 namespace shadowcts {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::read_file;
+using testing::run_tool;
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("shadowcts_runner_test_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// Exit status of the tool run through the shell (stdout/stderr to files in `dir`).
-int run_tool(const std::string& arguments, const fs::path& dir) {
-  const std::string command = std::string(SHADOWCTS_TOOL) + " " + arguments + " > " +
-                              (dir / "stdout.txt").string() + " 2> " +
-                              (dir / "stderr.txt").string();
-  const int status = std::system(command.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return testing::fresh_dir("runner_test_" + name);
 }
 
 RunOptions small_run(const fs::path& out, std::uint32_t threads) {
