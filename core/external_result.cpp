@@ -15,6 +15,7 @@
 #include "json_limits.h"
 #include "shadowcts/case_manifest.h"
 #include "shadowcts/errors.h"
+#include "shadowcts/geometry/camera_frame.h"
 #include "shadowcts/registry.h"
 #include "shadowcts/runner.h"
 
@@ -235,23 +236,6 @@ LightGrid read_light_grid(const std::string& path, const Case& c) {
   return grid;
 }
 
-struct Frame {
-  glm::dvec3 eye, right, up, forward;
-  double tan_half_fov, aspect;
-};
-
-// The camera convention of generate_view_samples (docs/checking-an-engine-frame.md).
-Frame camera_frame(const Camera& cam) {
-  Frame f;
-  f.eye = glm::dvec3(cam.position);
-  f.forward = glm::normalize(glm::dvec3(cam.target) - f.eye);
-  f.right = glm::normalize(glm::cross(f.forward, glm::dvec3(cam.up)));
-  f.up = glm::cross(f.right, f.forward);
-  f.tan_half_fov = std::tan(double(cam.vertical_fov_degrees) * 3.14159265358979323846 / 360.0);
-  f.aspect = double(cam.width) / double(cam.height);
-  return f;
-}
-
 float round_down(double v) {
   float f = float(v);
   return double(f) > v ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
@@ -332,7 +316,7 @@ class ExternalResult : public Algorithm {
   }
 
   LightLists light_lists(const Case& c, const ViewSamples& samples) const {
-    const Frame f = camera_frame(c.camera);
+    const CameraFrame f = camera_frame(c.camera);
     LightLists lists;
     lists.offsets.assign(1, 0);
     for (const auto& list : grid.lists) {
@@ -363,7 +347,7 @@ class ExternalResult : public Algorithm {
               for (double d : {d0, d1}) {
                 const double sx = (2.0 * x / W - 1.0) * f.tan_half_fov * f.aspect;
                 const double sy = (1.0 - 2.0 * y / H) * f.tan_half_fov;
-                const glm::dvec3 p = f.eye + d * (f.forward + sx * f.right + sy * f.up);
+                const glm::dvec3 p = f.origin + d * (f.forward + sx * f.right + sy * f.up);
                 lo[k] = glm::min(lo[k], p);
                 hi[k] = glm::max(hi[k], p);
               }
@@ -373,7 +357,8 @@ class ExternalResult : public Algorithm {
       const ViewSample& s = samples.samples[i];
       if (s.sample_class != SampleClass::regular) continue;
       const glm::dvec3 p(s.position);
-      const std::uint32_t k = list_of_pixel(s.pixel_x, s.pixel_y, glm::dot(p - f.eye, f.forward));
+      const std::uint32_t k =
+          list_of_pixel(s.pixel_x, s.pixel_y, glm::dot(p - f.origin, f.forward));
       lists.list_of_sample[i] = k;
       lo[k] = glm::min(lo[k], p);
       hi[k] = glm::max(hi[k], p);

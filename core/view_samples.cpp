@@ -1,4 +1,5 @@
 #include "shadowcts/view_samples.h"
+#include "shadowcts/geometry/camera_frame.h"
 
 #include <cmath>
 #include <string>
@@ -26,22 +27,6 @@ SampleClass classify(const Case& c, const glm::vec3& position, const glm::vec3& 
     to_light = glm::dvec3(c.light->direction);
   return glm::dot(glm::dvec3(normal), to_light) > 0.0 ? SampleClass::regular
                                                       : SampleClass::back_facing;
-}
-
-struct CameraFrame {
-  glm::dvec3 origin, right, up, forward;
-  double tan_half_fov, aspect;
-};
-
-CameraFrame camera_frame(const Camera& cam) {
-  CameraFrame f;
-  f.origin = glm::dvec3(cam.position);
-  f.forward = glm::normalize(glm::dvec3(cam.target) - f.origin);
-  f.right = glm::normalize(glm::cross(f.forward, glm::dvec3(cam.up)));
-  f.up = glm::cross(f.right, f.forward);
-  f.tan_half_fov = std::tan(double(cam.vertical_fov_degrees) * 3.14159265358979323846 / 360.0);
-  f.aspect = double(cam.width) / double(cam.height);
-  return f;
 }
 
 }  // namespace
