@@ -1,0 +1,174 @@
+#pragma once
+// The receiver half-space rule (DESIGN.md, "Cases and ground truth"; docs/specification.md), for
+// host and device: a caster T != r shadows the sample p of receiver r only where T meets the
+// segment p -> L (the ray, for a directional light) at a point strictly on the light's side of
+// r's supporting plane. A float sample lies within rounding of its receiver's plane, often just
+// below it; without the rule a coplanar neighbour of r, or the next face of a convex closed mesh,
+// blocks the segments of the samples beside their common edge.
+//
+// Every decision is an exact orientation sign (exact_orientation.h), never an epsilon:
+// - caster_reach() sorts a caster by its vertices: all strictly on the light's side (the rule
+//   never removes one of its hits), none strictly on it (it never shadows this receiver), or
+//   straddling;
+// - for a straddling caster that meets the segment, hit_on_light_side() decides the side of the
+//   one point where the segment crosses the caster's plane: with g the caster's orientation and f
+//   the receiver's (positive on the light's side), that point has
+//   f = (g(p) f(L) - f(p) g(L)) / (g(p) - g(L)) (point light) or
+//   f = f(p) - g(p) Df / Dg with Dg, Df the orientations towards d (directional light),
+//   a degree-6 sign decided by a filter and, where it cannot, by exact expansion products.
+//
+// Two limits, both outside what a robust sample can depend on (docs/specification.md explains
+// why): a segment lying in the caster's plane (the caster seen edge-on, where float segment tests
+// report no hit either) never counts, and where the exact products would need more than 16
+// components per factor (a degree-3 orientation spanning more than about 420 bits: float inputs
+// whose magnitudes differ by more than about 2^110 within one predicate) the filter's doubt is
+// answered "not on the light's side".
+#include <cmath>
+#include <cstdint>
+
+#include <glm/vec3.hpp>
+
+#include "shadowcts/geometry/exact_orientation.h"
+#include "shadowcts/geometry/expansion.h"
+#include "shadowcts/host_device.h"
+
+namespace shadowcts::geometry {
+
+struct ReceiverHalfSpace {
+  glm::dvec3 a{0.0}, b{0.0}, c{0.0};  // the receiver's vertices
+  glm::dvec3 light{0.0};              // point light L, or the direction d towards the light
+  bool directional = false;
+  // The receiver has a supporting plane (non-zero area). Without one the rule is void: every
+  // caster point counts.
+  bool has_plane = false;
+  // +1 or -1: the sign of the receiver's orientation on the light's side; 0 when the light lies
+  // in the receiver's plane (grazing: no point is strictly on the light's side, so no caster
+  // counts; the sample classification calls such samples back-facing and never compares them).
+  int light_side = 0;
+};
+
+SHADOWCTS_HD inline ReceiverHalfSpace receiver_half_space(const glm::dvec3& a, const glm::dvec3& b,
+                                                          const glm::dvec3& c, bool directional,
+                                                          const glm::dvec3& light) {
+  ReceiverHalfSpace h;
+  h.a = a;
+  h.b = b;
+  h.c = c;
+  h.light = light;
+  h.directional = directional;
+  // Zero area iff every direction is in the plane's span: the orientation towards the three axes
+  // vanishes (the normal (b - a) x (c - a) is zero), decided exactly.
+  h.has_plane = orientation_towards(a, b, c, glm::dvec3(1.0, 0.0, 0.0)) != 0 ||
+                orientation_towards(a, b, c, glm::dvec3(0.0, 1.0, 0.0)) != 0 ||
+                orientation_towards(a, b, c, glm::dvec3(0.0, 0.0, 1.0)) != 0;
+  if (h.has_plane)
+    h.light_side = directional ? orientation_towards(a, b, c, light) : orientation(a, b, c, light);
+  return h;
+}
+
+// +1: x strictly on the light's side of the receiver's plane; 0: in the plane; -1: beyond it.
+SHADOWCTS_HD inline int light_side_of(const ReceiverHalfSpace& h, const glm::dvec3& x) {
+  return orientation(h.a, h.b, h.c, x) * h.light_side;
+}
+
+enum class CasterReach : std::uint8_t {
+  every_hit,  // every vertex strictly on the light's side (or the rule is void)
+  no_hit,     // no vertex strictly on the light's side: the caster never shadows this receiver
+  straddles,  // decide each hit with hit_on_light_side()
+};
+
+SHADOWCTS_HD inline CasterReach caster_reach(const ReceiverHalfSpace& h, const glm::dvec3& v0,
+                                             const glm::dvec3& v1, const glm::dvec3& v2) {
+  if (!h.has_plane) return CasterReach::every_hit;
+  if (h.light_side == 0) return CasterReach::no_hit;
+  const int s0 = light_side_of(h, v0), s1 = light_side_of(h, v1), s2 = light_side_of(h, v2);
+  if (s0 > 0 && s1 > 0 && s2 > 0) return CasterReach::every_hit;
+  if (s0 <= 0 && s1 <= 0 && s2 <= 0) return CasterReach::no_hit;
+  return CasterReach::straddles;
+}
+
+namespace detail {
+
+// Sign of a b - c d for exact factors; 2 when the factors are too long for the exact products.
+template <int N>
+SHADOWCTS_HD inline int sign_of_product_difference(const Expansion<N>& a_full,
+                                                   const Expansion<N>& b_full,
+                                                   const Expansion<N>& c_full,
+                                                   const Expansion<N>& d_full) {
+  const int ab = sign(a_full) * sign(b_full), cd = sign(c_full) * sign(d_full);
+  if (ab == 0 || cd == 0 || ab != cd) return ab != 0 ? ab : -cd;
+  const Expansion<N> a = compressed(a_full), b = compressed(b_full), c = compressed(c_full),
+                     d = compressed(d_full);
+  // Same signs: compare the magnitudes, first in doubles with a certified margin (the estimate of
+  // a compressed expansion of at most 16 components is within 2^-48 of its value; each product
+  // adds one rounding).
+  const double x = estimate(a) * estimate(b), y = estimate(c) * estimate(d);
+  const double margin = 0x1p-44 * (fabs(x) + fabs(y));
+  if (x - y > margin) return 1;
+  if (y - x > margin) return -1;
+  Expansion<16> a16, b16, c16, d16;
+  if (!narrowed(a, a16) || !narrowed(b, b16) || !narrowed(c, c16) || !narrowed(d, d16)) return 2;
+  return sign(sum(product(a16, b16), negated(product(c16, d16))));
+}
+
+}  // namespace detail
+
+// For a non-degenerate caster (v0, v1, v2) that meets the closed segment from p to the point
+// light (or the ray from p towards the directional light): whether it meets it at a point strictly
+// on the light's side of the receiver's plane. The caller has decided that it meets it.
+SHADOWCTS_HD inline bool hit_on_light_side(const ReceiverHalfSpace& h, const glm::dvec3& p,
+                                           const glm::dvec3& v0, const glm::dvec3& v1,
+                                           const glm::dvec3& v2) {
+  if (!h.has_plane) return true;
+  if (h.light_side == 0) return false;
+  const Expansion<192> fp = h.light_side > 0 ? orientation_value(h.a, h.b, h.c, p)
+                                             : negated(orientation_value(h.a, h.b, h.c, p));
+  const Expansion<192> gp = orientation_value(v0, v1, v2, p);
+  int s = 0;
+  if (!h.directional) {
+    const Expansion<192> fl = h.light_side > 0 ? orientation_value(h.a, h.b, h.c, h.light)
+                                               : negated(orientation_value(h.a, h.b, h.c, h.light));
+    const Expansion<192> gl = orientation_value(v0, v1, v2, h.light);
+    const int sgp = sign(gp), sgl = sign(gl);
+    if (sgp == 0 && sgl == 0) return false;  // the segment lies in the caster's plane
+    // sign(g(p) - g(L)): the segment crosses the caster's plane, so g(p) and g(L) differ in sign
+    // or one of them is zero.
+    const int denominator = sgp != 0 ? sgp : -sgl;
+    s = detail::sign_of_product_difference(gp, fl, fp, gl);
+    if (s == 2) return false;
+    s *= denominator;
+  } else {
+    const Expansion<96> dg96 = orientation_towards_value(v0, v1, v2, h.light);
+    const int sdg = sign(dg96);
+    if (sdg == 0) return false;  // the ray is parallel to the caster's plane (and lies in it)
+    Expansion<96> df96 = orientation_towards_value(h.a, h.b, h.c, h.light);
+    if (h.light_side < 0) df96 = negated(df96);
+    // f(p) Dg - g(p) Df, with every factor in one capacity.
+    Expansion<192> dg, df;
+    dg.size = dg96.size;
+    df.size = df96.size;
+    for (int i = 0; i < dg96.size; ++i) dg.component[i] = dg96.component[i];
+    for (int i = 0; i < df96.size; ++i) df.component[i] = df96.component[i];
+    s = detail::sign_of_product_difference(fp, dg, gp, df);
+    if (s == 2) return false;
+    s *= sdg;
+  }
+  return s > 0;
+}
+
+// Whether a caster that meets the shadow segment (ray) of p shadows p under the rule.
+SHADOWCTS_HD inline bool caster_counts(const ReceiverHalfSpace& h, const glm::dvec3& p,
+                                       const glm::dvec3& v0, const glm::dvec3& v1,
+                                       const glm::dvec3& v2) {
+  switch (caster_reach(h, v0, v1, v2)) {
+    case CasterReach::every_hit:
+      return true;
+    case CasterReach::no_hit:
+      return false;
+    case CasterReach::straddles:
+      break;
+  }
+  return hit_on_light_side(h, p, v0, v1, v2);
+}
+
+}  // namespace shadowcts::geometry
