@@ -1,5 +1,6 @@
 #include "shadowcts/view_samples.h"
 #include "shadowcts/geometry/camera_frame.h"
+#include "shadowcts/geometry/exact_orientation.h"
 
 #include <cmath>
 #include <string>
@@ -17,16 +18,23 @@ namespace shadowcts {
 namespace {
 
 // Orientation against the shadow light. Without a shadow light (light-assignment cases) every
-// hit is regular; the light-assignment normal rule works per light.
-SampleClass classify(const Case& c, const glm::vec3& position, const glm::vec3& normal) {
+// hit is regular; the light-assignment normal rule works per light. A light exactly in the
+// receiver's plane (decided exactly) is grazing: no point is strictly on its side of the plane,
+// so the receiver half-space rule has nothing to say, and the sample is not compared.
+SampleClass classify(const Case& c, const glm::vec3& position, const glm::vec3& normal,
+                     const Triangle& receiver) {
   if (!c.light) return SampleClass::regular;
   glm::dvec3 to_light;
-  if (c.light->kind == ShadowLightKind::point)
+  const bool point = c.light->kind == ShadowLightKind::point;
+  if (point)
     to_light = glm::dvec3(c.light->position) - glm::dvec3(position);
   else
     to_light = glm::dvec3(c.light->direction);
-  return glm::dot(glm::dvec3(normal), to_light) > 0.0 ? SampleClass::regular
-                                                      : SampleClass::back_facing;
+  if (!(glm::dot(glm::dvec3(normal), to_light) > 0.0)) return SampleClass::back_facing;
+  const glm::dvec3 a(receiver.v0), b(receiver.v1), cc(receiver.v2);
+  const int side = point ? geometry::orientation(a, b, cc, glm::dvec3(c.light->position))
+                         : geometry::orientation_towards(a, b, cc, glm::dvec3(c.light->direction));
+  return side != 0 ? SampleClass::regular : SampleClass::back_facing;
 }
 
 }  // namespace
@@ -93,7 +101,7 @@ ViewSamples generate_view_samples(const Case& c) {
         s.position = glm::vec3(p);
         s.normal = glm::vec3(n);
         s.receiver = tri_index;
-        s.sample_class = classify(c, s.position, s.normal);
+        s.sample_class = classify(c, s.position, s.normal, t);
       }
     }
   });
@@ -113,7 +121,7 @@ void classify_samples(const Case& c, ViewSamples& samples, const std::string& so
           source, "pixel (" + std::to_string(s.pixel_x) + ", " + std::to_string(s.pixel_y) + ").id",
           "receiver id " + std::to_string(s.receiver) + " out of range (" +
               std::to_string(c.triangles.size()) + " triangles)");
-    s.sample_class = classify(c, s.position, s.normal);
+    s.sample_class = classify(c, s.position, s.normal, c.triangles[s.receiver]);
   }
 }
 

@@ -15,10 +15,11 @@ constexpr std::uint32_t no_triangle = 0xffffffffu;
 struct ExactBandClassifier::Query {
   glm::dvec3 position;
   bool shadowed = false;
-  std::uint32_t first_blocker = no_triangle;  // the first candidate that blocks p itself
+  BandCandidate first_blocker{0.0, no_triangle};  // the first candidate that blocks p itself
   const std::vector<BandCandidate>* candidates = nullptr;  // sorted by (separation, triangle)
-  std::vector<std::uint32_t> blockers;  // shadowed: every candidate that blocks p, first first
+  std::vector<BandCandidate> blockers;  // shadowed: every candidate that blocks p, first first
   std::uint32_t receiver = no_receiver;
+  ReceiverPlane plane;  // the receiver's, for the receiver half-space rule
 };
 
 namespace {
@@ -59,11 +60,17 @@ ExactBandClassifier::ExactBandClassifier(const Case& c, const HardShadowLight& l
   if (!class_lengths_.empty()) largest_move_ = std::max(largest_move_, class_lengths_.back());
 }
 
-bool ExactBandClassifier::cube_in_shadow_of(const Query& q, std::uint32_t triangle,
+bool ExactBandClassifier::blocks(const Query& q, const BandCandidate& candidate,
+                                 const MovedPoint& x) const {
+  return predicate_.blocks(case_.triangles[candidate.triangle], x, q.plane, candidate.reach);
+}
+
+// The 8 corners blocked by one caster put the cube inside that caster's shadowing set: the points
+// whose query meets the convex part of it strictly on the light's side, a convex set.
+bool ExactBandClassifier::cube_in_shadow_of(const Query& q, const BandCandidate& blocker,
                                             double delta) const {
   for (std::size_t m = first_corner_move; m < band_moves.size(); ++m)
-    if (!predicate_.blocks(case_.triangles[triangle], MovedPoint{q.position, delta, band_moves[m]}))
-      return false;
+    if (!blocks(q, blocker, MovedPoint{q.position, delta, band_moves[m]})) return false;
   return true;
 }
 
@@ -87,7 +94,7 @@ bool ExactBandClassifier::answer_constant_on_cube(const Query& q, double delta) 
     return true;
   }
   // Shadowed: the cube inside one blocker's shadow volume, or no exposed boundary piece in it.
-  for (const std::uint32_t blocker : q.blockers)
+  for (const BandCandidate& blocker : q.blockers)
     if (cube_in_shadow_of(q, blocker, delta)) return true;
   const ExactCubeQuery cube(predicate_, q.position, delta);
   return boundary_misses(q, cube, active);
@@ -104,6 +111,8 @@ bool ExactBandClassifier::boundary_misses(const Query& q, const ExactCubeQuery& 
   for (std::size_t i = 0; i < active; ++i) {
     const std::uint32_t t = candidates[i].triangle;
     const Triangle& tri = case_.triangles[t];
+    if (candidates[i].reach == PlaneReach::straddles && cube.clip_wedge_meets(tri, q.plane))
+      return false;
     for (int k = 0; k < 3; ++k) {
       if (!closure_.may_expose(t, k, q.receiver)) continue;
       // Every piece's wedge and every point's ray lies in the wedge behind the whole edge.
@@ -170,26 +179,32 @@ SampleTruth ExactBandClassifier::classify(const ViewSample& sample,
   // Candidates: every caster that may come within largest_move_ of the query (conservative, see
   // caster_bvh.h and shadow_segment.h). On the way, the exact answer at p: only candidates with
   // separation 0 can block p itself.
+  if (sample.receiver != no_receiver)
+    q.plane = predicate_.receiver_plane(case_.triangles[sample.receiver]);
+  const MovedPoint at_p{q.position, 0.0, {0, 0, 0}};
   auto gather = [&](bool stop_at_first_blocker) {
     candidates.clear();
-    q.first_blocker = no_triangle;
+    q.first_blocker = BandCandidate{0.0, no_triangle};
     casters_.visit(segment, largest_move_, [&](std::uint32_t triangle) {
       if (triangle == sample.receiver) return false;
       const Triangle& t = case_.triangles[triangle];
       const double separation = separation_inflation(segment, glm::dvec3(t.v0), glm::dvec3(t.v1),
                                                      glm::dvec3(t.v2), largest_move_);
       if (separation > largest_move_) return false;
-      candidates.push_back({separation, triangle});
-      if (separation == 0.0 && q.first_blocker == no_triangle &&
-          predicate_.blocks(t, MovedPoint{q.position, 0.0, {0, 0, 0}})) {
-        q.first_blocker = triangle;
+      const PlaneReach reach = predicate_.reach(q.plane, t);
+      if (reach == PlaneReach::none) return false;  // shadows no point of this sample's cubes
+      const BandCandidate candidate{separation, triangle, reach};
+      candidates.push_back(candidate);
+      if (separation == 0.0 && q.first_blocker.triangle == no_triangle &&
+          blocks(q, candidate, at_p)) {
+        q.first_blocker = candidate;
         return stop_at_first_blocker;
       }
       return false;
     });
   };
   gather(true);
-  q.shadowed = q.first_blocker != no_triangle;
+  q.shadowed = q.first_blocker.triangle != no_triangle;
 
   SampleTruth truth;
   truth.shadowed = q.shadowed;
@@ -209,10 +224,8 @@ SampleTruth ExactBandClassifier::classify(const ViewSample& sample,
     q.blockers.push_back(q.first_blocker);
     for (const BandCandidate& candidate : candidates) {
       if (candidate.separation != 0.0) break;
-      if (candidate.triangle != q.first_blocker &&
-          predicate_.blocks(case_.triangles[candidate.triangle],
-                            MovedPoint{q.position, 0.0, {0, 0, 0}}))
-        q.blockers.push_back(candidate.triangle);
+      if (candidate.triangle != q.first_blocker.triangle && blocks(q, candidate, at_p))
+        q.blockers.push_back(candidate);
     }
   }
 

@@ -9,6 +9,14 @@
 // robust_exponent the lengths 2^k S, k = -24 ... -10. A cube that is certified constant holds
 // every smaller cube, so robustness is monotone in the length.
 //
+// Under the receiver half-space rule (DESIGN.md) a caster shadows only with its part strictly on
+// the light's side of the receiver's plane, which stays fixed while the cube moves p. Casters with
+// no vertex on that side are no candidates at all; a straddling caster's shadow volume, triangle
+// and edges contain those of its shadowing part, so the tests below stay conservative with the
+// whole caster, and the one new boundary piece, the wedge behind the caster's piece in the plane,
+// is tested too. Closed pieces stay closed where they lie on the light's side: a caster sharing
+// such a piece has points there, so it is a candidate, and near the piece both are unclipped.
+//
 // The oracle certifies a cube constant only by exact arguments (never by trying moves):
 // - lit, cheaply: the candidate set (triangles that may come within the band of the shadow
 //   query, with a conservative separation each) holds no triangle nearer than h;
@@ -49,6 +57,7 @@ struct SampleTruth {
 struct BandCandidate {
   double separation = 0.0;
   std::uint32_t triangle = 0;
+  PlaneReach reach = PlaneReach::whole;  // against the sample's receiver plane
 };
 
 class ExactBandClassifier {
@@ -64,7 +73,8 @@ class ExactBandClassifier {
 
  private:
   struct Query;
-  bool cube_in_shadow_of(const Query& q, std::uint32_t triangle, double delta) const;
+  bool cube_in_shadow_of(const Query& q, const BandCandidate& blocker, double delta) const;
+  bool blocks(const Query& q, const BandCandidate& candidate, const MovedPoint& x) const;
   std::size_t active_candidates(const Query& q, double delta) const;
   bool answer_constant_on_cube(const Query& q, double delta) const;
   bool boundary_misses(const Query& q, const ExactCubeQuery& cube, std::size_t active) const;

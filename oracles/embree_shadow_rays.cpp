@@ -16,14 +16,24 @@ namespace {
 struct ReceiverContext {
   RTCIntersectContext context;  // first member: the filter casts the context pointer back
   unsigned receiver_primitive;
+  const EmbreeScene* scene;
+  EmbreeShadowRays::CasterRule rule;
 };
 
-// Rejects hits on the receiver triangle: it never shadows its own sample.
-void ignore_receiver(const RTCFilterFunctionNArguments* args) {
+// Rejects hits on the receiver triangle (it never shadows its own sample) and hits on casters
+// that the rule does not let count.
+void filter_hits(const RTCFilterFunctionNArguments* args) {
   const auto* context = reinterpret_cast<const ReceiverContext*>(args->context);
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] != -1) continue;
-    if (RTCHitN_primID(args->hit, args->N, i) == context->receiver_primitive) args->valid[i] = 0;
+    const unsigned primitive = RTCHitN_primID(args->hit, args->N, i);
+    if (primitive == context->receiver_primitive) {
+      args->valid[i] = 0;
+    } else if (context->rule.counts &&
+               !context->rule.counts(context->rule.state,
+                                     context->scene->triangle_of_primitive(primitive))) {
+      args->valid[i] = 0;
+    }
   }
 }
 
@@ -43,18 +53,21 @@ struct EmbreeShadowRays::Scene {
   EmbreeScene casters;
 
   explicit Scene(const Case& c)
-      : light(hard_shadow_light(c)), casters(c, shadow_casters(c), ignore_receiver) {}
+      : light(hard_shadow_light(c)), casters(c, shadow_casters(c), filter_hits) {}
 };
 
 EmbreeShadowRays::EmbreeShadowRays(const Case& c) : scene_(std::make_unique<Scene>(c)) {}
 
 EmbreeShadowRays::~EmbreeShadowRays() = default;
 
-bool EmbreeShadowRays::occluded(const glm::vec3& origin, std::uint32_t receiver) const {
+bool EmbreeShadowRays::occluded(const glm::vec3& origin, std::uint32_t receiver,
+                                const CasterRule& rule) const {
   const Scene& s = *scene_;
   ReceiverContext context;
   rtcInitIntersectContext(&context.context);
   context.receiver_primitive = s.casters.primitive_of_triangle(receiver);
+  context.scene = &s.casters;
+  context.rule = rule;
 
   RTCRay ray{};
   ray.org_x = origin.x;

@@ -6,6 +6,8 @@
 #include <limits>
 #include <optional>
 #include <type_traits>
+#include <utility>
+#include <vector>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Exact_rational.h>
@@ -61,6 +63,24 @@ bool triangle_meets_segment(const typename Kernel::Triangle_3& triangle,
   return CGAL::do_intersect(triangle, typename Kernel::Segment_3(from, to));
 }
 
+// The query of x in exact rationals: from x to the point light, or to x + 2^e d, beyond every
+// caster (far_point_exponent).
+std::pair<RationalKernel::Point_3, RationalKernel::Point_3> rational_query(
+    const HardShadowLight& light, double scene_bound, const MovedPoint& x) {
+  using P = RationalKernel::Point_3;
+  using V = RationalKernel::Vector_3;
+  const Rational delta(x.delta);
+  const P from(Rational(x.base.x) + delta * x.direction.x,
+               Rational(x.base.y) + delta * x.direction.y,
+               Rational(x.base.z) + delta * x.direction.z);
+  if (!light.directional) return {from, P(light.position.x, light.position.y, light.position.z)};
+  const double max_abs_x =
+      std::max({std::fabs(x.base.x), std::fabs(x.base.y), std::fabs(x.base.z)}) + x.delta;
+  const Rational scale(
+      std::ldexp(1.0, far_point_exponent(scene_bound, max_abs_x, light.direction)));
+  return {from, from + V(light.direction.x, light.direction.y, light.direction.z) * scale};
+}
+
 }  // namespace
 
 bool is_zero_area(const Triangle& t) {
@@ -101,20 +121,86 @@ bool ExactShadowPredicate::blocks(const Triangle& t, const MovedPoint& x) const 
   }
 
   // Exact rational fallback: the same predicate on exactly constructed points.
-  using P = RationalKernel::Point_3;
-  using V = RationalKernel::Vector_3;
-  const Rational delta(x.delta);
-  const P from(Rational(x.base.x) + delta * x.direction.x,
-               Rational(x.base.y) + delta * x.direction.y,
-               Rational(x.base.z) + delta * x.direction.z);
-  P to;
-  if (light_.directional) {
-    const Rational scale(std::ldexp(1.0, far_exponent));
-    to = from + V(light_.direction.x, light_.direction.y, light_.direction.z) * scale;
-  } else {
-    to = P(light_.position.x, light_.position.y, light_.position.z);
-  }
+  const auto [from, to] = rational_query(light_, scene_bound_, x);
   return triangle_meets_segment<RationalKernel>(kernel_triangle<RationalKernel>(t), from, to);
+}
+
+namespace {
+
+using RationalPoint = RationalKernel::Point_3;
+
+RationalPoint rational_point(const glm::dvec3& x) {
+  return RationalPoint(x.x, x.y, x.z);
+}
+
+// det[b - a, c - a, d] for a direction d: exact.
+int orientation_towards(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+                        const glm::dvec3& d) {
+  using V = RationalKernel::Vector_3;
+  const RationalPoint pa = rational_point(a);
+  return int(CGAL::orientation(rational_point(b) - pa, rational_point(c) - pa, V(d.x, d.y, d.z)));
+}
+
+// The side of x: +1 strictly on the light's side of the receiver's plane, 0 in it, -1 beyond.
+template <class Point>
+int side_of(const ReceiverPlane& plane, const Point& x) {
+  const Point a(plane.a.x, plane.a.y, plane.a.z), b(plane.b.x, plane.b.y, plane.b.z),
+      c(plane.c.x, plane.c.y, plane.c.z);
+  return int(CGAL::orientation(a, b, c, x)) * plane.light_side;
+}
+
+int side_of_vertex(const ReceiverPlane& plane, const glm::vec3& v) {
+  return side_of(plane, Epick::Point_3(v.x, v.y, v.z));
+}
+
+}  // namespace
+
+ReceiverPlane ExactShadowPredicate::receiver_plane(const Triangle& receiver) const {
+  ReceiverPlane plane;
+  if (is_zero_area(receiver)) return plane;
+  plane.active = true;
+  plane.a = glm::dvec3(receiver.v0);
+  plane.b = glm::dvec3(receiver.v1);
+  plane.c = glm::dvec3(receiver.v2);
+  if (light_.directional) {
+    plane.light_side = orientation_towards(plane.a, plane.b, plane.c, light_.direction);
+  } else {
+    using P = Epick::Point_3;
+    const glm::dvec3& l = light_.position;
+    plane.light_side = int(CGAL::orientation(P(plane.a.x, plane.a.y, plane.a.z),
+                                             P(plane.b.x, plane.b.y, plane.b.z),
+                                             P(plane.c.x, plane.c.y, plane.c.z), P(l.x, l.y, l.z)));
+  }
+  return plane;
+}
+
+PlaneReach ExactShadowPredicate::reach(const ReceiverPlane& plane, const Triangle& t) const {
+  if (!plane.active) return PlaneReach::whole;
+  if (plane.light_side == 0) return PlaneReach::none;
+  const int s0 = side_of_vertex(plane, t.v0), s1 = side_of_vertex(plane, t.v1),
+            s2 = side_of_vertex(plane, t.v2);
+  if (s0 > 0 && s1 > 0 && s2 > 0) return PlaneReach::whole;
+  if (s0 <= 0 && s1 <= 0 && s2 <= 0) return PlaneReach::none;
+  return PlaneReach::straddles;
+}
+
+bool ExactShadowPredicate::blocks(const Triangle& t, const MovedPoint& x,
+                                  const ReceiverPlane& plane, PlaneReach reach) const {
+  if (reach == PlaneReach::none || !blocks(t, x)) return false;
+  if (reach == PlaneReach::whole) return true;
+  // A straddling caster: the part of t that meets the query, constructed in exact rationals (a
+  // point, or a segment when the query lies in t's plane); the receiver's orientation is linear
+  // along it, so one of its end points is strictly on the light's side iff some point is.
+  const auto [from, to] = rational_query(light_, scene_bound_, x);
+  if (from == to) return side_of(plane, from) > 0;
+  const auto hit =
+      CGAL::intersection(kernel_triangle<RationalKernel>(t), RationalKernel::Segment_3(from, to));
+  if (!hit) return false;
+  if (const RationalPoint* point = boost::get<RationalPoint>(&*hit))
+    return side_of(plane, *point) > 0;
+  if (const auto* piece = boost::get<RationalKernel::Segment_3>(&*hit))
+    return side_of(plane, piece->source()) > 0 || side_of(plane, piece->target()) > 0;
+  return false;
 }
 
 }  // namespace shadowcts
@@ -376,34 +462,51 @@ int ExactShadowPredicate::light_plane_side(const glm::dvec3& a, const glm::dvec3
 
 struct ExactCubeQuery::Impl {
   std::optional<CubeGeometry<Epick>> fast;
-  std::optional<CubeGeometry<RationalKernel>> exact;
+  std::optional<CubeGeometry<RationalKernel>> exact;  // built where fast fails, or on demand
   // A lateral face that came out degenerate (impossible by the construction; kept as a guard):
   // every test then answers "meets", which is conservative.
   bool everything_meets = false;
+  HardShadowLight light;
+  double scene_bound = 0.0;
+  glm::dvec3 centre{0.0};
+  double half_width = 0.0;
+
+  void check(const auto& g) {
+    for (int i = 0; i < g.lateral_count; ++i)
+      if (g.laterals[std::size_t(i)].inside == CGAL::COPLANAR) everything_meets = true;
+  }
 
   template <class F>
   bool visit(F&& f) const {
     if (everything_meets) return true;
     return fast ? f(*fast) : f(*exact);
   }
+
+  // The geometry in exact rationals, for queries on points that are not doubles.
+  const CubeGeometry<RationalKernel>& exact_geometry() {
+    if (!exact) {
+      exact.emplace();
+      build_cube(light, scene_bound, centre, half_width, *exact);
+      check(*exact);
+    }
+    return *exact;
+  }
 };
 
 ExactCubeQuery::ExactCubeQuery(const ExactShadowPredicate& predicate, const glm::dvec3& centre,
                                double half_width)
     : impl_(std::make_unique<Impl>()) {
-  auto check = [&](const auto& g) {
-    for (int i = 0; i < g.lateral_count; ++i)
-      if (g.laterals[std::size_t(i)].inside == CGAL::COPLANAR) impl_->everything_meets = true;
-  };
+  impl_->light = predicate.light();
+  impl_->scene_bound = predicate.scene_bound();
+  impl_->centre = centre;
+  impl_->half_width = half_width;
   impl_->fast.emplace();
   if (build_cube(predicate.light(), predicate.scene_bound(), centre, half_width, *impl_->fast)) {
-    check(*impl_->fast);
+    impl_->check(*impl_->fast);
     return;
   }
   impl_->fast.reset();
-  impl_->exact.emplace();
-  build_cube(predicate.light(), predicate.scene_bound(), centre, half_width, *impl_->exact);
-  check(*impl_->exact);
+  impl_->exact_geometry();
 }
 
 ExactCubeQuery::~ExactCubeQuery() = default;
@@ -425,6 +528,40 @@ bool ExactCubeQuery::shadow_wedge_meets(const glm::dvec3& a, const glm::dvec3& b
 
 bool ExactCubeQuery::shadow_volume_meets(const Triangle& t) const {
   return impl_->visit([&](const auto& g) { return g.triangle_meets_hull(t); });
+}
+
+bool ExactCubeQuery::clip_wedge_meets(const Triangle& t, const ReceiverPlane& plane) const {
+  // t n plane: its vertices in the plane and the crossings of its edges with it.
+  const std::array<RationalPoint, 3> v = {rational_point(glm::dvec3(t.v0)),
+                                          rational_point(glm::dvec3(t.v1)),
+                                          rational_point(glm::dvec3(t.v2))};
+  const RationalKernel::Plane_3 receiver(rational_point(plane.a), rational_point(plane.b),
+                                         rational_point(plane.c));
+  std::array<int, 3> side{};
+  for (int i = 0; i < 3; ++i) side[std::size_t(i)] = side_of(plane, v[std::size_t(i)]);
+  std::vector<RationalPoint> points;
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (side[i] == 0) points.push_back(v[i]);
+    const std::size_t j = (i + 1) % 3;
+    if (side[i] * side[j] < 0) {
+      const auto crossing = CGAL::intersection(RationalKernel::Segment_3(v[i], v[j]), receiver);
+      if (crossing)
+        if (const RationalPoint* x = boost::get<RationalPoint>(&*crossing)) points.push_back(*x);
+    }
+  }
+  if (points.empty()) return false;
+  if (impl_->everything_meets) return true;
+  const CubeGeometry<RationalKernel>& g = impl_->exact_geometry();
+  if (impl_->everything_meets) return true;
+  // The piece is convex (a segment or a point): the wedge behind it is the union of the wedges
+  // behind the segments between its points.
+  for (std::size_t i = 0; i < points.size(); ++i)
+    for (std::size_t j = i; j < points.size(); ++j) {
+      const bool meets = points[i] == points[j] ? g.hull_contains(points[i])
+                                                : g.segment_meets_hull(points[i], points[j]);
+      if (meets) return true;
+    }
+  return false;
 }
 
 }  // namespace shadowcts

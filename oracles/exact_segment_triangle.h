@@ -4,6 +4,7 @@
 // Exact for float triangle vertices, float lights and exactly represented moved positions: CGAL's
 // orientation predicates decide, no plane or intersection point is ever constructed in floating
 // point, and no coordinate is ever rounded.
+#include <cstdint>
 #include <memory>
 
 #include <glm/vec3.hpp>
@@ -26,6 +27,24 @@ struct MovedPoint {
 // shadow).
 bool is_zero_area(const Triangle& t);
 
+// The receiver half-space rule (DESIGN.md, "Cases and ground truth"): a caster shadows a sample
+// only where it meets the sample's segment (ray) strictly on the light's side of the receiver's
+// supporting plane. The plane stays fixed while the band moves the sample.
+struct ReceiverPlane {
+  bool active = false;  // the sample has a receiver of non-zero area; otherwise the rule is void
+  glm::dvec3 a{0.0}, b{0.0}, c{0.0};  // the receiver's vertices
+  // The sign of orientation(a, b, c, .) on the light's side; 0 when the light lies in the plane
+  // (then no point is strictly on its side and no caster shadows the sample).
+  int light_side = 0;
+};
+
+// Where a caster lies against a receiver's plane, by the exact sides of its vertices.
+enum class PlaneReach : std::uint8_t {
+  whole,      // every vertex strictly on the light's side (or the rule is void): no hit is removed
+  none,       // no vertex strictly on the light's side: the caster shadows no point of the sample
+  straddles,  // some vertices on each side: each hit is decided on its own
+};
+
 class ExactShadowPredicate {
  public:
   // scene_bound must be >= every |coordinate| of every triangle passed to blocks(): directional
@@ -36,6 +55,19 @@ class ExactShadowPredicate {
   // ray from x towards the directional light? False for zero-area triangles. The caller excludes
   // the receiver and non-caster triangles.
   bool blocks(const Triangle& t, const MovedPoint& x) const;
+
+  // The same under the receiver half-space rule: does t meet the segment (ray) of x at a point
+  // strictly on the light's side of the plane? `reach` must be reach(plane, t).
+  bool blocks(const Triangle& t, const MovedPoint& x, const ReceiverPlane& plane,
+              PlaneReach reach) const;
+
+  bool blocks(const Triangle& t, const MovedPoint& x, const ReceiverPlane& plane) const {
+    return blocks(t, x, plane, reach(plane, t));
+  }
+
+  // The plane of a sample's receiver (inactive for a zero-area receiver), oriented by the light.
+  ReceiverPlane receiver_plane(const Triangle& receiver) const;
+  PlaneReach reach(const ReceiverPlane& plane, const Triangle& t) const;
 
   // The side of x of the plane that holds the segment ab and the light: the plane through L, a
   // and b (point light) or through a and b parallel to d (directional). +1 or -1, consistently
@@ -85,6 +117,10 @@ class ExactCubeQuery {
   // Does the shadow volume of the non-degenerate triangle t meet B (t meets H)? Exactly when
   // some point of B is shadowed by t.
   bool shadow_volume_meets(const Triangle& t) const;
+  // For a caster that straddles the receiver's plane: does the shadow wedge behind the piece of
+  // the caster that lies in the plane (a segment or a point, which the rule makes an open edge of
+  // the caster's shadowing part) meet B?
+  bool clip_wedge_meets(const Triangle& t, const ReceiverPlane& plane) const;
 
  private:
   struct Impl;

@@ -12,6 +12,7 @@
 #include "oracles/embree_shadow_rays.h"
 #include "oracles/hard_shadow_inputs.h"
 #include "oracles/thread_limit.h"
+#include "shadowcts/geometry/receiver_half_space.h"
 #include "shadowcts/phase_clock.h"
 
 namespace shadowcts {
@@ -23,13 +24,31 @@ std::string power_of_two(double x) {
   return text;
 }
 
+// The receiver half-space rule for one sample, with the shared geometry (not the oracle's): a
+// caster that Embree reports on the sample's ray counts only where it meets it strictly on the
+// light's side of the receiver's plane.
+struct SharedRule {
+  const Case* c;
+  geometry::ReceiverHalfSpace half_space;
+  glm::dvec3 position;
+
+  static bool counts(const void* state, std::uint32_t caster) {
+    const auto& rule = *static_cast<const SharedRule*>(state);
+    const Triangle& t = rule.c->triangles[caster];
+    return geometry::caster_counts(rule.half_space, rule.position, glm::dvec3(t.v0),
+                                   glm::dvec3(t.v1), glm::dvec3(t.v2));
+  }
+};
+
 class EmbreeHardShadow final : public Algorithm {
  public:
   EmbreeHardShadow() {
     info_.id = "embree";
     info_.backend = "embree";
     info_.variants = {"robust"};
-    info_.summary = "Embree 3 occlusion rays in robust mode, receiver ignored by a filter";
+    info_.summary =
+        "Embree 3 occlusion rays in robust mode; a filter ignores the receiver and applies the "
+        "receiver half-space rule";
     info_.capabilities.output = OutputKind::hard_shadow;
     info_.capabilities.point_light = true;
     info_.capabilities.directional_light = true;
@@ -80,24 +99,35 @@ class EmbreeHardShadow final : public Algorithm {
     check_receivers(c, samples);
     AlgorithmOutput output;
     output.shadowed.assign(samples.samples.size(), 0);
+    const HardShadowLight light = hard_shadow_light(c);
     std::atomic<std::uint64_t> rays{0};
     PhaseClock clock;
     run_with_thread_limit(c.parameters.threads, [&] {
       clock.restart();
       const EmbreeShadowRays tracer(c);
       clock.lap(build_phase);
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.samples.size(), 256),
-                        [&](const tbb::blocked_range<std::size_t>& range) {
-                          std::uint64_t traced = 0;
-                          for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                            const ViewSample& sample = samples.samples[i];
-                            if (sample.sample_class != SampleClass::regular) continue;
-                            ++traced;
-                            output.shadowed[i] =
-                                tracer.occluded(sample.position, sample.receiver) ? 1 : 0;
-                          }
-                          rays += traced;
-                        });
+      tbb::parallel_for(
+          tbb::blocked_range<std::size_t>(0, samples.samples.size(), 256),
+          [&](const tbb::blocked_range<std::size_t>& range) {
+            std::uint64_t traced = 0;
+            for (std::size_t i = range.begin(); i != range.end(); ++i) {
+              const ViewSample& sample = samples.samples[i];
+              if (sample.sample_class != SampleClass::regular) continue;
+              ++traced;
+              SharedRule rule{&c, {}, glm::dvec3(sample.position)};
+              if (sample.receiver != no_receiver) {
+                const Triangle& r = c.triangles[sample.receiver];
+                rule.half_space = geometry::receiver_half_space(
+                    glm::dvec3(r.v0), glm::dvec3(r.v1), glm::dvec3(r.v2), light.directional,
+                    light.directional ? light.direction : light.position);
+              }
+              output.shadowed[i] =
+                  tracer.occluded(sample.position, sample.receiver, {&rule, &SharedRule::counts})
+                      ? 1
+                      : 0;
+            }
+            rays += traced;
+          });
       clock.lap(query_phase);
     });
     output.counters = {{"rays", rays.load()}};

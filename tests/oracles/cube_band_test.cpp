@@ -238,9 +238,11 @@ TEST(CasterClosure, TJunctionsCutEdgesIntoPieces) {
 
 bool exact_answer(const testing::HandBuiltCase& h, const ExactShadowPredicate& predicate,
                   std::uint32_t receiver, const glm::dvec3& q) {
+  // Under the receiver half-space rule, against the plane of p's receiver.
+  const ReceiverPlane plane = predicate.receiver_plane(h.c.triangles[receiver]);
   for (std::size_t t = 0; t < h.c.triangles.size(); ++t) {
     if (t == receiver || !h.c.meshes[h.c.triangles[t].mesh].caster) continue;
-    if (predicate.blocks(h.c.triangles[t], MovedPoint{q, 0.0, {0, 0, 0}})) return true;
+    if (predicate.blocks(h.c.triangles[t], MovedPoint{q, 0.0, {0, 0, 0}}, plane)) return true;
   }
   return false;
 }
@@ -285,10 +287,11 @@ TEST_P(BandOnRandomCases, RobustMeansConstantOnTheWholeCube) {
     for (int k = band_min_exponent; k <= e; ++k)
       for (const glm::ivec3& move : band_moves) {
         const MovedPoint moved{p, std::ldexp(h.c.scale(), k), move};
+        const ReceiverPlane plane = predicate.receiver_plane(h.c.triangles[s.receiver]);
         bool moved_answer = false;
         for (std::size_t t = 0; t < h.c.triangles.size() && !moved_answer; ++t)
           moved_answer = t != s.receiver && h.c.meshes[h.c.triangles[t].mesh].caster &&
-                         predicate.blocks(h.c.triangles[t], moved);
+                         predicate.blocks(h.c.triangles[t], moved, plane);
         ASSERT_EQ(moved_answer, answer) << "sample " << i << " level " << k;
       }
     for (int n = 0; n < 24; ++n) {

@@ -219,13 +219,47 @@ TEST(HardShadowOracles, ReceiverNeverShadowsItsOwnSample) {
     auto h = make_hand_built_case(light);
     const std::uint32_t receiver = h.add_triangle({-1, 2, -1}, {1, 2, -1}, {0, 2, 1});
     const std::size_t on_receiver = h.add_sample({0, 2, 0}, receiver);
-    // The same position with another receiver: the caster then contains the sample.
+    // The same position with another receiver: the caster then contains the sample, and shadows
+    // it where the caster lies on the light's side of that receiver's plane y = 0 (the receiver
+    // half-space rule): for the lights above, not for the one below.
     const std::size_t other = h.add_sample({0, 2, 0}, h.ground);
     const Truths t = run_both(h);
     expect_robustly_lit(t, on_receiver);
-    EXPECT_EQ(t.exact.shadowed[other], 1);
-    EXPECT_EQ(t.embree.shadowed[other], 1);
+    const int expected = light.kind == ShadowLightKind::point && light.position.y < 0 ? 0 : 1;
+    EXPECT_EQ(t.exact.shadowed[other], expected);
+    EXPECT_EQ(t.embree.shadowed[other], expected);
   }
+}
+
+// The receiver half-space rule (DESIGN.md): samples within rounding of their receiver's plane,
+// even below it, are not shadowed by a coplanar neighbour or by the next face of a convex closed
+// mesh, and are robust; a wall standing on the floor still shadows the floor behind it.
+TEST(HardShadowOracles, CoplanarNeighboursAndConvexNextFacesNeverShadowTheirReceiversSamples) {
+  for (const ShadowLight& light :
+       {point_light({0.5f, 8, 0.25f}), directional_light({0.1f, 1, 0})}) {
+    auto h = make_hand_built_case(light);
+    // Floor cells at y = 1 sharing the edge x = 0 (left: two triangles, right: two), and the next
+    // face of a convex roof bending down beyond x = 2.
+    h.add_triangle({-2, 1, -2}, {-2, 1, 2}, {0, 1, 2});
+    const std::uint32_t left = h.add_triangle({-2, 1, -2}, {0, 1, 2}, {0, 1, -2});
+    h.add_triangle({0, 1, -2}, {0, 1, 2}, {2, 1, 2});
+    h.add_triangle({0, 1, -2}, {2, 1, 2}, {2, 1, -2});
+    h.add_triangle({2, 1, -2}, {2, 1, 2}, {4, 0.5f, 0});
+    // One float ulp below the floor, 2^-30 beside the shared edge: the segment to the light
+    // crosses the floor's plane inside the right cell. And a sample exactly on the edge.
+    const float below = std::nextafter(1.0f, 0.0f);
+    const std::size_t beside = h.add_sample({-std::ldexp(1.0f, -30), below, 1.0f}, left);
+    const std::size_t on_edge = h.add_sample({0.0f, 1.0f, 1.0f}, left);
+    const Truths t = run_both(h);
+    expect_robustly_lit(t, beside);
+    expect_robustly_lit(t, on_edge);
+  }
+  // A wall on the floor: its faces rise above the floor's plane and shadow the floor behind it.
+  auto h = make_hand_built_case(point_light({-6, 3, 0}));
+  const std::uint32_t floor_cell = h.add_triangle({0, 1, -2}, {0, 1, 2}, {4, 1, 0});
+  h.add_triangle({1, 1, -2}, {1, 1, 2}, {1, 3, 0});
+  const std::size_t behind = h.add_sample({1.5f, std::nextafter(1.0f, 0.0f), 0.0f}, floor_cell);
+  expect_robustly_shadowed(run_both(h), behind);
 }
 
 TEST(HardShadowOracles, NonCastersNeverShadow) {
