@@ -24,25 +24,54 @@ int exact_sign(const glm::dvec3& a1, const glm::dvec3& a0, const glm::dvec3& b1,
   return det > 0 ? 1 : (det < 0 ? -1 : 0);
 }
 
-}  // namespace
+// The double determinant and its permanent (the same sum with absolute values).
+struct Evaluation {
+  double det, permanent, a_norm;
+};
 
-int sign_of_determinant(const glm::dvec3& a1, const glm::dvec3& a0, const glm::dvec3& b1,
-                        const glm::dvec3& b0, const glm::dvec3& c1, const glm::dvec3& c0) {
+Evaluation evaluate(const glm::dvec3& a1, const glm::dvec3& a0, const glm::dvec3& b1,
+                    const glm::dvec3& b0, const glm::dvec3& c1, const glm::dvec3& c0) {
   const glm::dvec3 a = a1 - a0, b = b1 - b0, c = c1 - c0;
   const double bc_x = b.y * c.z - b.z * c.y;
   const double bc_y = b.z * c.x - b.x * c.z;
   const double bc_z = b.x * c.y - b.y * c.x;
-  const double det = a.x * bc_x + a.y * bc_y + a.z * bc_z;
-  const double permanent = std::fabs(a.x) * (std::fabs(b.y * c.z) + std::fabs(b.z * c.y)) +
-                           std::fabs(a.y) * (std::fabs(b.z * c.x) + std::fabs(b.x * c.z)) +
-                           std::fabs(a.z) * (std::fabs(b.x * c.y) + std::fabs(b.y * c.x));
-  // Shewchuk's o3derrboundA, valid when the differences are themselves rounded.
-  constexpr double epsilon = std::numeric_limits<double>::epsilon() / 2.0;
-  constexpr double bound = (7.0 + 56.0 * epsilon) * epsilon;
-  if (det > bound * permanent) return 1;
-  if (-det > bound * permanent) return -1;
+  Evaluation e;
+  e.det = a.x * bc_x + a.y * bc_y + a.z * bc_z;
+  e.permanent = std::fabs(a.x) * (std::fabs(b.y * c.z) + std::fabs(b.z * c.y)) +
+                std::fabs(a.y) * (std::fabs(b.z * c.x) + std::fabs(b.x * c.z)) +
+                std::fabs(a.z) * (std::fabs(b.x * c.y) + std::fabs(b.y * c.x));
+  e.a_norm = std::fabs(a.x) + std::fabs(a.y) + std::fabs(a.z);
+  return e;
+}
+
+// Shewchuk's o3derrboundA, valid when the differences are themselves rounded.
+constexpr double half_epsilon = std::numeric_limits<double>::epsilon() / 2.0;
+constexpr double error_bound = (7.0 + 56.0 * half_epsilon) * half_epsilon;
+
+}  // namespace
+
+DeterminantEstimate estimate_determinant(const glm::dvec3& a1, const glm::dvec3& a0,
+                                         const glm::dvec3& b1, const glm::dvec3& b0,
+                                         const glm::dvec3& c1, const glm::dvec3& c0) {
+  const Evaluation e = evaluate(a1, a0, b1, b0, c1, c0);
+  DeterminantEstimate out;
+  out.value = e.det;
+  // Each of the six products b_i c_j may underflow, by at most half the smallest subnormal, and
+  // is then multiplied by a component of a; the rest is the relative bound, doubled for margin.
+  constexpr double tiny = std::numeric_limits<double>::denorm_min();
+  out.error = 2.0 * error_bound * e.permanent + 8.0 * tiny * (1.0 + e.a_norm);
+  if (!std::isfinite(e.det) || !std::isfinite(out.error))
+    out.error = std::numeric_limits<double>::infinity();
+  return out;
+}
+
+int sign_of_determinant(const glm::dvec3& a1, const glm::dvec3& a0, const glm::dvec3& b1,
+                        const glm::dvec3& b0, const glm::dvec3& c1, const glm::dvec3& c0) {
+  const Evaluation e = evaluate(a1, a0, b1, b0, c1, c0);
+  if (e.det > error_bound * e.permanent) return 1;
+  if (-e.det > error_bound * e.permanent) return -1;
   // Every product term vanished: a rounded difference is zero only when it is exactly zero.
-  if (permanent == 0.0 && std::isfinite(det)) return 0;
+  if (e.permanent == 0.0 && std::isfinite(e.det)) return 0;
   return exact_sign(a1, a0, b1, b0, c1, c0);
 }
 

@@ -10,6 +10,16 @@
 
 namespace shadowcts::stencil {
 
+// det[a1 - a0, b1 - b0, c1 - c0] in double, and a bound on the distance of `value` from the exact
+// determinant (Shewchuk's orient3d bound doubled, plus the absolute error of underflowing
+// products); infinite `error` when an intermediate overflowed.
+struct DeterminantEstimate {
+  double value = 0.0, error = 0.0;
+};
+DeterminantEstimate estimate_determinant(const glm::dvec3& a1, const glm::dvec3& a0,
+                                         const glm::dvec3& b1, const glm::dvec3& b0,
+                                         const glm::dvec3& c1, const glm::dvec3& c0);
+
 // Sign (-1, 0, 1) of det[a1 - a0, b1 - b0, c1 - c0].
 int sign_of_determinant(const glm::dvec3& a1, const glm::dvec3& a0, const glm::dvec3& b1,
                         const glm::dvec3& b0, const glm::dvec3& c1, const glm::dvec3& c0);

@@ -1,6 +1,7 @@
 #include "reference/stencil/shadow_volume.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -106,8 +107,8 @@ ShadowVolumes build_shadow_volumes(const Occluders& occluders, const HardShadowL
   return volumes;
 }
 
-std::vector<VolumeFace> own_volume_faces(const LightCap& cap, const Extrusion& extrude) {
-  std::vector<VolumeFace> faces(5);
+std::array<VolumeFace, 5> own_volume_faces(const LightCap& cap, const Extrusion& extrude) {
+  std::array<VolumeFace, 5> faces;
   faces[0].kind = FaceKind::light_cap;
   faces[0].triangle = cap.triangle;
   faces[0].v[0] = cap.v[0], faces[0].v[1] = cap.v[1], faces[0].v[2] = cap.v[2];

@@ -10,6 +10,7 @@
 // depth range along d from the highest cap to the deepest sample or the eye. One k (or K) for all
 // vertices keeps a vertex shared by several quads and caps at one extruded position, so the
 // boundary stays closed in double arithmetic too.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -56,8 +57,9 @@ struct ShadowVolumes {
 // cap, built with the same extrusion (and so the same bits) as the faces of `volumes`. The faces
 // of all caps' own volumes sum, in every count, to those of `volumes` (the side quads of edges
 // that two caps share cancel), so subtracting the receiver's own volume leaves the winding of
-// every other caster (a receiver never shadows its own sample).
-std::vector<VolumeFace> own_volume_faces(const LightCap& cap, const Extrusion& extrusion);
+// every other caster (a receiver never shadows its own sample), and counting them tells whether
+// the count included that one cap (the receiver half-space rule removes the caps it rejects).
+std::array<VolumeFace, 5> own_volume_faces(const LightCap& cap, const Extrusion& extrusion);
 
 // Smallest distance from the point light to any cap.
 double light_to_caps_distance(const Occluders& occluders, const glm::dvec3& light);

@@ -9,6 +9,7 @@
 #include "oracles/hard_shadow_inputs.h"
 #include "oracles/thread_limit.h"
 #include "reference/light_on_caster.h"
+#include "reference/stencil/receiver_rule.h"
 #include "reference/stencil/shadow_volume.h"
 #include "reference/stencil/silhouette.h"
 #include "reference/stencil/view_grid.h"
@@ -58,7 +59,7 @@ class StencilAlgorithm final : public Algorithm {
     AlgorithmOutput output;
     output.shadowed.assign(samples.samples.size(), 0);
     std::vector<std::uint32_t> faces_tested(samples.samples.size(), 0);
-    std::atomic<std::uint64_t> quads_tested{0}, caps_tested{0};
+    std::atomic<std::uint64_t> quads_tested{0}, caps_tested{0}, rule_samples{0}, rule_candidates{0};
     std::uint64_t light_on_caster = 0;
     Occluders occluders;
     ShadowVolumes volumes;
@@ -84,50 +85,56 @@ class StencilAlgorithm final : public Algorithm {
       std::vector<std::uint32_t> cap_of_triangle(c.triangles.size(), no_triangle);
       for (std::size_t k = 0; k < occluders.caps.size(); ++k)
         cap_of_triangle[occluders.caps[k].triangle] = std::uint32_t(k);
+      const StencilReceiverRule rule(c, light, occluders, volumes.extrusion, mode, eye);
       clock.lap(build_phase);
-      tbb::parallel_for(
-          tbb::blocked_range<std::size_t>(0, samples.samples.size(), 256),
-          [&](const tbb::blocked_range<std::size_t>& range) {
-            std::uint64_t quads = 0, caps = 0;
-            for (std::size_t i = range.begin(); i != range.end(); ++i) {
-              const ViewSample& s = samples.samples[i];
-              if (s.sample_class != SampleClass::regular) continue;
-              const glm::dvec3 p(s.position);
-              int winding = 0;
-              std::uint32_t tested = 0;
-              grid.for_each_candidate(p, [&](std::uint32_t f) {
-                ++tested;
-                (faces[f].is_quad() ? quads : caps) += 1;
-                winding += count_crossings(faces[f], sides[f], mode, eye, p, light);
-              });
-              // Without the receiver's own volume (volume_counting.h).
-              const std::uint32_t own =
-                  s.receiver < cap_of_triangle.size() ? cap_of_triangle[s.receiver] : no_triangle;
-              if (own != no_triangle) {
-                for (const VolumeFace& f :
-                     own_volume_faces(occluders.caps[own], volumes.extrusion)) {
-                  if (mode == CountingMode::z_pass && f.kind == FaceKind::dark_cap) continue;
-                  ++tested;
-                  (f.is_quad() ? quads : caps) += 1;
-                  winding -= count_crossings(f, eye_sides(f, eye, light), mode, eye, p, light);
-                }
-              }
-              faces_tested[i] = tested;
-              output.shadowed[i] = winding != 0 ? 1 : 0;
-            }
-            // Integer sums: the totals do not depend on the partitioning.
-            quads_tested += quads;
-            caps_tested += caps;
-          });
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.samples.size(), 256),
+                        [&](const tbb::blocked_range<std::size_t>& range) {
+                          FaceTally tally;
+                          std::uint64_t asked = 0, candidates = 0;
+                          for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                            const ViewSample& s = samples.samples[i];
+                            if (s.sample_class != SampleClass::regular) continue;
+                            const glm::dvec3 p(s.position);
+                            int winding = 0;
+                            tally.faces = 0;
+                            grid.for_each_candidate(p, [&](std::uint32_t f) {
+                              ++tally.faces;
+                              (faces[f].is_quad() ? tally.quads : tally.caps) += 1;
+                              winding += count_crossings(faces[f], sides[f], mode, eye, p, light);
+                            });
+                            // Without the receiver's own volume (volume_counting.h).
+                            const std::uint32_t own = s.receiver < cap_of_triangle.size()
+                                                          ? cap_of_triangle[s.receiver]
+                                                          : no_triangle;
+                            if (own != no_triangle)
+                              winding -= count_own_volume(occluders.caps[own], volumes.extrusion,
+                                                          mode, eye, p, light, tally);
+                            // Without the caps the receiver half-space rule rejects
+                            // (receiver_rule.h).
+                            if (winding != 0 && s.receiver != no_receiver) {
+                              const RuleOutcome outcome = rule.rejected(s.receiver, p, tally);
+                              ++asked;
+                              candidates += outcome.candidates;
+                              winding = outcome.every_cap_rejected ? 0 : winding - outcome.rejected;
+                            }
+                            faces_tested[i] = tally.faces;
+                            output.shadowed[i] = winding != 0 ? 1 : 0;
+                          }
+                          // Integer sums: the totals do not depend on the partitioning.
+                          quads_tested += tally.quads;
+                          caps_tested += tally.caps;
+                          rule_samples += asked;
+                          rule_candidates += candidates;
+                        });
       light_on_caster = shadow_samples_by_light_on_caster(c, samples, output.shadowed);
       clock.lap(query_phase);
     });
     output.phase_ms = clock.times();
-    output.counters = {{"silhouette_edges", volumes.silhouette_edges},
-                       {"caps", occluders.caps.size()},
-                       {"quads_tested", quads_tested.load()},
-                       {"caps_tested", caps_tested.load()},
-                       {"light_on_caster_samples", light_on_caster}};
+    output.counters = {
+        {"silhouette_edges", volumes.silhouette_edges}, {"caps", occluders.caps.size()},
+        {"quads_tested", quads_tested.load()},          {"caps_tested", caps_tested.load()},
+        {"rule_samples", rule_samples.load()},          {"rule_candidates", rule_candidates.load()},
+        {"light_on_caster_samples", light_on_caster}};
     output.per_sample_counters = {{"faces_tested", std::move(faces_tested)}};
     return output;
   }

@@ -66,4 +66,17 @@ int count_crossings(const VolumeFace& face, const FaceEyeSides& eye_side, Counti
   return count;
 }
 
+int count_own_volume(const LightCap& cap, const Extrusion& extrusion, CountingMode mode,
+                     const glm::dvec3& eye, const glm::dvec3& sample, const HardShadowLight& light,
+                     FaceTally& tally) {
+  int count = 0;
+  for (const VolumeFace& f : own_volume_faces(cap, extrusion)) {
+    if (mode == CountingMode::z_pass && f.kind == FaceKind::dark_cap) continue;
+    ++tally.faces;
+    (f.is_quad() ? tally.quads : tally.caps) += 1;
+    count += count_crossings(f, eye_sides(f, eye, light), mode, eye, sample, light);
+  }
+  return count;
+}
+
 }  // namespace shadowcts::stencil

@@ -41,4 +41,17 @@ FaceEyeSides eye_sides(const VolumeFace& face, const glm::dvec3& eye, const Hard
 int count_crossings(const VolumeFace& face, const FaceEyeSides& eye_side, CountingMode mode,
                     const glm::dvec3& eye, const glm::dvec3& sample, const HardShadowLight& light);
 
+// Crossing tests made, for the counters.
+struct FaceTally {
+  std::uint64_t quads = 0, caps = 0;
+  std::uint32_t faces = 0;
+};
+
+// The contribution of one cap to the sample's winding: the count of its own closed volume
+// (own_volume_faces; z-pass without the dark cap), by the same rules and bits as the count of all
+// volumes, which is the sum of these over the caps.
+int count_own_volume(const LightCap& cap, const Extrusion& extrusion, CountingMode mode,
+                     const glm::dvec3& eye, const glm::dvec3& sample, const HardShadowLight& light,
+                     FaceTally& tally);
+
 }  // namespace shadowcts::stencil

@@ -215,7 +215,7 @@ TEST(StencilAgainstExactOracle, ZFailIsRightOnEveryRobustSampleOfTheDefaultFixtu
     EXPECT_EQ(h.leaks, 0u) << name;
     EXPECT_EQ(h.false_shadows, 0u) << name;
     EXPECT_GT(h.robust, 0u) << name;
-    ASSERT_EQ(output.counters.size(), 5u);
+    ASSERT_EQ(output.counters.size(), 7u);
     EXPECT_EQ(output.counters[0].first, "silhouette_edges");
     EXPECT_GT(output.counters[0].second, 0u) << name;
     EXPECT_EQ(output.counters[2].first, "quads_tested");
@@ -336,8 +336,13 @@ TEST(StencilFuzzReproducer, ZPassCountsALightCapInFrontOfTheSample) {
 }
 
 // fuzz_watertight-f86d8fd9b34c69eb: a point light; the eye segment of a far sample passes
-// through a caster of an open three-triangle fan.
-TEST(StencilFuzzReproducer, ZPassCountsALightCapOfAnOpenFan) {
+// through a caster of an open three-triangle fan. The fuzzer's receiver (triangle 0, no caster)
+// has the sample far on its side away from the light, the fan too: under the receiver half-space
+// rule the fan shadows nothing there, and the part of the segment the rule judges is long (the cap
+// tree is asked for a large box). With a receiver plane that has the whole segment on the light's
+// side (triangle 0 moved up, still no caster, so no volume changes) every caster counts: the
+// original reproducer.
+Reproducer open_fan_reproducer() {
   ShadowLight light;
   light.kind = ShadowLightKind::point;
   light.position = {24, -24, 15};
@@ -354,6 +359,13 @@ TEST(StencilFuzzReproducer, ZPassCountsALightCapOfAnOpenFan) {
   r.sample.position = {-19.871097564697266f, 50.593746185302734f, -22.290168762207031f};
   r.sample.normal = {0, -1, 0};
   r.sample.receiver = 0;
+  return r;
+}
+
+TEST(StencilFuzzReproducer, ZPassCountsALightCapOfAnOpenFan) {
+  Reproducer r = open_fan_reproducer();
+  expect_both_variants_exact(r, false);
+  r.c.triangles[0] = {{-1, 64, -1}, {1, 64, -1}, {0, 64, 1}, 0};
   expect_both_variants_exact(r, true);
 }
 
@@ -428,6 +440,8 @@ TEST(StencilFuzzReproducer, TheReceiversOwnVolumeNeverShadowsASampleBesideItsSid
 // (from both sides: robust-shadowed). The two side quads through that plane are extruded through
 // rounded vertices, and with a far sample stretching the extrusion their rounded triangles put the
 // sample on different sides: both variants leaked. Side quads take sides of their exact plane.
+// The receiver (no caster) lies above both samples, as the light does not: the fuzzer's receiver
+// at y = -8 had the casters beyond its plane, where the receiver half-space rule ignores them.
 TEST(StencilFuzzReproducer, SidesOfSideQuadsAreTakenOfTheirExactPlane) {
   ShadowLight light;
   light.kind = ShadowLightKind::point;
@@ -436,7 +450,7 @@ TEST(StencilFuzzReproducer, SidesOfSideQuadsAreTakenOfTheirExactPlane) {
                            {-62.20115661621094f, 58.1468505859375f, 43.0625114440918f},
                            0.00020308911916799843f, 203089.109375f);
   c.camera.width = 2;
-  c.triangles = {{{-1, -8, -1}, {1, -8, -1}, {0, -8, 1}, 0},
+  c.triangles = {{{-1, 128, -1}, {1, 128, -1}, {0, 128, 1}, 0},
                  {{-0x1.3p-1f, 0x1.cp+2f, 0x1.c8p+1f},
                   {0x1p-1f, 0x1.fp+2f, 0x1.5p+1f},
                   {-0x1.4p-1f, 0x1.c4p+2f, 0x1.ap+0f},
