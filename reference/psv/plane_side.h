@@ -43,6 +43,7 @@ class PlaneSide {
   double error_bound(const TopNode& node, bool capping, const glm::dvec3& p) const;
 
   const HardShadowLight& light() const { return light_; }
+  const std::vector<Triangle>& triangles() const { return triangles_; }
   // Number of side() calls the float filter could not decide.
   std::uint64_t exact_fallbacks() const { return exact_fallbacks_.load(); }
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <vector>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -16,6 +17,7 @@
 #include "reference/psv/query_hybrid.h"
 #include "reference/psv/query_stack.h"
 #include "reference/psv/query_stackless.h"
+#include "reference/psv/rule_culling.h"
 #include "reference/psv/top_tree_build.h"
 #include "reference/psv/top_tree_depth.h"
 #include "shadowcts/phase_clock.h"
@@ -43,8 +45,10 @@ PsvResult psv_hard_shadows(const Case& c, const ViewSamples& samples, const PsvO
   PhaseClock clock;
   const PlaneSide planes(light, c.triangles, coordinate_bound(c, samples));
   BuildStatistics build;
-  const std::vector<std::uint32_t> order =
-      insertion_order(c, planes, meshes_safe_for_face_culling(c, samples), options.seed, build);
+  const std::vector<std::uint32_t> order = insertion_order(
+      c, planes,
+      culling_clear_of_segment_starts(c, samples, light, meshes_safe_for_face_culling(c, samples)),
+      options.seed, build);
   const TopTree tree = build_top_tree(c, planes, order, build);
   const bool depth_test = options.query != QueryKind::stack;
   const QueryContext context(tree, planes, depth_test);
@@ -60,6 +64,8 @@ PsvResult psv_hard_shadows(const Case& c, const ViewSamples& samples, const PsvO
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         std::uint64_t count = 0, total = 0, most = 0, deepest = 0, overflowed = 0,
                                       switched = 0;
+                        // One stack buffer for every sample of the range.
+                        std::vector<std::uint32_t> stack(options.stack_capacity);
                         for (std::size_t i = range.begin(); i != range.end(); ++i) {
                           const ViewSample& sample = samples.samples[i];
                           if (sample.sample_class != SampleClass::regular) continue;
@@ -72,7 +78,7 @@ PsvResult psv_hard_shadows(const Case& c, const ViewSamples& samples, const PsvO
                           switch (options.query) {
                             case QueryKind::stack:
                             case QueryKind::depth:
-                              answer = query_stack(context, p, options.stack_capacity, work);
+                              answer = query_stack(context, p, stack, work);
                               if (answer == QueryAnswer::stack_overflow) {
                                 ++overflowed;
                                 answer = query_stackless(context, p, work);
@@ -82,7 +88,7 @@ PsvResult psv_hard_shadows(const Case& c, const ViewSamples& samples, const PsvO
                               answer = query_stackless(context, p, work);
                               break;
                             case QueryKind::hybrid:
-                              answer = query_hybrid(context, p, options.stack_capacity, work);
+                              answer = query_hybrid(context, p, stack, work);
                               break;
                           }
                           result.shadowed[i] = answer == QueryAnswer::shadowed ? 1 : 0;

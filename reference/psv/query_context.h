@@ -1,14 +1,18 @@
 #pragma once
-// What the four TOP tree queries share: the point being located, its work record, and the three
+// What the four TOP tree queries share: the point being located, its work record, the three
 // tests each query makes at a node (plane side, depth test, whether the intersection child needs
-// a visit).
+// a visit) and the stack the stack and hybrid queries keep.
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <optional>
+#include <span>
 
 #include <glm/vec3.hpp>
 
 #include "reference/psv/plane_side.h"
 #include "reference/psv/top_tree.h"
+#include "shadowcts/geometry/receiver_half_space.h"
 
 namespace shadowcts::psv {
 
@@ -16,6 +20,9 @@ struct QueryPoint {
   glm::dvec3 position{0.0};
   std::uint32_t receiver = no_node;  // its triangle never shadows it
   double light_depth = 0.0;          // upper bound on its light distance (top_tree_depth.h)
+  // The receiver half-space rule of this point, built when the first volume containing it is
+  // found (most points are in none).
+  std::optional<geometry::ReceiverHalfSpace> half_space;
 };
 
 enum class QueryAnswer { lit, shadowed, stack_overflow };
@@ -34,12 +41,21 @@ class QueryContext {
   const TopTree& tree() const { return tree_; }
 
   // > 0: continue in the positive child; otherwise the negative one (a point on a plane belongs
-  // to the closed volume, as in the oracle's closed triangles). On the capping plane of its own
-  // receiver a sample counts as in front: the receiver never shadows its sample, and what lies in
-  // front of the receiver is still searched.
-  int location(std::uint32_t node, const QueryPoint& p) const {
-    if (is_capping_node(node) && volume_triangle(tree_, node) == p.receiver) return 1;
-    return planes_.side(tree_, node, p.position);
+  // to the closed volume, as in the oracle's closed triangles). A capping node is only reached
+  // inside its three edge planes, so its negative side means that the triangle meets p's shadow
+  // segment. Where that triangle does not shadow p, p counts as in front of it and the search goes
+  // on in the positive child, as after a lit leaf: every other volume that holds p is still
+  // searched. The triangles the build dropped inside this volume cannot shadow p then either: their
+  // hits lie between p and this triangle's hit on the segment, and the receiver's plane side grows
+  // monotonically towards the light. A triangle does not shadow p when it is p's receiver, or when
+  // the receiver half-space rule rejects it.
+  int location(std::uint32_t node, QueryPoint& p) const {
+    if (!is_capping_node(node)) return planes_.side(tree_, node, p.position);
+    const std::uint32_t triangle = volume_triangle(tree_, node);
+    if (triangle == p.receiver) return 1;
+    const int side = planes_.side(tree_, node, p.position);
+    if (side > 0 || caster_counts(triangle, p)) return side;
+    return 1;
   }
 
   // [depth] Mora 2016, section 3.3: done when the query enters a new volume (a positive or an
@@ -65,9 +81,40 @@ class QueryContext {
   }
 
  private:
+  bool caster_counts(std::uint32_t triangle, QueryPoint& p) const {
+    if (p.receiver == no_node) return true;  // no receiver, no rule
+    const HardShadowLight& light = planes_.light();
+    const auto vertex = [](const glm::vec3& v) { return glm::dvec3(v); };
+    if (!p.half_space) {
+      const Triangle& r = planes_.triangles()[p.receiver];
+      p.half_space =
+          geometry::receiver_half_space(vertex(r.v0), vertex(r.v1), vertex(r.v2), light.directional,
+                                        light.directional ? light.direction : light.position);
+    }
+    const Triangle& t = planes_.triangles()[triangle];
+    return geometry::caster_counts(*p.half_space, p.position, vertex(t.v0), vertex(t.v1),
+                                   vertex(t.v2));
+  }
+
   const TopTree& tree_;
   const PlaneSide& planes_;
   bool depth_test_;
+};
+
+// The stack of the stack and hybrid queries: at most storage.size() nodes in a buffer the caller
+// reuses for every sample of a thread's range (no allocation per query).
+class NodeStack {
+ public:
+  explicit NodeStack(std::span<std::uint32_t> storage) : storage_(storage) {}
+  bool empty() const { return size_ == 0; }
+  bool full() const { return size_ == storage_.size(); }
+  std::uint32_t size() const { return std::uint32_t(size_); }
+  void push(std::uint32_t node) { storage_[size_++] = node; }  // requires !full()
+  std::uint32_t pop() { return storage_[--size_]; }            // requires !empty()
+
+ private:
+  std::span<std::uint32_t> storage_;
+  std::size_t size_ = 0;
 };
 
 }  // namespace shadowcts::psv

@@ -1,16 +1,14 @@
 #include "reference/psv/query_hybrid.h"
 
 #include <algorithm>
-#include <vector>
 
 namespace shadowcts::psv {
 
-QueryAnswer query_hybrid(const QueryContext& context, const QueryPoint& p,
-                         std::uint32_t stack_capacity, QueryWork& work) {
+QueryAnswer query_hybrid(const QueryContext& context, QueryPoint& p,
+                         std::span<std::uint32_t> stack_storage, QueryWork& work) {
   const TopTree& tree = context.tree();
   if (tree.root == no_node || context.skipped_by_depth(tree.root, p)) return QueryAnswer::lit;
-  std::vector<std::uint32_t> stack;
-  stack.reserve(stack_capacity);
+  NodeStack stack(stack_storage);
   std::uint32_t node = tree.root;
   bool twice = false;
   // While stackless: the node whose intersection child did not fit. The ancestor links inside its
@@ -20,9 +18,9 @@ QueryAnswer query_hybrid(const QueryContext& context, const QueryPoint& p,
     ++work.nodes_visited;
     if (!twice && context.visits_intersection(node, p)) {
       const std::uint32_t intersection = tree.nodes[node].intersection;
-      if (switched_at == no_node && stack.size() < stack_capacity) {
-        stack.push_back(intersection);
-        work.stack_high_water = std::max(work.stack_high_water, std::uint32_t(stack.size()));
+      if (switched_at == no_node && !stack.full()) {
+        stack.push(intersection);
+        work.stack_high_water = std::max(work.stack_high_water, stack.size());
       } else {
         if (switched_at == no_node) {
           ++work.hybrid_switches;
@@ -43,8 +41,7 @@ QueryAnswer query_hybrid(const QueryContext& context, const QueryPoint& p,
         if (node == switched_at) switched_at = no_node;  // back to the short stack
       } else {
         if (stack.empty()) return QueryAnswer::lit;
-        node = stack.back();
-        stack.pop_back();
+        node = stack.pop();
       }
     } else {
       if (is_capping_node(node)) return QueryAnswer::shadowed;

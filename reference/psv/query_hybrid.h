@@ -4,12 +4,14 @@
 // searched by the stackless query, which jumps back to the node it started from and hands over
 // to the stack query again. It never overflows.
 #include <cstdint>
+#include <span>
 
 #include "reference/psv/query_context.h"
 
 namespace shadowcts::psv {
 
-QueryAnswer query_hybrid(const QueryContext& context, const QueryPoint& p,
-                         std::uint32_t stack_capacity, QueryWork& work);
+// The short stack is stack_storage (the caller's buffer, reused from sample to sample).
+QueryAnswer query_hybrid(const QueryContext& context, QueryPoint& p,
+                         std::span<std::uint32_t> stack_storage, QueryWork& work);
 
 }  // namespace shadowcts::psv

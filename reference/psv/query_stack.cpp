@@ -1,25 +1,23 @@
 #include "reference/psv/query_stack.h"
 
 #include <algorithm>
-#include <vector>
 
 namespace shadowcts::psv {
 
-QueryAnswer query_stack(const QueryContext& context, const QueryPoint& p,
-                        std::uint32_t stack_capacity, QueryWork& work) {
+QueryAnswer query_stack(const QueryContext& context, QueryPoint& p,
+                        std::span<std::uint32_t> stack_storage, QueryWork& work) {
   const TopTree& tree = context.tree();
   if (tree.root == no_node || context.skipped_by_depth(tree.root, p)) return QueryAnswer::lit;
-  std::vector<std::uint32_t> stack;
-  stack.reserve(stack_capacity);
+  NodeStack stack(stack_storage);
   std::uint32_t node = tree.root;
   while (node != no_node) {
     ++work.nodes_visited;
     const int location = context.location(node, p);
     // Lines 8-9: the intersection child overlaps both sides; keep it for later.
     if (context.visits_intersection(node, p)) {
-      if (stack.size() == stack_capacity) return QueryAnswer::stack_overflow;
-      stack.push_back(tree.nodes[node].intersection);
-      work.stack_high_water = std::max(work.stack_high_water, std::uint32_t(stack.size()));
+      if (stack.full()) return QueryAnswer::stack_overflow;
+      stack.push(tree.nodes[node].intersection);
+      work.stack_high_water = std::max(work.stack_high_water, stack.size());
     }
     if (location > 0) {
       const std::uint32_t positive = tree.nodes[node].positive;
@@ -28,11 +26,11 @@ QueryAnswer query_stack(const QueryContext& context, const QueryPoint& p,
       } else {
         // Line 16: a lit leaf; search the intersection subtrees left on the stack.
         if (stack.empty()) return QueryAnswer::lit;
-        node = stack.back();
-        stack.pop_back();
+        node = stack.pop();
       }
     } else {
-      // Line 22: the negative leaf of a capping plane is inside the volume.
+      // Line 22: the negative leaf of a capping plane is inside the volume (of a triangle that
+      // shadows p: location() sends p on otherwise).
       if (is_capping_node(node)) return QueryAnswer::shadowed;
       node = node + 1;
     }

@@ -2,7 +2,7 @@
 
 namespace shadowcts::psv {
 
-QueryAnswer query_stackless(const QueryContext& context, const QueryPoint& p, QueryWork& work) {
+QueryAnswer query_stackless(const QueryContext& context, QueryPoint& p, QueryWork& work) {
   const TopTree& tree = context.tree();
   if (tree.root == no_node || context.skipped_by_depth(tree.root, p)) return QueryAnswer::lit;
   std::uint32_t node = tree.root;

@@ -7,6 +7,6 @@
 
 namespace shadowcts::psv {
 
-QueryAnswer query_stackless(const QueryContext& context, const QueryPoint& p, QueryWork& work);
+QueryAnswer query_stackless(const QueryContext& context, QueryPoint& p, QueryWork& work);
 
 }  // namespace shadowcts::psv

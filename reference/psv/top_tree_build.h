@@ -21,8 +21,9 @@ struct BuildStatistics {
 
 // The triangles inserted, in insertion order: the casters of `c` that have a volume (non-zero
 // area, the light not in their plane, not front-facing in a closed mesh that may cull — see
-// meshes_safe_for_face_culling), permuted by a Fisher-Yates shuffle driven by
-// std::mt19937_64(seed) (the paper's randomized build; the same order on every platform).
+// meshes_safe_for_face_culling and culling_clear_of_segment_starts), permuted by a Fisher-Yates
+// shuffle driven by std::mt19937_64(seed) (the paper's randomized build; the same order on every
+// platform).
 // `face_culling`: per mesh, whether its light-facing triangles may be dropped.
 std::vector<std::uint32_t> insertion_order(const Case& c, const PlaneSide& planes,
                                            const std::vector<bool>& face_culling,

@@ -209,7 +209,8 @@ TEST(PsvAlgorithm, DescribesItselfAndRejectsUnknownVariants) {
 }
 
 // The receiver never shadows its own sample (even exactly on its plane), zero-area triangles never
-// shadow, and a sample on another triangle (closed) is shadowed by it.
+// shadow, and a triangle meeting the segment (closed) shadows it, but not where it meets it only
+// in the receiver's plane (the receiver half-space rule): a sample on the fan's edge is lit.
 TEST(PsvSemantics, ReceiverZeroAreaAndClosedTriangles) {
   auto h = testing::make_hand_built_case(testing::point_light({0.5f, 8, 0.5f}));
   testing::add_pyramid_fan(h);
@@ -220,11 +221,12 @@ TEST(PsvSemantics, ReceiverZeroAreaAndClosedTriangles) {
   const std::size_t unblocked = h.add_ground_sample({6.0f, 0, -6.0f});
   const HardShadowTruth truth = exact_hard_shadow_oracle(h.c, h.samples);
   EXPECT_EQ(truth.shadowed[on_own_face], 0);
+  EXPECT_EQ(truth.shadowed[on_receiver], 0);
   for (QueryKind query :
        {QueryKind::stack, QueryKind::depth, QueryKind::stackless, QueryKind::hybrid}) {
     const PsvResult r = run(h.c, h.samples, query);
     EXPECT_EQ(r.shadowed[through_edge], 1);
-    EXPECT_EQ(r.shadowed[on_receiver], 1);  // still on triangle 2
+    EXPECT_EQ(r.shadowed[on_receiver], 0);  // triangle 2 meets it only at p
     EXPECT_EQ(r.shadowed[unblocked], 0);
     EXPECT_EQ(r.shadowed[on_own_face], 0);
   }
