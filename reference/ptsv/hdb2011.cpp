@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <limits>
+#include <stdexcept>
 
 namespace shadowcts::ptsv {
 
-HierarchicalDepthBuffer::HierarchicalDepthBuffer(const ViewFrame& frame, const ViewSamples& samples)
-    : frame_(frame), samples_(samples) {
+HierarchicalDepthBuffer::HierarchicalDepthBuffer(const ViewFrame& frame, const ViewSamples& samples,
+                                                 const ReceiverRule* rule)
+    : frame_(frame), samples_(samples), rule_(rule) {
   const std::uint32_t width = samples.width, height = samples.height;
   // Bottom-up: 8x4 samples per finest tile, then 4x8 tiles, 8x4, ... until one tile covers all.
   std::vector<DepthTileLevel> bottom_up;
@@ -32,6 +34,7 @@ HierarchicalDepthBuffer::HierarchicalDepthBuffer(const ViewFrame& frame, const V
     l.min_depth.assign(tiles, std::numeric_limits<double>::infinity());
     l.max_depth.assign(tiles, -std::numeric_limits<double>::infinity());
     l.occupied.assign(tiles, 0);
+    l.reject_reach.assign(tiles, 0.0);
     l.accepted.assign(tiles, 0);
   }
   const DepthTileLevel& finest = levels_.back();
@@ -54,6 +57,7 @@ HierarchicalDepthBuffer::HierarchicalDepthBuffer(const ViewFrame& frame, const V
       l.min_depth[tile] = std::min(l.min_depth[tile], v.depth);
       l.max_depth[tile] = std::max(l.max_depth[tile], v.depth);
       l.occupied[tile] = 1;
+      if (rule) l.reject_reach[tile] = std::max(l.reject_reach[tile], rule->reject_reach()[i]);
     }
   }
   // Pixel -> sample, for the finest level's sample tests.
@@ -96,6 +100,7 @@ double HierarchicalDepthBuffer::corner_bound() const {
 void HierarchicalDepthBuffer::traverse(const ShadowVolume& volume, const NodeTolerances& tolerances,
                                        std::vector<std::uint8_t>& shadowed,
                                        TraversalCounters& counters) {
+  if (!rule_) throw std::logic_error("ptsv: a depth buffer without the receiver rule traversed");
   if (levels_.front().occupied[0]) traverse_tile(volume, 0, 0, 0, tolerances, shadowed, counters);
 }
 
@@ -114,7 +119,10 @@ void HierarchicalDepthBuffer::traverse_tile(const ShadowVolume& volume, int leve
         const std::uint32_t s = pixel_sample_[std::size_t(py) * samples_.width + px];
         if (s == no_sample) continue;
         ++counters.sample_tests;
-        if (sample_in_volume(volume, samples_.samples[s])) shadowed[s] = 1;
+        const ViewSample& sample = samples_.samples[s];
+        if (sample_in_volume(volume, sample) && !shadowed[s] &&
+            rule_->caster_counts(volume, sample))
+          shadowed[s] = 1;
       }
     return;
   }
@@ -127,9 +135,9 @@ void HierarchicalDepthBuffer::traverse_tile(const ShadowVolume& volume, int leve
     if (cx >= children.columns || cy >= children.rows) continue;
     const std::size_t tile = std::size_t(cy) * children.columns + cx;
     if (!children.occupied[tile]) continue;  // only unlit samples: left out of the buffer
-    const NodeVerdict verdict =
-        classify_node(volume, cell_corners(frame_, tile_cell(level + 1, tile, cx, cy)), tolerances,
-                      CullingPlanes::silhouette, counters);
+    const NodeVerdict verdict = classify_node(
+        volume, cell_corners(frame_, tile_cell(level + 1, tile, cx, cy)), tolerances,
+        CullingPlanes::silhouette, counters, [&] { return children.reject_reach[tile]; });
     if (verdict == NodeVerdict::accept) children.accepted[tile] = 1;  // UPDATESHADOWBUFFER
     if (verdict == NodeVerdict::refine) queue |= 1u << lane;
   }

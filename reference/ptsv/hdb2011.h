@@ -7,7 +7,9 @@
 // depths (Figure 3). Algorithm 1: tiles are rejected, accepted (a bit in the hierarchical shadow
 // buffer at that level) or refined; the finest level tests samples; merging ORs every accepted
 // tile into its samples. Section 3.5's culling against the two 2D silhouette edges of the
-// projected volume is applied with the planes through the eye (triangle_setup.h).
+// projected volume is applied with the planes through the eye (triangle_setup.h). The receiver
+// half-space rule (receiver_rule.h) decides the sample tests, and a tile is accepted only where it
+// cannot reject the caster for any of its samples (each tile keeps their largest reject reach).
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -15,6 +17,7 @@
 
 #include "reference/ptsv/counters.h"
 #include "reference/ptsv/node_test.h"
+#include "reference/ptsv/receiver_rule.h"
 #include "reference/ptsv/triangle_setup.h"
 #include "reference/ptsv/view_frame.h"
 #include "shadowcts/view_samples.h"
@@ -27,14 +30,17 @@ struct DepthTileLevel {
   std::uint32_t columns = 0, rows = 0;              // tiles of this level
   std::vector<double> min_depth, max_depth;         // per tile, row-major
   std::vector<std::uint8_t> occupied;               // holds a regular sample
+  std::vector<double> reject_reach;                 // the largest of the tile's samples
   std::vector<std::uint8_t> accepted;               // hierarchical shadow buffer
 };
 
 class HierarchicalDepthBuffer {
  public:
   // Throws InputError, or use problem(), when a regular sample lies behind the camera or outside
-  // its finest tile's pixel wedge (the tile bounds would not contain it).
-  HierarchicalDepthBuffer(const ViewFrame& frame, const ViewSamples& samples);
+  // its finest tile's pixel wedge (the tile bounds would not contain it). Without a rule the
+  // buffer only answers problem() (and the shape of its levels); traverse() needs one.
+  HierarchicalDepthBuffer(const ViewFrame& frame, const ViewSamples& samples,
+                          const ReceiverRule* rule);
   const std::string& problem() const { return problem_; }
 
   int level_count() const { return int(levels_.size()); }  // level 0: the root tile
@@ -56,6 +62,7 @@ class HierarchicalDepthBuffer {
 
   const ViewFrame& frame_;
   const ViewSamples& samples_;
+  const ReceiverRule* rule_;
   std::vector<DepthTileLevel> levels_;
   static constexpr std::uint32_t no_sample = 0xFFFFFFFFu;
   std::vector<std::uint32_t> pixel_sample_;  // regular sample of each pixel, row-major

@@ -8,8 +8,11 @@ namespace shadowcts::ptsv {
 
 ClusterHierarchy::ClusterHierarchy(const ClusterKeyLayout& layout,
                                    const std::vector<std::uint32_t>& keys,
-                                   const ViewSamples& samples)
+                                   const ViewSamples& samples,
+                                   const std::vector<double>& sample_reach)
     : layout_(layout) {
+  if (sample_reach.size() != samples.samples.size())
+    throw std::logic_error("ptsv: one reject reach per sample expected");
   const int leaves = leaf_level();
   levels_.resize(std::size_t(leaves) + 1);
 
@@ -30,6 +33,7 @@ ClusterHierarchy::ClusterHierarchy(const ClusterKeyLayout& layout,
     level.child_mask.assign(level.index.size(), 0u);
     const glm::dvec3 empty_lo(std::numeric_limits<double>::infinity());
     level.bounds.assign(level.index.size(), WorldBox{empty_lo, -empty_lo});
+    level.reject_reach.assign(level.index.size(), 0.0);
   }
   // Child masks: each existing node sets its bit in its parent (the paper's bottom-up pass).
   for (int l = leaves; l >= 1; --l)
@@ -37,16 +41,19 @@ ClusterHierarchy::ClusterHierarchy(const ClusterKeyLayout& layout,
       const std::ptrdiff_t parent = find(l - 1, index >> fanout_bits);
       levels_[std::size_t(l - 1)].child_mask[std::size_t(parent)] |= 1u << (index & 31u);
     }
-  // Explicit bounds: every sample grows the box of each node on its path.
+  // Explicit bounds and reject reach: every sample grows those of each node on its path.
   for (std::size_t i = 0; i < keys.size(); ++i) {
     if (keys[i] == no_key) continue;
     const glm::dvec3 p(samples.samples[i].position);
     for (int l = leaves; l >= 0; --l) {
       const int shift = fanout_bits * (leaves - l);
       const std::uint32_t index = shift >= 32 ? 0u : keys[i] >> shift;
-      WorldBox& box = levels_[std::size_t(l)].bounds[std::size_t(find(l, index))];
+      const std::size_t at = std::size_t(find(l, index));
+      WorldBox& box = levels_[std::size_t(l)].bounds[at];
       box.lo = glm::min(box.lo, p);
       box.hi = glm::max(box.hi, p);
+      double& reach = levels_[std::size_t(l)].reject_reach[at];
+      reach = std::max(reach, sample_reach[i]);
     }
   }
   // Samples per 8x8 tile, for the leaf tests.

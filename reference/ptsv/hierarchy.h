@@ -5,7 +5,8 @@
 // 5 * (levels - l). The paper stores a full tree on the GPU; this reference stores only the nodes
 // that exist, sorted by index, with the same masks, so memory follows the samples and not 2^32.
 // Each node also carries its explicit bounds: the tight axis-aligned box of its samples, in world
-// space (float positions are exact in double, so the box contains them exactly).
+// space (float positions are exact in double, so the box contains them exactly), and the largest
+// reject reach of its samples (receiver_rule.h), which decides whether the node may be accepted.
 #include <cstdint>
 #include <vector>
 
@@ -25,12 +26,14 @@ struct HierarchyLevel {
   std::vector<std::uint32_t> index;       // sorted node indices
   std::vector<std::uint32_t> child_mask;  // bit j: child (index << 5) | j exists (not at leaves)
   std::vector<WorldBox> bounds;           // explicit bounds of each node's samples
+  std::vector<double> reject_reach;       // the largest of each node's samples
 };
 
 class ClusterHierarchy {
  public:
+  // sample_reach: per sample (ReceiverRule::reject_reach).
   ClusterHierarchy(const ClusterKeyLayout& layout, const std::vector<std::uint32_t>& keys,
-                   const ViewSamples& samples);
+                   const ViewSamples& samples, const std::vector<double>& sample_reach);
 
   const ClusterKeyLayout& layout() const { return layout_; }
   int leaf_level() const { return layout_.mask_levels(); }

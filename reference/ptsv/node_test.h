@@ -8,9 +8,9 @@
 //
 // Consistency with the sample test, which decides the answer: a node is rejected or accepted only
 // with a margin above the rounding of these evaluations, so every sample in a rejected node fails
-// the sample test and every sample in an accepted node passes it (its own receiver aside, which
-// the accept bias keeps out). All variants therefore give the same mask as testing every sample
-// against every volume.
+// the sample test and every sample in an accepted node passes it and the receiver half-space rule
+// (its own receiver aside, which the accept bias keeps out; the rule by the reject reach). All
+// variants therefore give the same mask as testing every sample against every volume.
 #include <array>
 #include <cmath>
 
@@ -42,12 +42,17 @@ PlaneRange plane_range(const Plane& plane, const WorldBox& box);
 
 enum class CullingPlanes { none, extra, silhouette };
 
-template <class Bounds>
+// reject_reach(): the largest reject reach of the node's samples (receiver_rule.h), asked only of
+// a node the four planes accept. Every hit of the caster on a sample's segment lies on the
+// triangle plane, so a node further behind it than that reach loses no sample to the receiver
+// half-space rule and is accepted; a nearer one is refined down to the per-sample test.
+template <class Bounds, class Reach>
 NodeVerdict classify_node(const ShadowVolume& volume, const Bounds& bounds,
                           const NodeTolerances& tolerances, CullingPlanes culling,
-                          TraversalCounters& counters) {
+                          TraversalCounters& counters, const Reach& reject_reach) {
   ++counters.node_tests;
   bool accept = true;
+  double triangle_high = 0.0;
   for (int k = 0; k < 4; ++k) {
     const Plane& plane = k < 3 ? volume.edges[std::size_t(k)] : volume.triangle_plane;
     const PlaneRange range = plane_range(plane, bounds);
@@ -58,7 +63,9 @@ NodeVerdict classify_node(const ShadowVolume& volume, const Bounds& bounds,
     const double inside_by =
         k < 3 ? tolerances.rounding : tolerances.rounding + tolerances.accept_bias;
     if (!(range.high < -inside_by)) accept = false;
+    if (k == 3) triangle_high = range.high;
   }
+  if (accept && !(triangle_high < -(tolerances.rounding + reject_reach()))) accept = false;
   if (accept) {
     ++counters.trivial_accepts;
     return NodeVerdict::accept;
@@ -95,7 +102,9 @@ inline bool outside_plane(const ShadowVolume& volume, int k, const Plane& plane,
   return outside_plane_exactly(volume, k, sample);
 }
 
-// The per-sample test: inside the closed volume, and not the sample's own receiver.
+// The per-sample volume test: inside the closed volume, and not the sample's own receiver. The
+// caster then shadows the sample where the receiver half-space rule counts it
+// (ReceiverRule::caster_counts).
 inline bool sample_in_volume(const ShadowVolume& volume, const ViewSample& sample) {
   if (sample.receiver == volume.triangle) return false;
   for (int k = 0; k < 3; ++k)

@@ -14,6 +14,7 @@
 #include "reference/ptsv/hdb2011.h"
 #include "reference/ptsv/hierarchy.h"
 #include "reference/ptsv/node_test.h"
+#include "reference/ptsv/receiver_rule.h"
 #include "reference/ptsv/traversal.h"
 #include "reference/ptsv/triangle_setup.h"
 #include "reference/ptsv/two_pass.h"
@@ -116,14 +117,15 @@ class Ptsv final : public Algorithm {
     PhaseClock clock;
     const ViewFrame frame = make_view_frame(c.camera, samples.width, samples.height);
     const double bound = scene_bound(c, samples);
+    const ReceiverRule rule(c, samples);
     clock.lap(build_phase);
 
     SetupOptions setup;
     setup.extra_planes = !config.depth_buffer_2011 && config.extra_planes;
     setup.silhouette_planes = config.depth_buffer_2011;
     SetupCounts setup_counts;
-    const std::vector<ShadowVolume> volumes =
-        set_up_shadow_volumes(c, front_face_culling_meshes(c, samples), setup, bound, setup_counts);
+    const std::vector<ShadowVolume> volumes = set_up_shadow_volumes(
+        c, front_face_culling_meshes(c, samples, rule.reject_reach()), setup, bound, setup_counts);
     clock.lap(query_phase);
 
     AlgorithmOutput output;
@@ -131,7 +133,7 @@ class Ptsv final : public Algorithm {
     TraversalCounters counters;
     std::uint64_t nodes = 0, levels = 0, key_bits = 0;
     if (config.depth_buffer_2011) {
-      HierarchicalDepthBuffer buffer(frame, samples);
+      HierarchicalDepthBuffer buffer(frame, samples, &rule);
       if (!buffer.problem().empty()) throw InputError(c.source, "view samples", buffer.problem());
       const NodeTolerances tolerances =
           NodeTolerances::for_bounds(std::max(bound, buffer.corner_bound()), bound);
@@ -150,13 +152,13 @@ class Ptsv final : public Algorithm {
       const ClusterKeys keys = assign_cluster_keys(layout.layout, frame, samples,
                                                    config.bounds == NodeBounds::implicit_cells);
       if (!keys.problem.empty()) throw InputError(c.source, "view samples", keys.problem);
-      ClusterHierarchy hierarchy(layout.layout, keys.key, samples);
+      ClusterHierarchy hierarchy(layout.layout, keys.key, samples, rule.reject_reach());
       const double node_bound = config.bounds == NodeBounds::implicit_cells
                                     ? std::max(bound, implicit_corner_bound(hierarchy, frame))
                                     : bound;
-      ClusterTraversal traversal(hierarchy, frame, samples, config.bounds, config.extra_planes,
-                                 NodeTolerances::for_bounds(node_bound, bound), output.shadowed,
-                                 counters);
+      ClusterTraversal traversal(hierarchy, frame, samples, rule, config.bounds,
+                                 config.extra_planes, NodeTolerances::for_bounds(node_bound, bound),
+                                 output.shadowed, counters);
       clock.lap(build_phase);
       if (config.two_pass) {
         traverse_two_pass(traversal, volumes, default_job_level(hierarchy.leaf_level()), counters);
@@ -204,7 +206,7 @@ class Ptsv final : public Algorithm {
         samples.samples.size() != std::size_t(samples.width) * samples.height)
       return "the view samples are not one per pixel";
     const ViewFrame frame = make_view_frame(c.camera, samples.width, samples.height);
-    if (config.depth_buffer_2011) return HierarchicalDepthBuffer(frame, samples).problem();
+    if (config.depth_buffer_2011) return HierarchicalDepthBuffer(frame, samples, nullptr).problem();
     const KeyLayoutResult layout = make_cluster_key_layout(c.camera, samples.width, samples.height);
     if (!layout.problem.empty()) return layout.problem;
     return assign_cluster_keys(layout.layout, frame, samples,

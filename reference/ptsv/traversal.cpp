@@ -5,12 +5,14 @@
 namespace shadowcts::ptsv {
 
 ClusterTraversal::ClusterTraversal(ClusterHierarchy& hierarchy, const ViewFrame& frame,
-                                   const ViewSamples& samples, NodeBounds bounds, bool extra_planes,
+                                   const ViewSamples& samples, const ReceiverRule& rule,
+                                   NodeBounds bounds, bool extra_planes,
                                    const NodeTolerances& tolerances,
                                    std::vector<std::uint8_t>& shadowed, TraversalCounters& counters)
     : hierarchy_(hierarchy),
       frame_(frame),
       samples_(samples),
+      rule_(rule),
       bounds_(bounds),
       culling_(extra_planes ? CullingPlanes::extra : CullingPlanes::none),
       tolerances_(tolerances),
@@ -37,12 +39,17 @@ void ClusterTraversal::emit_jobs_at(int level, std::uint32_t volume_index,
 
 NodeVerdict ClusterTraversal::test_child(const ShadowVolume& volume, int child_level,
                                          std::uint32_t child) {
+  // Looked up only for a node the planes accept; a node without samples has none to lose.
+  const auto reach = [&] {
+    const std::ptrdiff_t at = hierarchy_.find(child_level, child);
+    return at < 0 ? 0.0 : hierarchy_.level(child_level).reject_reach[std::size_t(at)];
+  };
   if (bounds_ == NodeBounds::explicit_boxes)
     return classify_node(volume, hierarchy_.bounds(child_level, child), tolerances_, culling_,
-                         counters_);
+                         counters_, reach);
   // CLIPSPACETRPOINT / CLIPSPACETAPOINT from the key: the cell's corners.
   const FrustumCell cell = implicit_node_cell(hierarchy_.layout(), child_level, child);
-  return classify_node(volume, cell_corners(frame_, cell), tolerances_, culling_, counters_);
+  return classify_node(volume, cell_corners(frame_, cell), tolerances_, culling_, counters_, reach);
 }
 
 void ClusterTraversal::traverse_node(const ShadowVolume& volume, int level, std::uint32_t node,
@@ -83,7 +90,9 @@ void ClusterTraversal::test_view_samples(const ShadowVolume& volume, std::uint32
   for (const std::uint32_t* s = hierarchy_.tile_begin(c.x, c.y); s != hierarchy_.tile_end(c.x, c.y);
        ++s) {
     ++counters_.sample_tests;
-    if (sample_in_volume(volume, samples_.samples[*s])) shadowed_[*s] = 1;
+    const ViewSample& sample = samples_.samples[*s];
+    if (sample_in_volume(volume, sample) && !shadowed_[*s] && rule_.caster_counts(volume, sample))
+      shadowed_[*s] = 1;
   }
 }
 

@@ -4,8 +4,10 @@
 // existing child is tested against the volume; trivially accepted children are recorded by
 // clearing their bits in the shared hierarchy (line 24), intersected ones are visited from the
 // highest bit down (31 - CLZ, line 27); at the leaf level every sample of the cluster's 8x8 tile
-// is tested (TESTVIEWSAMPLES). The final pass marks the samples whose path from the root lost a
-// bit, i.e. that lie in some trivially accepted node.
+// is tested (TESTVIEWSAMPLES) and, inside the volume, set where the receiver half-space rule
+// counts the caster (receiver_rule.h; a node is accepted only where it counts for all its
+// samples). The final pass marks the samples whose path from the root lost a bit, i.e. that lie in
+// some trivially accepted node.
 //
 // The hierarchy is shared by all volumes, as in the paper: an accepted node is skipped by every
 // later volume. Volumes are processed one after another in triangle order, so the counters are
@@ -17,6 +19,7 @@
 #include "reference/ptsv/counters.h"
 #include "reference/ptsv/hierarchy.h"
 #include "reference/ptsv/node_test.h"
+#include "reference/ptsv/receiver_rule.h"
 #include "reference/ptsv/triangle_setup.h"
 #include "reference/ptsv/view_frame.h"
 #include "shadowcts/view_samples.h"
@@ -37,8 +40,9 @@ struct TraversalJob {
 class ClusterTraversal {
  public:
   ClusterTraversal(ClusterHierarchy& hierarchy, const ViewFrame& frame, const ViewSamples& samples,
-                   NodeBounds bounds, bool extra_planes, const NodeTolerances& tolerances,
-                   std::vector<std::uint8_t>& shadowed, TraversalCounters& counters);
+                   const ReceiverRule& rule, NodeBounds bounds, bool extra_planes,
+                   const NodeTolerances& tolerances, std::vector<std::uint8_t>& shadowed,
+                   TraversalCounters& counters);
 
   // TRAVERSENODE(SV, 0, 0, root child mask).
   void traverse_from_root(const ShadowVolume& volume);
@@ -61,6 +65,7 @@ class ClusterTraversal {
   ClusterHierarchy& hierarchy_;
   const ViewFrame& frame_;
   const ViewSamples& samples_;
+  const ReceiverRule& rule_;
   NodeBounds bounds_;
   CullingPlanes culling_;
   NodeTolerances tolerances_;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -80,7 +81,8 @@ double trivial_accept_bias(double scene_bound) {
   return scene_bound * 0x1p-20;
 }
 
-std::vector<bool> front_face_culling_meshes(const Case& c, const ViewSamples& samples) {
+std::vector<bool> front_face_culling_meshes(const Case& c, const ViewSamples& samples,
+                                            const std::vector<double>& sample_reach) {
   const std::uint32_t width = samples.width, height = samples.height;
   const std::vector<bool> safe = meshes_safe_for_face_culling(c, samples);
   std::vector<bool> culled(c.meshes.size(), false);
@@ -107,6 +109,27 @@ std::vector<bool> front_face_culling_meshes(const Case& c, const ViewSamples& sa
     for (int k = 0; k < 3; ++k)
       clear = clear || eye[k] + reach < lo[m][k] || eye[k] - reach > hi[m][k];
     culled[m] = clear;
+  }
+  // A sample further than its reach from the box along one axis is further from every point of
+  // the mesh: each face hit on its segment counts, and the crossing argument holds as without the
+  // rule. Float coordinates are exact in double; the differences round by 2^-53 of themselves,
+  // far below the reach's own margin.
+  if (sample_reach.size() != samples.samples.size())
+    throw std::logic_error("ptsv: one reject reach per sample expected");
+  std::vector<std::size_t> candidates;
+  for (std::size_t m = 0; m < c.meshes.size(); ++m)
+    if (culled[m]) candidates.push_back(m);
+  for (std::size_t i = 0; i < samples.samples.size() && !candidates.empty(); ++i) {
+    const ViewSample& s = samples.samples[i];
+    const double r = sample_reach[i];
+    if (s.sample_class != SampleClass::regular || !(r > 0.0)) continue;
+    const glm::dvec3 p(s.position);
+    std::erase_if(candidates, [&](std::size_t m) {
+      bool far = false;
+      for (int k = 0; k < 3; ++k) far = far || lo[m][k] - p[k] > r || p[k] - hi[m][k] > r;
+      if (!far) culled[m] = false;
+      return !far;
+    });
   }
   return culled;
 }

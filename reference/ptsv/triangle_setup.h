@@ -91,8 +91,13 @@ struct SetupCounts {
 // samples come from G-buffers too, so the camera alone does not decide), and whose bounding box
 // keeps clear of the camera's near region. A segment from outside a closed surface to a light
 // outside it crosses one face of each orientation; one from inside leaves only through faces
-// turned towards the light.
-std::vector<bool> front_face_culling_meshes(const Case& c, const ViewSamples& samples);
+// turned towards the light. Under the receiver half-space rule the face it enters by (turned away
+// from the light) is the hit nearer the sample and may be rejected while the one it leaves by
+// counts: that happens only within the sample's reject reach (receiver_rule.h), so a mesh whose
+// bounding box comes within a sample's reach keeps its light-facing triangles.
+// sample_reach: per sample (ReceiverRule::reject_reach).
+std::vector<bool> front_face_culling_meshes(const Case& c, const ViewSamples& samples,
+                                            const std::vector<double>& sample_reach);
 
 // The volumes of every caster triangle in index order. scene_bound: >= every |coordinate| of
 // every sample (it bounds how far the volume's edge rays need to be followed).

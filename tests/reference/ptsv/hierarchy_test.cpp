@@ -1,6 +1,7 @@
-// The cluster hierarchy against a brute-force rebuild, and its explicit bounds.
+// The cluster hierarchy against a brute-force rebuild, and its explicit bounds and reject reach.
 #include "reference/ptsv/hierarchy.h"
 
+#include <algorithm>
 #include <map>
 #include <utility>
 
@@ -8,6 +9,7 @@
 
 #include "ptsv_test_support.h"
 #include "reference/ptsv/cluster_keys.h"
+#include "reference/ptsv/receiver_rule.h"
 
 namespace shadowcts::ptsv {
 namespace {
@@ -16,6 +18,7 @@ struct Built {
   ptsv_test::FixtureWithSamples f;
   ClusterKeyLayout layout;
   ClusterKeys keys;
+  std::vector<double> reach;  // per sample (ReceiverRule)
 };
 
 Built build(const std::string& fixture) {
@@ -28,6 +31,7 @@ Built build(const std::string& fixture) {
   b.layout = layout.layout;
   b.keys = assign_cluster_keys(b.layout, frame, b.f.samples, true);
   EXPECT_TRUE(b.keys.problem.empty()) << b.keys.problem;
+  b.reach = ReceiverRule(b.f.c, b.f.samples).reject_reach();
   return b;
 }
 
@@ -35,7 +39,7 @@ class HierarchyOnFixture : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(HierarchyOnFixture, ChildMasksEqualABruteForceRebuild) {
   const Built b = build(GetParam());
-  const ClusterHierarchy h(b.layout, b.keys.key, b.f.samples);
+  const ClusterHierarchy h(b.layout, b.keys.key, b.f.samples, b.reach);
   const int leaves = h.leaf_level();
   // Rebuild: walk every sample's key from the root and set the bit of each step.
   std::map<std::pair<int, std::uint32_t>, std::uint32_t> masks;
@@ -70,9 +74,10 @@ TEST_P(HierarchyOnFixture, ChildMasksEqualABruteForceRebuild) {
 
 TEST_P(HierarchyOnFixture, EveryExplicitBoxContainsItsSamplesAndIsTight) {
   const Built b = build(GetParam());
-  const ClusterHierarchy h(b.layout, b.keys.key, b.f.samples);
+  const ClusterHierarchy h(b.layout, b.keys.key, b.f.samples, b.reach);
   const int leaves = h.leaf_level();
   std::map<std::pair<int, std::uint32_t>, WorldBox> rebuilt;
+  std::map<std::pair<int, std::uint32_t>, double> rebuilt_reach;
   for (std::size_t i = 0; i < b.keys.key.size(); ++i) {
     const std::uint32_t key = b.keys.key[i];
     if (key == no_key) continue;
@@ -84,6 +89,8 @@ TEST_P(HierarchyOnFixture, EveryExplicitBoxContainsItsSamplesAndIsTight) {
         EXPECT_LE(box.lo[k], p[k]);
         EXPECT_GE(box.hi[k], p[k]);
       }
+      double& reach = rebuilt_reach[{l, node}];
+      reach = std::max(reach, b.reach[i]);
       auto [it, fresh] = rebuilt.try_emplace({l, node}, WorldBox{p, p});
       if (!fresh) {
         it->second.lo = glm::min(it->second.lo, p);
@@ -91,10 +98,17 @@ TEST_P(HierarchyOnFixture, EveryExplicitBoxContainsItsSamplesAndIsTight) {
       }
     }
   }
+  std::size_t reaching = 0;
   for (const auto& [node, box] : rebuilt) {
     EXPECT_EQ(h.bounds(node.first, node.second).lo, box.lo);
     EXPECT_EQ(h.bounds(node.first, node.second).hi, box.hi);
+    const HierarchyLevel& level = h.level(node.first);
+    const auto at = std::size_t(h.find(node.first, node.second));
+    EXPECT_EQ(level.reject_reach[at], rebuilt_reach.at(node));
+    reaching += level.reject_reach[at] > 0.0;
   }
+  // About half the samples lie below their receiver's rounded plane.
+  EXPECT_GT(reaching, 0u);
 }
 
 INSTANTIATE_TEST_SUITE_P(Fixtures, HierarchyOnFixture,
@@ -102,7 +116,7 @@ INSTANTIATE_TEST_SUITE_P(Fixtures, HierarchyOnFixture,
 
 TEST(ClusterHierarchy, TileListsHoldEveryRegularSampleOnce) {
   const Built b = build("closed_shapes.2000");
-  const ClusterHierarchy h(b.layout, b.keys.key, b.f.samples);
+  const ClusterHierarchy h(b.layout, b.keys.key, b.f.samples, b.reach);
   std::vector<int> seen(b.f.samples.samples.size(), 0);
   for (std::uint32_t ty = 0; ty < b.layout.tiles_y; ++ty)
     for (std::uint32_t tx = 0; tx < b.layout.tiles_x; ++tx)

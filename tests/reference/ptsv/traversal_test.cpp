@@ -10,6 +10,7 @@
 #include "reference/ptsv/cluster_keys.h"
 #include "reference/ptsv/hierarchy.h"
 #include "reference/ptsv/node_test.h"
+#include "reference/ptsv/receiver_rule.h"
 #include "reference/ptsv/two_pass.h"
 #include "shadowcts/errors.h"
 #include "shadowcts/hard_shadow_oracle.h"
@@ -62,7 +63,8 @@ TEST(Traversal, TriviallyAcceptedNodesLieInsideTheVolumeAndRejectedOnesOutside) 
   for (bool directional : {false, true}) {
     const Scene s(directional);
     ASSERT_TRUE(s.keys.problem.empty()) << s.keys.problem;
-    const ClusterHierarchy h(s.layout, s.keys.key, s.samples);
+    const ReceiverRule rule(s.c, s.samples);
+    const ClusterHierarchy h(s.layout, s.keys.key, s.samples, rule.reject_reach());
     const NodeTolerances tolerances = NodeTolerances::for_bounds(100.0, s.bound);
     const ShadowVolume& caster = s.volumes.back();  // the big triangle
     ASSERT_EQ(caster.triangle, 2u);
@@ -81,11 +83,12 @@ TEST(Traversal, TriviallyAcceptedNodesLieInsideTheVolumeAndRejectedOnesOutside) 
               corners[std::size_t(i)] = {i & 1 ? box.hi.x : box.lo.x, i & 2 ? box.hi.y : box.lo.y,
                                          i & 4 ? box.hi.z : box.lo.z};
           }
-          const NodeVerdict verdict =
-              bounds == NodeBounds::implicit_cells
-                  ? classify_node(caster, corners, tolerances, CullingPlanes::extra, counters)
-                  : classify_node(caster, h.bounds(l, node), tolerances, CullingPlanes::extra,
-                                  counters);
+          const auto reach = [&] { return h.level(l).reject_reach[std::size_t(h.find(l, node))]; };
+          const NodeVerdict verdict = bounds == NodeBounds::implicit_cells
+                                          ? classify_node(caster, corners, tolerances,
+                                                          CullingPlanes::extra, counters, reach)
+                                          : classify_node(caster, h.bounds(l, node), tolerances,
+                                                          CullingPlanes::extra, counters, reach);
           if (verdict == NodeVerdict::refine) continue;
           // The node's samples: those whose key has this prefix.
           for (std::size_t i = 0; i < s.keys.key.size(); ++i) {
@@ -108,13 +111,16 @@ TEST(Traversal, TriviallyAcceptedNodesLieInsideTheVolumeAndRejectedOnesOutside) 
   }
 }
 
-// Every sample against every volume: the mask every variant must reproduce.
+// Every sample against every volume, under the receiver half-space rule: the mask every variant
+// must reproduce.
 std::vector<std::uint8_t> brute_force_mask(const Scene& s) {
+  const ReceiverRule rule(s.c, s.samples);
   std::vector<std::uint8_t> mask(s.samples.samples.size(), 0);
   for (std::size_t i = 0; i < mask.size(); ++i) {
-    if (s.samples.samples[i].sample_class != SampleClass::regular) continue;
+    const ViewSample& sample = s.samples.samples[i];
+    if (sample.sample_class != SampleClass::regular) continue;
     for (const ShadowVolume& v : s.volumes)
-      if (sample_in_volume(v, s.samples.samples[i])) mask[i] = 1;
+      if (sample_in_volume(v, sample) && rule.caster_counts(v, sample)) mask[i] = 1;
   }
   return mask;
 }
@@ -134,10 +140,11 @@ TEST(Traversal, EveryVariantAndJobLevelGivesTheBruteForceMask) {
       EXPECT_GT(ptsv_test::counter(out, "trivial_accepts"), 0u) << variant;
     }
     for (int job_level = 1; job_level <= s.layout.mask_levels(); ++job_level) {
-      ClusterHierarchy h(s.layout, s.keys.key, s.samples);
+      const ReceiverRule rule(s.c, s.samples);
+      ClusterHierarchy h(s.layout, s.keys.key, s.samples, rule.reject_reach());
       std::vector<std::uint8_t> mask(s.samples.samples.size(), 0);
       TraversalCounters counters;
-      ClusterTraversal traversal(h, s.frame, s.samples, NodeBounds::explicit_boxes, true,
+      ClusterTraversal traversal(h, s.frame, s.samples, rule, NodeBounds::explicit_boxes, true,
                                  NodeTolerances::for_bounds(s.bound, s.bound), mask, counters);
       traverse_two_pass(traversal, s.volumes, job_level, counters);
       traversal.mark_trivially_accepted(s.keys.key);
@@ -185,7 +192,10 @@ TEST(Traversal, NoLeakThroughTheRoundedPlanesOfATJunction) {
   c.camera.near_plane = 0.00015200885536614805f;
   c.camera.far_plane = 152008.859375f;
   c.camera.width = c.camera.height = 1;
-  c.triangles = {{{-1, -8, -1}, {1, -8, -1}, {0, -8, 1}, 0},
+  // The receiver holds the sample in its plane (x = the sample's x), the casters on its light's
+  // side, so the receiver half-space rule keeps them.
+  constexpr float receiver_x = -0x1.fcc4p+6f;
+  c.triangles = {{{receiver_x, 60, 20}, {receiver_x, 70, 20}, {receiver_x, 65, 30}, 0},
                  {{-0x1.8ep+2f, -0x1.72p+2f, -0x1.7p+2f},
                   {-0x1.5p+2f, -0x1.68p+2f, -0x1.b8p+2f},
                   {-0x1.9p+2f, -0x1.76p+2f, -0x1.f4p+2f},

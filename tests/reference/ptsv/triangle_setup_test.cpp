@@ -115,9 +115,9 @@ TEST(TriangleSetup, FrontFaceCullingOnlyForClosedMeshesClearOfTheCamera) {
   ViewSamples no_samples;  // none inside any mesh: the camera's near region decides
   no_samples.width = 256;
   no_samples.height = 192;
-  EXPECT_EQ(front_face_culling_meshes(c, no_samples), (std::vector<bool>{false, false}));
+  EXPECT_EQ(front_face_culling_meshes(c, no_samples, {}), (std::vector<bool>{false, false}));
   c.meshes[1].closed = true;
-  EXPECT_EQ(front_face_culling_meshes(c, no_samples), (std::vector<bool>{false, true}));
+  EXPECT_EQ(front_face_culling_meshes(c, no_samples, {}), (std::vector<bool>{false, true}));
   // The caster's triangle faces... its winding decides: one of the two windings is culled.
   SetupCounts counts, flipped_counts;
   set_up_shadow_volumes(c, {false, true}, {}, 10.0, counts);
@@ -128,7 +128,7 @@ TEST(TriangleSetup, FrontFaceCullingOnlyForClosedMeshesClearOfTheCamera) {
   // The eye inside the closed mesh's box: no culling.
   c.camera.position = {0.0f, 3.0f, 0.0f};
   c.camera.target = {0.0f, 0.0f, 1.0f};
-  EXPECT_EQ(front_face_culling_meshes(c, no_samples), (std::vector<bool>{false, false}));
+  EXPECT_EQ(front_face_culling_meshes(c, no_samples, {}), (std::vector<bool>{false, false}));
 }
 
 // Points of the volume: L + s (Y - L), s >= 1 (point light) or Y - t d (directional), Y in the
