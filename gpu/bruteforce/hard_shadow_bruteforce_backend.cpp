@@ -13,6 +13,7 @@
 #include "oracles/shadow_segment.h"
 #include "oracles/thread_limit.h"
 #include "reference/light_on_caster.h"
+#include "shadowcts/geometry/receiver_half_space.h"
 
 namespace shadowcts {
 
@@ -25,6 +26,12 @@ BruteforceShadowInput bruteforce_kernel_input(const Case& c, const ViewSamples& 
     regular_samples.push_back(i);
     input.sample_positions.push_back(sample.position);
     input.sample_receivers.push_back(sample.receiver);
+    BruteforceReceiver receiver;
+    if (sample.receiver != no_receiver) {
+      const Triangle& r = c.triangles[sample.receiver];
+      receiver = {r.v0, r.v1, r.v2};
+    }
+    input.sample_receiver_triangles.push_back(receiver);
   }
   for (std::size_t t = 0; t < c.triangles.size(); ++t) {
     const Triangle& triangle = c.triangles[t];
@@ -50,12 +57,23 @@ HardShadowLight exact_light(const Case& c) {
   return light;
 }
 
+// The receiver half-space rule of a sample (DESIGN.md); without a receiver there is no plane and
+// every caster counts.
+geometry::ReceiverHalfSpace sample_half_space(const Case& c, const HardShadowLight& light,
+                                              const ViewSample& sample) {
+  if (sample.receiver == no_receiver) return {};
+  const Triangle& r = c.triangles[sample.receiver];
+  return geometry::receiver_half_space(glm::dvec3(r.v0), glm::dvec3(r.v1), glm::dvec3(r.v2),
+                                       light.directional,
+                                       light.directional ? light.direction : light.position);
+}
+
 struct ExactFallback {
   std::uint64_t samples = 0, predicate_calls = 0;
 };
 
-// Decides the given samples with the exact predicate over every caster, as the reference brute
-// force does (a conservative box test first).
+// Decides the given samples with the exact predicate and the receiver half-space rule over every
+// caster, as the reference brute force does (a conservative box test first).
 ExactFallback decide_exactly(const Case& c, const ViewSamples& samples,
                              const std::vector<std::size_t>& unsure,
                              std::vector<std::uint8_t>& shadowed) {
@@ -72,34 +90,41 @@ ExactFallback decide_exactly(const Case& c, const ViewSamples& samples,
   std::atomic<std::uint64_t> predicate_calls{0};
   // Beside-edge samples are common on finely tessellated models (most samples of model.spider),
   // so they are decided in parallel; each writes only its own sample.
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, unsure.size(), 16),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      std::uint64_t calls = 0;
-                      for (std::size_t u = range.begin(); u != range.end(); ++u) {
-                        const std::size_t i = unsure[u];
-                        const ViewSample& sample = samples.samples[i];
-                        const glm::dvec3 p(sample.position);
-                        const ShadowSegment segment = make_shadow_segment(p, light, scale);
-                        const double padding = box_padding(segment, 0.0);
-                        shadowed[i] = 0;
-                        for (const std::size_t t : casters) {
-                          if (t == sample.receiver) continue;
-                          const Triangle& triangle = c.triangles[t];
-                          float lo[3], hi[3];
-                          for (int k = 0; k < 3; ++k) {
-                            lo[k] = std::min({triangle.v0[k], triangle.v1[k], triangle.v2[k]});
-                            hi[k] = std::max({triangle.v0[k], triangle.v1[k], triangle.v2[k]});
-                          }
-                          if (!box_may_meet(segment, lo, hi, padding)) continue;
-                          ++calls;
-                          if (predicate.blocks(triangle, MovedPoint{p, 0.0, {0, 0, 0}})) {
-                            shadowed[i] = 1;
-                            break;
-                          }
-                        }
-                      }
-                      predicate_calls += calls;  // an integer sum: independent of the split
-                    });
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, unsure.size(), 16),
+      [&](const tbb::blocked_range<std::size_t>& range) {
+        std::uint64_t calls = 0;
+        for (std::size_t u = range.begin(); u != range.end(); ++u) {
+          const std::size_t i = unsure[u];
+          const ViewSample& sample = samples.samples[i];
+          const glm::dvec3 p(sample.position);
+          const ShadowSegment segment = make_shadow_segment(p, light, scale);
+          const double padding = box_padding(segment, 0.0);
+          const geometry::ReceiverHalfSpace half_space = sample_half_space(c, light, sample);
+          shadowed[i] = 0;
+          for (const std::size_t t : casters) {
+            if (t == sample.receiver) continue;
+            const Triangle& triangle = c.triangles[t];
+            float lo[3], hi[3];
+            for (int k = 0; k < 3; ++k) {
+              lo[k] = std::min({triangle.v0[k], triangle.v1[k], triangle.v2[k]});
+              hi[k] = std::max({triangle.v0[k], triangle.v1[k], triangle.v2[k]});
+            }
+            if (!box_may_meet(segment, lo, hi, padding)) continue;
+            const glm::dvec3 v0(triangle.v0), v1(triangle.v1), v2(triangle.v2);
+            const geometry::CasterReach reach = geometry::caster_reach(half_space, v0, v1, v2);
+            if (reach == geometry::CasterReach::no_hit) continue;
+            ++calls;
+            if (!predicate.blocks(triangle, MovedPoint{p, 0.0, {0, 0, 0}})) continue;
+            if (reach == geometry::CasterReach::every_hit ||
+                geometry::hit_on_light_side(half_space, p, v0, v1, v2)) {
+              shadowed[i] = 1;
+              break;
+            }
+          }
+        }
+        predicate_calls += calls;  // an integer sum: independent of the split
+      });
   fallback.predicate_calls = predicate_calls.load();
   return fallback;
 }

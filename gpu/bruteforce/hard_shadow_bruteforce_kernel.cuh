@@ -9,6 +9,14 @@
 // an edge its miss may be a crack (a T-junction) and its hit a rounding of L - p near the light,
 // so a sample that no triangle hits away from its edges but that passes near an edge comes back
 // `unsure` and the host decides it exactly.
+//
+// The receiver half-space rule (shadowcts/geometry/receiver_half_space.h) is decided exactly on
+// the device for every caster the float test hits or passes beside: one that cannot shadow the
+// sample (a coplanar neighbour of the receiver, the next face of a convex mesh) neither ends the
+// search nor makes the sample unsure. Its exact expansion products need a large stack: 69 KB per
+// thread on the device (ptxas, sm_90, cumulative), about 38 KB on the host (GCC -O3,
+// -fstack-usage: kernel, counts_for_sample, hit_on_light_side, sign_of_product_difference),
+// within the emulator's 256 KB fiber stacks.
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
@@ -18,6 +26,7 @@
 #include "gpu/bruteforce/hard_shadow_bruteforce_kernel.h"
 #include "gpu/emulator/kernel.h"
 #include "shadowcts/geometry/edge_proximity.h"
+#include "shadowcts/geometry/receiver_half_space.h"
 #include "shadowcts/geometry/segment_triangle.h"
 
 namespace shadowcts::SHADOWCTS_KERNEL_NAMESPACE {
@@ -31,24 +40,57 @@ struct TileCaster {
   std::uint32_t triangle;
 };
 
-__global__ void bruteforce_hard_shadow(const glm::vec3* sample_positions,
-                                       const std::uint32_t* sample_receivers,
-                                       std::uint32_t sample_count, const BruteforceCaster* casters,
-                                       std::uint32_t caster_count, bool directional_light,
-                                       glm::vec3 light, std::uint8_t* sample_states,
-                                       unsigned long long* pair_tests) {
+// The rule's exact expansions, inlined, took the kernel from 56 to 255 registers (ptxas, sm_90):
+// a quarter of the occupancy for a path most pairs never take. Out of line and with the kernel
+// bounded to the old occupancy (4 blocks per SM, 64 registers), nearly all spills stay in the
+// rule.
+#if SHADOWCTS_EMULATED
+#define SHADOWCTS_BRUTEFORCE_OUT_OF_LINE
+#define SHADOWCTS_BRUTEFORCE_LAUNCH_BOUNDS
+#else
+#define SHADOWCTS_BRUTEFORCE_OUT_OF_LINE __noinline__
+#define SHADOWCTS_BRUTEFORCE_LAUNCH_BOUNDS __launch_bounds__(threads_per_block, 4)
+#endif
+
+// The receiver half-space rule for a caster the float test hits or passes beside, exact for the
+// point where the segment's line crosses the caster's plane, so a caster it rejects cannot shadow
+// the sample whether or not it meets the segment. The sample's half-space is built at the first
+// call.
+SHADOWCTS_BRUTEFORCE_OUT_OF_LINE __device__ bool counts_for_sample(
+    geometry::ReceiverHalfSpace& half_space, bool& has_half_space,
+    const BruteforceReceiver* receiver, bool directional_light, const glm::vec3& light,
+    const glm::vec3& position, const glm::vec3& v0, const glm::vec3& v1, const glm::vec3& v2) {
+  if (!has_half_space) {
+    const BruteforceReceiver r = *receiver;
+    half_space = geometry::receiver_half_space(glm::dvec3(r.v0), glm::dvec3(r.v1), glm::dvec3(r.v2),
+                                               directional_light, glm::dvec3(light));
+    has_half_space = true;
+  }
+  return geometry::caster_counts(half_space, glm::dvec3(position), glm::dvec3(v0), glm::dvec3(v1),
+                                 glm::dvec3(v2));
+}
+
+__global__ void SHADOWCTS_BRUTEFORCE_LAUNCH_BOUNDS bruteforce_hard_shadow(
+    const glm::vec3* sample_positions, const std::uint32_t* sample_receivers,
+    const BruteforceReceiver* sample_receiver_triangles, std::uint32_t sample_count,
+    const BruteforceCaster* casters, std::uint32_t caster_count, bool directional_light,
+    glm::vec3 light, std::uint8_t* sample_states, unsigned long long* pair_tests) {
   SHADOWCTS_SHARED(TileCaster[casters_per_tile], tile);
   const std::uint32_t sample = blockIdx.x * blockDim.x + threadIdx.x;
   const bool has_sample = sample < sample_count;
 
   RaySpace ray;
   std::uint32_t receiver = 0;
+  glm::vec3 position(0.0f);
   if (has_sample) {
-    const glm::vec3 position = sample_positions[sample];
+    position = sample_positions[sample];
     ray = make_ray_space(directional_light ? ray_to_directional_light(position, light)
                                            : segment_to_point_light(position, light));
     receiver = sample_receivers[sample];
   }
+  // The rule's half-space, built by counts_for_sample at its first call.
+  geometry::ReceiverHalfSpace half_space;
+  bool has_half_space = false;
   bool done = !has_sample;  // shadowed, or no sample to shade
   bool hit = false, near_edge = false;
   unsigned long long tests = 0;
@@ -89,6 +131,10 @@ __global__ void bruteforce_hard_shadow(const glm::vec3* sample_positions,
       // Only a hit away from every edge ends the search.
       const bool beside_edge =
           (float_hit || !near_edge) && ray_within_rounding_of_triangle_edge(ray, v0, v1, v2);
+      if (!float_hit && !beside_edge) continue;
+      if (!counts_for_sample(half_space, has_half_space, sample_receiver_triangles + sample,
+                             directional_light, light, position, v0, v1, v2))
+        continue;
       if (float_hit && !beside_edge) {
         hit = true;
         done = true;
@@ -156,21 +202,29 @@ inline BruteforceShadowResult run(const BruteforceShadowInput& input) {
   if (sample_count > UINT32_MAX || input.casters.size() > UINT32_MAX) {
     throw std::length_error("bruteforce_hard_shadow: more than 2^32 samples or casters");
   }
+  if (input.sample_receivers.size() != sample_count ||
+      input.sample_receiver_triangles.size() != sample_count) {
+    throw std::invalid_argument(
+        "bruteforce_hard_shadow: one receiver and receiver triangle per sample");
+  }
 
   DeviceArray<glm::vec3> positions(sample_count);
   DeviceArray<std::uint32_t> receivers(sample_count);
+  DeviceArray<BruteforceReceiver> receiver_triangles(sample_count);
   DeviceArray<BruteforceCaster> casters(input.casters.size());
   DeviceArray<std::uint8_t> states(sample_count);
   DeviceArray<unsigned long long> pair_tests(1);
   positions.upload(input.sample_positions);
   receivers.upload(input.sample_receivers);
+  receiver_triangles.upload(input.sample_receiver_triangles);
   casters.upload(input.casters);
   check(cudaMemset(pair_tests.data(), 0, sizeof(unsigned long long)), "cudaMemset");
 
   const auto block_count =
       static_cast<unsigned>((sample_count + threads_per_block - 1) / threads_per_block);
   SHADOWCTS_LAUNCH(bruteforce_hard_shadow, block_count, threads_per_block, 0)
-  (positions.data(), receivers.data(), static_cast<std::uint32_t>(sample_count), casters.data(),
+  (positions.data(), receivers.data(), receiver_triangles.data(),
+   static_cast<std::uint32_t>(sample_count), casters.data(),
    static_cast<std::uint32_t>(input.casters.size()), input.directional_light, input.light,
    states.data(), pair_tests.data());
   check(cudaGetLastError(), "bruteforce_hard_shadow launch");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "oracles/hard_shadow_inputs.h"
 #include "oracles/shadow_segment.h"
 #include "oracles/thread_limit.h"
+#include "shadowcts/geometry/receiver_half_space.h"
 
 namespace shadowcts {
 namespace {
@@ -21,6 +23,17 @@ struct CasterBox {
   std::uint32_t triangle;
 };
 
+// The receiver half-space rule of a sample (DESIGN.md); without a receiver there is no plane and
+// every caster counts.
+geometry::ReceiverHalfSpace sample_half_space(const Case& c, const HardShadowLight& light,
+                                              const ViewSample& sample) {
+  if (sample.receiver == no_receiver) return {};
+  const Triangle& r = c.triangles[sample.receiver];
+  return geometry::receiver_half_space(glm::dvec3(r.v0), glm::dvec3(r.v1), glm::dvec3(r.v2),
+                                       light.directional,
+                                       light.directional ? light.direction : light.position);
+}
+
 class BruteforceHardShadow final : public Algorithm {
  public:
   BruteforceHardShadow() {
@@ -29,7 +42,7 @@ class BruteforceHardShadow final : public Algorithm {
     info_.variants = {"exact"};
     info_.summary =
         "every sample against every caster: conservative float box test, then the exact CGAL "
-        "segment/ray-triangle predicate";
+        "segment/ray-triangle predicate and the exact receiver half-space rule";
     info_.capabilities.output = OutputKind::hard_shadow;
     info_.capabilities.point_light = true;
     info_.capabilities.directional_light = true;
@@ -77,12 +90,23 @@ class BruteforceHardShadow final : public Algorithm {
               const glm::dvec3 p(sample.position);
               const ShadowSegment segment = make_shadow_segment(p, light, scale);
               const double padding = box_padding(segment, 0.0);
+              std::optional<geometry::ReceiverHalfSpace> half_space;  // built at the first box hit
               for (const CasterBox& box : casters) {
                 ++pairs;
                 if (box.triangle == sample.receiver) continue;
                 if (!box_may_meet(segment, box.lo, box.hi, padding)) continue;
+                if (!half_space) half_space = sample_half_space(c, light, sample);
+                const Triangle& t = c.triangles[box.triangle];
+                const glm::dvec3 v0(t.v0), v1(t.v1), v2(t.v2);
+                // The rule's three orientations first: a caster with no vertex strictly on the
+                // light's side of the receiver's plane (a coplanar neighbour, the next face of a
+                // convex mesh) never shadows this sample, so the exact predicate is not asked.
+                const geometry::CasterReach reach = geometry::caster_reach(*half_space, v0, v1, v2);
+                if (reach == geometry::CasterReach::no_hit) continue;
                 ++calls;
-                if (predicate.blocks(c.triangles[box.triangle], MovedPoint{p, 0.0, {0, 0, 0}})) {
+                if (!predicate.blocks(t, MovedPoint{p, 0.0, {0, 0, 0}})) continue;
+                if (reach == geometry::CasterReach::every_hit ||
+                    geometry::hit_on_light_side(*half_space, p, v0, v1, v2)) {
                   output.shadowed[i] = 1;
                   break;
                 }

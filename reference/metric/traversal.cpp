@@ -1,9 +1,11 @@
 #include "reference/metric/traversal.h"
 
 #include <algorithm>
+#include <optional>
 
 #include <glm/geometric.hpp>
 
+#include "shadowcts/geometry/receiver_half_space.h"
 #include "shadowcts/geometry/segment_triangle.h"
 
 namespace shadowcts::metric {
@@ -19,6 +21,18 @@ bool segment_meets_slabs(const TraversalScene& scene, const ClusterVolume& volum
   const double s_from = glm::dot(volume.slab_normal, from);
   const double s_to = glm::dot(volume.slab_normal, to);
   return std::max(s_from, s_to) >= lo && std::min(s_from, s_to) <= hi;
+}
+
+// The receiver half-space rule of the sample (DESIGN.md): no plane, so every caster counts, for a
+// sample without a receiver.
+geometry::ReceiverHalfSpace sample_half_space(const Case& c, const LightFrame& frame,
+                                              const ViewSample& sample) {
+  if (sample.receiver == no_receiver) return {};
+  const Triangle& r = c.triangles[sample.receiver];
+  const glm::dvec3 light =
+      frame.directional ? glm::dvec3(c.light->direction) : glm::dvec3(c.light->position);
+  return geometry::receiver_half_space(glm::dvec3(r.v0), glm::dvec3(r.v1), glm::dvec3(r.v2),
+                                       frame.directional, light);
 }
 
 }  // namespace
@@ -38,6 +52,7 @@ bool sample_is_shadowed(const TraversalScene& scene, const ViewSample& sample,
   const glm::dvec3 segment_end =
       frame.directional ? p + scene.ray_length * frame.towards_light : frame.light_position;
 
+  std::optional<geometry::ReceiverHalfSpace> half_space;
   return for_each_candidate_element(
       tree, *scene.elements, frame, query, counters, stack, [&](std::uint32_t e) {
         const std::uint32_t cluster = (*scene.elements)[e].cluster;
@@ -50,13 +65,25 @@ bool sample_is_shadowed(const TraversalScene& scene, const ViewSample& sample,
           if (t == sample.receiver) continue;  // the receiver never shadows its own sample
           ++counters.triangle_tests;
           const Triangle& triangle = c.triangles[t];
-          if (ray_hits_triangle(ray_space, triangle.v0, triangle.v1, triangle.v2)) return true;
+          const bool float_hit =
+              ray_hits_triangle(ray_space, triangle.v0, triangle.v1, triangle.v2);
           // The float test rounds each vertex on its own: beside an edge its miss may be a crack
           // (a vertex on another triangle's edge, found by fuzz_watertight). A hit there is
           // never wrong on a robust sample (the ray then passes within rounding of an open edge,
           // which makes the sample ambiguous, or of a covered one).
-          if (ray_near_triangle_edge(ray_space, triangle.v0, triangle.v1, triangle.v2) &&
-              scene.exact->blocks(triangle, MovedPoint{p, 0.0, {0, 0, 0}}))
+          if (!float_hit &&
+              !ray_near_triangle_edge(ray_space, triangle.v0, triangle.v1, triangle.v2))
+            continue;
+          // The receiver half-space rule, built once a triangle may block: a hit counts only
+          // strictly on the light's side of the receiver's plane, so a coplanar neighbour or the
+          // next face of a convex mesh is passed over and the search goes on.
+          if (!half_space) half_space = sample_half_space(c, frame, sample);
+          const glm::dvec3 v0(triangle.v0), v1(triangle.v1), v2(triangle.v2);
+          const geometry::CasterReach reach = geometry::caster_reach(*half_space, v0, v1, v2);
+          if (reach == geometry::CasterReach::no_hit) continue;
+          if (!float_hit && !scene.exact->blocks(triangle, MovedPoint{p, 0.0, {0, 0, 0}})) continue;
+          if (reach == geometry::CasterReach::every_hit ||
+              geometry::hit_on_light_side(*half_space, p, v0, v1, v2))
             return true;
         }
         ++counters.clusters_tested_without_hit;

@@ -71,7 +71,8 @@ bool for_each_candidate_element(const MetricTree& tree,
 
 // Whether some caster triangle other than the sample's receiver blocks the segment to the point
 // light or the ray towards the directional light, by the watertight test, among the clusters of
-// the tree. `stack` is scratch space reused across samples.
+// the tree, at a point strictly on the light's side of the receiver's plane (the receiver
+// half-space rule, decided exactly). `stack` is scratch space reused across samples.
 bool sample_is_shadowed(const TraversalScene& scene, const ViewSample& sample,
                         TraversalCounters& counters, std::vector<std::uint32_t>& stack);
 

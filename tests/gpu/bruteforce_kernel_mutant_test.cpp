@@ -21,6 +21,7 @@ BruteforceShadowInput soup() {
   for (int i = 0; i < 1000; ++i) {
     input.sample_positions.push_back({4.0f * unit(random), 4.0f * unit(random), 0.0f});
     input.sample_receivers.push_back(0);
+    input.sample_receiver_triangles.push_back({{-8, -8, 0}, {8, -8, 0}, {0, 8, 0}});
   }
   input.casters.push_back({{-8, -8, 0}, {8, -8, 0}, {0, 8, 0}, 0});  // the ground: the receiver
   for (std::uint32_t t = 1; t < 600; ++t) {

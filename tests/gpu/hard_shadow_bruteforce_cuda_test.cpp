@@ -18,6 +18,7 @@
 #include "gpu/bruteforce/hard_shadow_bruteforce_backend.h"
 #include "gpu/bruteforce/hard_shadow_bruteforce_kernel.h"
 #include "gpu/device.h"
+#include "shadowcts/geometry/receiver_half_space.h"
 #include "shadowcts/geometry/segment_triangle.h"
 
 namespace shadowcts {
@@ -107,7 +108,8 @@ struct HostEvaluation {
   std::uint64_t pair_tests = 0;
 };
 
-// The algorithm's contract, evaluated on the host with the same shared test.
+// The algorithm's contract, evaluated on the host with the same shared tests (the float
+// segment/triangle test and the receiver half-space rule).
 HostEvaluation evaluate_on_host(const Case& c, const ViewSamples& samples) {
   HostEvaluation result;
   result.shadowed.assign(samples.samples.size(), 0);
@@ -118,12 +120,22 @@ HostEvaluation evaluate_on_host(const Case& c, const ViewSamples& samples) {
         make_ray_space(c.light->kind == ShadowLightKind::point
                            ? segment_to_point_light(sample.position, c.light->position)
                            : ray_to_directional_light(sample.position, c.light->direction));
+    const bool directional = c.light->kind != ShadowLightKind::point;
+    geometry::ReceiverHalfSpace half_space;  // no plane without a receiver
+    if (sample.receiver != no_receiver) {
+      const Triangle& r = c.triangles[sample.receiver];
+      half_space = geometry::receiver_half_space(
+          glm::dvec3(r.v0), glm::dvec3(r.v1), glm::dvec3(r.v2), directional,
+          glm::dvec3(directional ? c.light->direction : c.light->position));
+    }
     for (std::size_t t = 0; t < c.triangles.size(); ++t) {
       const Triangle& triangle = c.triangles[t];
       if (!c.meshes[triangle.mesh].caster) continue;
       ++result.pair_tests;  // the receiver counts as a visited pair
       if (t == sample.receiver) continue;
-      if (ray_hits_triangle(ray, triangle.v0, triangle.v1, triangle.v2)) {
+      if (ray_hits_triangle(ray, triangle.v0, triangle.v1, triangle.v2) &&
+          geometry::caster_counts(half_space, glm::dvec3(sample.position), glm::dvec3(triangle.v0),
+                                  glm::dvec3(triangle.v1), glm::dvec3(triangle.v2))) {
         result.shadowed[i] = 1;
         break;
       }

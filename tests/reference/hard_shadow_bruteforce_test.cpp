@@ -64,8 +64,10 @@ TEST(BruteforceHardShadow, SharedEdgesZeroAreaAndReceivers) {
   const std::size_t on_receiver = h.add_sample({0.5f, 2.5f, 0.5f}, 3);  // on the fan's edge
   const AlgorithmOutput output = make_bruteforce_hard_shadow()->run(h.c, h.samples, "exact");
   EXPECT_EQ(output.shadowed[through_edge], 1);
-  // The sample on the edge shared by triangles 2 and 3 (receiver 3) still lies on triangle 2.
-  EXPECT_EQ(output.shadowed[on_receiver], 1);
+  // The sample on the edge shared by triangles 2 and 3 (receiver 3) also lies on triangle 2, but
+  // only in the receiver's plane, not strictly on the light's side of it (the receiver
+  // half-space rule): the next face of the fan does not shadow it.
+  EXPECT_EQ(output.shadowed[on_receiver], 0);
 }
 
 TEST(BruteforceHardShadow, RejectsUnknownVariants) {

@@ -11,6 +11,7 @@
 #include "reference/metric/metric_algorithm.h"
 #include "reference/metric/metric_shadows.h"
 #include "reference/metric/traversal.h"
+#include "shadowcts/geometry/receiver_half_space.h"
 #include "shadowcts/geometry/segment_triangle.h"
 #include "shadowcts/hard_shadow_comparison.h"
 #include "shadowcts/hard_shadow_oracle.h"
@@ -19,7 +20,8 @@ namespace shadowcts::metric {
 namespace {
 
 // Metric's triangle test (the watertight test, decided again exactly where it misses beside an
-// edge) against every caster but the receiver: what the metric culling must keep.
+// edge, and the receiver half-space rule) against every caster but the receiver: what the metric
+// culling must keep.
 std::vector<std::uint8_t> watertight_bruteforce(const Case& c, const ViewSamples& samples) {
   const ExactShadowPredicate exact(hard_shadow_light(c), c.scale());
   std::vector<std::uint32_t> casters;
@@ -33,12 +35,23 @@ std::vector<std::uint8_t> watertight_bruteforce(const Case& c, const ViewSamples
                               ? segment_to_point_light(sample.position, c.light->position)
                               : ray_to_directional_light(sample.position, c.light->direction);
     const RaySpace space = make_ray_space(ray);
+    const bool directional = c.light->kind != ShadowLightKind::point;
+    geometry::ReceiverHalfSpace half_space;  // no plane without a receiver: every caster counts
+    if (sample.receiver != no_receiver) {
+      const Triangle& r = c.triangles[sample.receiver];
+      half_space = geometry::receiver_half_space(
+          glm::dvec3(r.v0), glm::dvec3(r.v1), glm::dvec3(r.v2), directional,
+          glm::dvec3(directional ? c.light->direction : c.light->position));
+    }
+    const glm::dvec3 p(sample.position);
     for (std::uint32_t t : casters) {
       if (t == sample.receiver) continue;
       const Triangle& tri = c.triangles[t];
-      if (ray_hits_triangle(space, tri.v0, tri.v1, tri.v2) ||
-          (ray_near_triangle_edge(space, tri.v0, tri.v1, tri.v2) &&
-           exact.blocks(tri, MovedPoint{glm::dvec3(sample.position), 0.0, {0, 0, 0}}))) {
+      if ((ray_hits_triangle(space, tri.v0, tri.v1, tri.v2) ||
+           (ray_near_triangle_edge(space, tri.v0, tri.v1, tri.v2) &&
+            exact.blocks(tri, MovedPoint{p, 0.0, {0, 0, 0}}))) &&
+          geometry::caster_counts(half_space, p, glm::dvec3(tri.v0), glm::dvec3(tri.v1),
+                                  glm::dvec3(tri.v2))) {
         shadowed[s] = 1;
         break;
       }
@@ -192,10 +205,10 @@ TEST(Metric, SharedEdgesReceiversAndTheLightItself) {
   for (const char* variant : {"capsules", "spheres", "median"}) {
     const AlgorithmOutput output = make_metric()->run(h.c, h.samples, variant);
     EXPECT_EQ(output.shadowed[through_edge], 1);
-    // The sample also lies on the fan's face 2, at t = 0 of its segment: the exact oracle counts
-    // that (an ambiguous sample), and so does metric, which decides exactly beside an edge (the
-    // watertight test alone counts hits for t in (0, 1] only).
-    EXPECT_EQ(output.shadowed[on_receiver], 1);
+    // The sample also lies on the fan's face 2, at t = 0 of its segment, but in its receiver's
+    // plane, not strictly on the light's side of it: under the receiver half-space rule the next
+    // face of the fan does not shadow it.
+    EXPECT_EQ(output.shadowed[on_receiver], 0);
     EXPECT_EQ(output.shadowed[at_light], 0);
     EXPECT_EQ(output.shadowed, watertight_bruteforce(h.c, h.samples));
   }
@@ -232,10 +245,15 @@ TEST(Metric, DescribesItselfAndParsesVariants) {
 
   const testing::FixtureCase f = testing::load_fixture("gate_house.20k", 32);
   const AlgorithmOutput output = algorithm->run(f.c, f.samples, "capsules");
-  const std::vector<std::string> names = {
-      "clusters",   "capsule_share_permille", "clusters_culled_facing_away", "tree_nodes",
-      "tree_depth", "nodes_visited",          "clusters_tested_without_hit", "triangle_tests",
-      "light_on_caster_samples"};
+  const std::vector<std::string> names = {"clusters",
+                                          "capsule_share_permille",
+                                          "clusters_culled_facing_away",
+                                          "tree_nodes",
+                                          "tree_depth",
+                                          "nodes_visited",
+                                          "clusters_tested_without_hit",
+                                          "triangle_tests",
+                                          "light_on_caster_samples"};
   ASSERT_EQ(output.counters.size(), names.size());
   for (std::size_t i = 0; i < names.size(); ++i) EXPECT_EQ(output.counters[i].first, names[i]);
   EXPECT_GT(output.counters[1].second, 0u);  // gate_house has wires and poles: capsules
@@ -256,7 +274,10 @@ TEST(Metric, NoLeakThroughACrackAtATJunction) {
   h.add_triangle(a, b, c);
   h.add_triangle(on_ac, c, e);
   h.c.camera.position = {0x1.6745fp+3f, -0x1.374eacp+3f, -0x1.81776cp+2f};
-  const std::size_t sample = h.add_sample({-0x1.5d3cp+5f, 0x1.ea58p+5f, 0x1.15b8p+5f}, h.ground);
+  // Without a receiver (the fuzz case named the ground far below, whose plane would put both
+  // casters off the light's side): the receiver half-space rule is void here.
+  const std::size_t sample =
+      h.add_sample({-0x1.5d3cp+5f, 0x1.ea58p+5f, 0x1.15b8p+5f}, shadowcts::no_receiver);
   h.samples.samples[sample].normal = {0, -1, 0};
   const HardShadowTruth truth = exact_hard_shadow_oracle(h.c, h.samples);
   ASSERT_EQ(truth.band[sample], BandClass::robust_shadowed);
