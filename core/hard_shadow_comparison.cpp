@@ -13,6 +13,23 @@ HardShadowComparison compare_hard_shadows(const std::vector<std::uint8_t>& shado
   constexpr int exponents = band_max_exponent - band_min_exponent + 1;
   std::vector<std::uint64_t> curve(exponents, 0);
 
+  // The mismatch curve needs the robust exponents of the samples answered differently: those the
+  // oracle left to compute on demand are computed now (in a copy: the truth stays as it is).
+  std::vector<std::size_t> unknown;
+  for (std::size_t i = 0; i < shadowed.size(); ++i)
+    if (truth.band[i] != BandClass::not_compared &&
+        (shadowed[i] != 0) != (truth.shadowed[i] != 0) &&
+        truth.robust_exponent[i] == robust_exponent_unknown)
+      unknown.push_back(i);
+  std::vector<std::int8_t> resolved;
+  if (!unknown.empty()) {
+    if (!truth.lazy)
+      throw std::logic_error(
+          "hard-shadow truth: robust exponents unknown and nothing to compute them");
+    truth.lazy->resolve(unknown, resolved);
+  }
+  std::size_t next_resolved = 0;
+
   for (std::size_t i = 0; i < shadowed.size(); ++i) {
     const BandClass band = truth.band[i];
     if (band == BandClass::not_compared) continue;
@@ -26,10 +43,13 @@ HardShadowComparison compare_hard_shadows(const std::vector<std::uint8_t>& shado
       ++r.robust;
       if (answer != expected) ++(expected ? r.leaks : r.false_shadows);
     }
-    if (answer != expected)
+    if (answer != expected) {
+      std::int8_t exponent = truth.robust_exponent[i];
+      if (exponent == robust_exponent_unknown) exponent = resolved[next_resolved++];
       // Robust at 2^e for every e <= robust_exponent.
-      for (int e = band_min_exponent; e <= band_max_exponent && e <= truth.robust_exponent[i]; ++e)
+      for (int e = band_min_exponent; e <= band_max_exponent && e <= exponent; ++e)
         ++curve[e - band_min_exponent];
+    }
   }
   for (int e = band_min_exponent; e <= band_max_exponent; ++e)
     r.mismatch_curve.emplace_back(e, curve[e - band_min_exponent]);

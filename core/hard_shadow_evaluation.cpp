@@ -1,6 +1,7 @@
 #include "hard_shadow_evaluation.h"
 
 #include <chrono>
+#include <iomanip>
 #include <sstream>
 
 #include "hard_shadow_images.h"
@@ -32,16 +33,21 @@ class HardShadowEvaluation : public CaseEvaluation {
       robust_shadowed += b == BandClass::robust_shadowed;
       ambiguous += b == BandClass::ambiguous;
     }
+    // The share of the compared samples that the band leaves unverified.
+    const std::uint64_t classified = robust_lit + robust_shadowed + ambiguous;
+    const double ambiguous_fraction = classified ? double(ambiguous) / double(classified) : 0.0;
     std::ostringstream line;
     line << truth_.method << ", eps_rel " << truth_.eps_rel << " (tau " << truth_.tau
          << "): " << robust_lit << " robust-lit, " << robust_shadowed << " robust-shadowed, "
-         << ambiguous << " ambiguous";
+         << ambiguous << " ambiguous (" << std::fixed << std::setprecision(2)
+         << 100.0 * ambiguous_fraction << " %)";
     oracle_.plan_line = line.str();
     oracle_.details = {{"eps_rel", truth_.eps_rel},
                        {"tau", truth_.tau},
                        {"robust_lit", robust_lit},
                        {"robust_shadowed", robust_shadowed},
                        {"ambiguous", ambiguous},
+                       {"ambiguous_fraction", ambiguous_fraction},
                        {"mask_image", write_oracle_images(out_dir, image_folder, samples, truth_)}};
   }
 

@@ -58,6 +58,13 @@ ExactBandClassifier::ExactBandClassifier(const Case& c, const HardShadowLight& l
   }
   largest_move_ = level_lengths_.back();
   if (!class_lengths_.empty()) largest_move_ = std::max(largest_move_, class_lengths_.back());
+  if (class_from_exponent_) {
+    has_class_length_ = true;
+    class_length_ = level_lengths_[std::size_t(class_exponent_ - band_min_exponent)];
+  } else if (!class_lengths_.empty()) {
+    has_class_length_ = true;
+    class_length_ = class_lengths_.back();
+  }
 }
 
 bool ExactBandClassifier::blocks(const Query& q, const BandCandidate& candidate,
@@ -169,7 +176,10 @@ std::size_t ExactBandClassifier::first_changing_length(const Query& q,
 }
 
 SampleTruth ExactBandClassifier::classify(const ViewSample& sample,
-                                          std::vector<BandCandidate>& candidates) const {
+                                          std::vector<BandCandidate>& candidates,
+                                          bool with_exponent) const {
+  // Candidates within the largest cube this call decides.
+  const double inflation = with_exponent ? largest_move_ : class_length_;
   Query q;
   q.position = glm::dvec3(sample.position);
   q.receiver = sample.receiver;
@@ -185,12 +195,12 @@ SampleTruth ExactBandClassifier::classify(const ViewSample& sample,
   auto gather = [&](bool stop_at_first_blocker) {
     candidates.clear();
     q.first_blocker = BandCandidate{0.0, no_triangle};
-    casters_.visit(segment, largest_move_, [&](std::uint32_t triangle) {
+    casters_.visit(segment, inflation, [&](std::uint32_t triangle) {
       if (triangle == sample.receiver) return false;
       const Triangle& t = case_.triangles[triangle];
       const double separation = separation_inflation(segment, glm::dvec3(t.v0), glm::dvec3(t.v1),
-                                                     glm::dvec3(t.v2), largest_move_);
-      if (separation > largest_move_) return false;
+                                                     glm::dvec3(t.v2), inflation);
+      if (separation > inflation) return false;
       const PlaneReach reach = predicate_.reach(q.plane, t);
       if (reach == PlaneReach::none) return false;  // shadows no point of this sample's cubes
       const BandCandidate candidate{separation, triangle, reach};
@@ -208,7 +218,14 @@ SampleTruth ExactBandClassifier::classify(const ViewSample& sample,
 
   SampleTruth truth;
   truth.shadowed = q.shadowed;
-  if (q.shadowed && cube_in_shadow_of(q, q.first_blocker, largest_move_)) {
+  const BandClass robust_class = q.shadowed ? BandClass::robust_shadowed : BandClass::robust_lit;
+  if (!with_exponent) {
+    truth.robust_exponent = robust_exponent_unknown;
+    // Below the float32 resolution every sample is robust.
+    truth.band = robust_class;
+    if (!has_class_length_) return truth;
+    if (q.shadowed && cube_in_shadow_of(q, q.first_blocker, class_length_)) return truth;
+  } else if (q.shadowed && cube_in_shadow_of(q, q.first_blocker, largest_move_)) {
     truth.band = BandClass::robust_shadowed;
     truth.robust_exponent = band_max_exponent;
     return truth;
@@ -229,6 +246,10 @@ SampleTruth ExactBandClassifier::classify(const ViewSample& sample,
     }
   }
 
+  if (!with_exponent) {
+    if (!answer_constant_on_cube(q, class_length_)) truth.band = BandClass::ambiguous;
+    return truth;
+  }
   const std::size_t level = first_changing_length(q, level_lengths_);
   truth.robust_exponent = std::int8_t(band_min_exponent - 1 + int(level));
   // At eps_rel, the largest cube decides (it holds every smaller one).

@@ -65,11 +65,12 @@ class ExactBandClassifier {
   ExactBandClassifier(const Case& c, const HardShadowLight& light, const CasterBvh& casters,
                       const ExactShadowPredicate& predicate);
 
-  // The sample must be regular. `candidates` is scratch space, reused between calls.
-  SampleTruth classify(const ViewSample& sample, std::vector<BandCandidate>& candidates) const;
-
-  // The largest move of any level: the inflation of the candidate query.
-  double largest_move() const { return largest_move_; }
+  // The sample must be regular. `candidates` is scratch space, reused between calls. With
+  // `with_exponent`, robust_exponent too (candidates within the largest level, 2^-10 S: 64 times
+  // as many as tau needs); without, only the answer and the class at eps_rel, and robust_exponent
+  // is robust_exponent_unknown. Both give the same answer and class.
+  SampleTruth classify(const ViewSample& sample, std::vector<BandCandidate>& candidates,
+                       bool with_exponent) const;
 
  private:
   struct Query;
@@ -92,7 +93,10 @@ class ExactBandClassifier {
   bool class_from_exponent_ = false;
   int class_exponent_ = 0;
   std::vector<double> class_lengths_;
-  double largest_move_ = 0.0;
+  // The cube that decides the class at eps_rel (when there is one: tau >= 2^-24 S).
+  bool has_class_length_ = false;
+  double class_length_ = 0.0;
+  double largest_move_ = 0.0;  // the largest move of any level and of the class
 };
 
 }  // namespace shadowcts

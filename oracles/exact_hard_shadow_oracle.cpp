@@ -1,5 +1,7 @@
 #include "shadowcts/hard_shadow_oracle.h"
 
+#include <atomic>
+#include <memory>
 #include <vector>
 
 #include <tbb/blocked_range.h>
@@ -12,28 +14,80 @@
 #include "oracles/thread_limit.h"
 
 namespace shadowcts {
+namespace {
+
+// The oracle's state kept alive for exponents on demand: the candidate tree and the classifier,
+// and a cache (a sample's exponent is computed at most once whatever asks for it).
+class ExactLazyExponents final : public LazyRobustExponents {
+ public:
+  ExactLazyExponents(const Case& c, const ViewSamples& samples, const HardShadowLight& light)
+      : case_(c),
+        samples_(samples.samples),
+        casters_(case_),
+        predicate_(light, case_.scale()),
+        classifier_(case_, light, casters_, predicate_),
+        cache_(samples_.size()) {
+    for (auto& e : cache_) e.store(robust_exponent_unknown, std::memory_order_relaxed);
+  }
+
+  const ExactBandClassifier& classifier() const { return classifier_; }
+
+  void resolve(const std::vector<std::size_t>& samples,
+               std::vector<std::int8_t>& out) const override {
+    out.assign(samples.size(), robust_exponent_unknown);
+    run_with_thread_limit(case_.parameters.threads, [&] {
+      tbb::parallel_for(
+          tbb::blocked_range<std::size_t>(0, samples.size(), 16),
+          [&](const tbb::blocked_range<std::size_t>& range) {
+            std::vector<BandCandidate> candidates;
+            for (std::size_t k = range.begin(); k != range.end(); ++k) {
+              const std::size_t i = samples[k];
+              std::int8_t e = cache_[i].load(std::memory_order_relaxed);
+              if (e == robust_exponent_unknown) {
+                e = classifier_.classify(samples_[i], candidates, true).robust_exponent;
+                cache_[i].store(e, std::memory_order_relaxed);
+              }
+              out[k] = e;
+            }
+          });
+    });
+  }
+
+ private:
+  // The caller's case and samples, not copies (one copy of the samples per run): they must outlive
+  // every resolve (hard_shadow_oracle.h).
+  const Case& case_;
+  const std::vector<ViewSample>& samples_;
+  const CasterBvh casters_;
+  const ExactShadowPredicate predicate_;
+  const ExactBandClassifier classifier_;
+  mutable std::vector<std::atomic<std::int8_t>> cache_;
+};
+
+}  // namespace
 
 HardShadowTruth exact_hard_shadow_oracle(const Case& c, const ViewSamples& samples) {
   const HardShadowLight light = hard_shadow_light(c);
   check_receivers(c, samples);
   const std::size_t n = samples.samples.size();
-
   HardShadowTruth truth;
   truth.method =
       "exact: CGAL Epick orientation predicates (exact rationals where a moved point is not a "
       "double), candidates from a conservative BVH with separating-axis bounds; band over the "
-      "whole cube of moves (exact for lit samples, conservative for shadowed ones)";
+      "whole cube of moves (exact for lit samples, conservative for shadowed ones); robust "
+      "exponents on demand";
   truth.exact = true;
   truth.eps_rel = c.parameters.eps_rel;
   truth.tau = c.parameters.eps_rel * c.scale();
   truth.shadowed.assign(n, 0);
   truth.band.assign(n, BandClass::not_compared);
   truth.robust_exponent.assign(n, ambiguous_at_every_exponent);
-
+  std::shared_ptr<const ExactLazyExponents> lazy;
   run_with_thread_limit(c.parameters.threads, [&] {
-    const CasterBvh casters(c);
-    const ExactShadowPredicate predicate(light, c.scale());
-    const ExactBandClassifier classifier(c, light, casters, predicate);
+    lazy = std::make_shared<const ExactLazyExponents>(c, samples, light);
+  });
+  const ExactBandClassifier& classifier = lazy->classifier();
+  run_with_thread_limit(c.parameters.threads, [&] {
     // Every sample is classified on its own: the result does not depend on the partitioning.
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256),
                       [&](const tbb::blocked_range<std::size_t>& range) {
@@ -41,13 +95,20 @@ HardShadowTruth exact_hard_shadow_oracle(const Case& c, const ViewSamples& sampl
                         for (std::size_t i = range.begin(); i != range.end(); ++i) {
                           const ViewSample& sample = samples.samples[i];
                           if (sample.sample_class != SampleClass::regular) continue;
-                          const SampleTruth t = classifier.classify(sample, candidates);
+                          const SampleTruth t = classifier.classify(sample, candidates, false);
                           truth.shadowed[i] = t.shadowed ? 1 : 0;
                           truth.band[i] = t.band;
                           truth.robust_exponent[i] = t.robust_exponent;
                         }
                       });
   });
+  truth.lazy = lazy;
+  return truth;
+}
+
+HardShadowTruth exact_hard_shadow_oracle_with_exponents(const Case& c, const ViewSamples& samples) {
+  HardShadowTruth truth = exact_hard_shadow_oracle(c, samples);
+  resolve_robust_exponents(truth);
   return truth;
 }
 

@@ -82,7 +82,11 @@ std::optional<Violation> find_violation(const Subject& subject, const Case& orig
 // compares hard-shadow algorithms there).
 std::optional<HardShadowTruth> exact_truth(const Case& c, const ViewSamples& samples) {
   if (!c.light) return std::nullopt;
-  return exact_hard_shadow_oracle(hard_shadow_view(c), samples);
+  // The view is a temporary: drop the lazy exponents that would refer to it (no check here
+  // needs the mismatch curve).
+  HardShadowTruth truth = exact_hard_shadow_oracle(hard_shadow_view(c), samples);
+  truth.lazy.reset();
+  return truth;
 }
 
 std::optional<Violation> violation_on(const Subject& subject, const SampleCase& candidate) {

@@ -16,9 +16,14 @@
 namespace shadowcts {
 
 // Exact for the float inputs: CGAL exact predicates on a provably conservative candidate set;
-// moved sample positions keep exact coordinates. Fills robust_exponent for every exponent in
-// [band_min_exponent, band_max_exponent]. exact = true.
+// moved sample positions keep exact coordinates. exact = true.
+// robust_exponent is robust_exponent_unknown for every regular sample: truth.lazy computes it on
+// demand (compare_hard_shadows does, for the samples an implementation answers differently). For
+// that truth.lazy refers to `c` and `samples`: they must outlive every use of it (reset it to
+// drop that dependence; an unknown exponent then throws std::logic_error where it is needed).
 HardShadowTruth exact_hard_shadow_oracle(const Case& c, const ViewSamples& samples);
+// The same with every robust_exponent computed (the whole mismatch-curve data; slower).
+HardShadowTruth exact_hard_shadow_oracle_with_exponents(const Case& c, const ViewSamples& samples);
 
 // Embree 3 occlusion rays in robust mode. The band is estimated: the 14 moves are traced by
 // Embree (moved origins rounded to float) at the run's tau only, so robust_exponent records only

@@ -109,8 +109,8 @@ const Prepared& prepared(const std::string& fixture, const std::string& relation
   if (it == cache.end()) {
     auto p = std::make_unique<Prepared>();
     std::tie(p->before, p->after) = relation_named(relation).apply(original(fixture));
-    p->truth_before = exact_hard_shadow_oracle(p->before.c, p->before.samples);
-    p->truth_after = exact_hard_shadow_oracle(p->after.c, p->after.samples);
+    p->truth_before = exact_hard_shadow_oracle_with_exponents(p->before.c, p->before.samples);
+    p->truth_after = exact_hard_shadow_oracle_with_exponents(p->after.c, p->after.samples);
     it = cache.emplace(key, std::move(p)).first;
   }
   return *it->second;
@@ -138,12 +138,20 @@ TEST_P(ExactOracleInvariance, SameAnswerAndBandOnEverySample) {
   const Prepared& p = prepared(GetParam().fixture, GetParam().relation);
   const HardShadowTruth &a = p.truth_before, &b = p.truth_after;
   ASSERT_EQ(a.shadowed.size(), b.shadowed.size());
-  std::size_t robust_count = 0, differences = 0;
+  std::size_t robust_count = 0, differences = 0, shadowed_exponent_changes = 0;
   for (std::size_t i = 0; i < a.shadowed.size(); ++i) {
     robust_count += robust(a.band[i]);
     if (a.shadowed[i] == b.shadowed[i] && a.band[i] == b.band[i] &&
         a.robust_exponent[i] == b.robust_exponent[i])
       continue;
+    // The band is exact for lit samples and conservative for shadowed ones (docs/specification.md):
+    // splitting a blocker can turn a one-blocker certificate of a large cube into a boundary test
+    // that the receiver half-space rule's open edges fail, so a shadowed sample's exponent may
+    // change at levels far above tau; its answer and class may not.
+    if (a.shadowed[i] && b.shadowed[i] && a.band[i] == b.band[i]) {
+      ++shadowed_exponent_changes;
+      continue;
+    }
     if (++differences <= 5)
       ADD_FAILURE() << "sample " << i << ": shadowed " << int(a.shadowed[i]) << " -> "
                     << int(b.shadowed[i]) << ", band " << int(a.band[i]) << " -> " << int(b.band[i])
@@ -151,6 +159,7 @@ TEST_P(ExactOracleInvariance, SameAnswerAndBandOnEverySample) {
                     << int(b.robust_exponent[i]);
   }
   EXPECT_EQ(differences, 0u);
+  EXPECT_LE(shadowed_exponent_changes * 1000, a.shadowed.size());
   EXPECT_GT(robust_count, a.shadowed.size() / 4);
 }
 

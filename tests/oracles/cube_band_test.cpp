@@ -268,7 +268,7 @@ testing::HandBuiltCase random_case(int param) {
 
 TEST_P(BandOnRandomCases, RobustMeansConstantOnTheWholeCube) {
   const auto h = random_case(GetParam());
-  const HardShadowTruth truth = exact_hard_shadow_oracle(h.c, h.samples);
+  const HardShadowTruth truth = exact_hard_shadow_oracle_with_exponents(h.c, h.samples);
   const HardShadowLight light = hard_shadow_light(h.c);
   const ExactShadowPredicate predicate(light, h.c.scale());
   std::mt19937 random{std::uint32_t(GetParam())};
@@ -313,11 +313,11 @@ TEST_P(BandOnRandomCases, RobustMeansConstantOnTheWholeCube) {
 // and an eps_rel between two powers of two is decided by its own cube, between the two classes.
 TEST_P(BandOnRandomCases, RobustnessIsMonotoneInTheLength) {
   auto h = random_case(GetParam());
-  const HardShadowTruth base = exact_hard_shadow_oracle(h.c, h.samples);
+  const HardShadowTruth base = exact_hard_shadow_oracle_with_exponents(h.c, h.samples);
   std::vector<HardShadowTruth> at;  // at[e - band_min_exponent]: eps_rel = 2^e
   for (int e = band_min_exponent; e <= band_max_exponent; ++e) {
     h.c.parameters.eps_rel = std::ldexp(1.0, e);
-    at.push_back(exact_hard_shadow_oracle(h.c, h.samples));
+    at.push_back(exact_hard_shadow_oracle_with_exponents(h.c, h.samples));
   }
   std::size_t between_checked = 0;
   for (std::size_t i = 0; i < h.samples.samples.size(); ++i) {
@@ -331,7 +331,7 @@ TEST_P(BandOnRandomCases, RobustnessIsMonotoneInTheLength) {
   // eps_rel = 1.5 * 2^-14: robust there implies robust at 2^-14, and robust at 2^-13 implies
   // robust there.
   h.c.parameters.eps_rel = 1.5 * 0x1p-14;
-  const HardShadowTruth between = exact_hard_shadow_oracle(h.c, h.samples);
+  const HardShadowTruth between = exact_hard_shadow_oracle_with_exponents(h.c, h.samples);
   for (std::size_t i = 0; i < h.samples.samples.size(); ++i) {
     const bool robust = between.band[i] != BandClass::ambiguous;
     if (robust) {

@@ -24,7 +24,8 @@ struct Truths {
 };
 
 Truths run_both(const HandBuiltCase& h) {
-  return {exact_hard_shadow_oracle(h.c, h.samples), embree_hard_shadow_oracle(h.c, h.samples)};
+  return {exact_hard_shadow_oracle_with_exponents(h.c, h.samples),
+          embree_hard_shadow_oracle(h.c, h.samples)};
 }
 
 void expect_robustly_shadowed(const Truths& t, std::size_t i) {
@@ -104,7 +105,7 @@ TEST(HardShadowOracles, RayThroughAnEdgeWithATJunctionIsRobustlyShadowed) {
       for (int i = 1; i < 4; ++i) h.add_triangle(apex, rim[i], rim[(i + 1) % 4]);
       const std::size_t sample = h.add_ground_sample({x.x, 0, x.z});
       // Exact oracle only: float rays need not be watertight at a T-junction.
-      const HardShadowTruth exact = exact_hard_shadow_oracle(h.c, h.samples);
+      const HardShadowTruth exact = exact_hard_shadow_oracle_with_exponents(h.c, h.samples);
       EXPECT_EQ(exact.shadowed[sample], 1) << x.x << " " << directional;
       EXPECT_EQ(exact.band[sample], BandClass::robust_shadowed) << x.x << " " << directional;
       EXPECT_EQ(exact.robust_exponent[sample], band_max_exponent) << x.x << " " << directional;
@@ -142,7 +143,7 @@ TEST(HardShadowOracles, ThinWedgeApexIsAmbiguous) {
     auto h = make_hand_built_case(light);
     h.add_triangle({0, 2, 0}, {1, 2, 0.25f}, {1, 2, 0.375f});
     const std::size_t i = h.add_ground_sample({-0x1p-30f, 0, 0});
-    const HardShadowTruth exact = exact_hard_shadow_oracle(h.c, h.samples);
+    const HardShadowTruth exact = exact_hard_shadow_oracle_with_exponents(h.c, h.samples);
     EXPECT_EQ(exact.shadowed[i], 0);
     EXPECT_EQ(exact.band[i], BandClass::ambiguous);
     EXPECT_EQ(exact.robust_exponent[i], ambiguous_at_every_exponent);
@@ -161,13 +162,14 @@ TEST(HardShadowOracles, ThinLitWedgeInsideAShadowIsAmbiguous) {
     h.add_triangle(apex, {-1, 2, 1}, {-1, 2, -1});
     h.add_triangle(apex, {-1, 2, -1}, {1, 2, 0.25f});
     const std::size_t i = h.add_ground_sample({-0x1p-30f, 0, 0});
-    const HardShadowTruth exact = exact_hard_shadow_oracle(h.c, h.samples);
+    const HardShadowTruth exact = exact_hard_shadow_oracle_with_exponents(h.c, h.samples);
     EXPECT_EQ(exact.shadowed[i], 1);
     EXPECT_EQ(exact.band[i], BandClass::ambiguous);
     EXPECT_EQ(exact.robust_exponent[i], ambiguous_at_every_exponent);
     // Away from the apex, deep inside the fan's shadow, the sample is robust again.
     const std::size_t inside = h.add_ground_sample({-0.5f, 0, 0});
-    EXPECT_EQ(exact_hard_shadow_oracle(h.c, h.samples).band[inside], BandClass::robust_shadowed);
+    EXPECT_EQ(exact_hard_shadow_oracle_with_exponents(h.c, h.samples).band[inside],
+              BandClass::robust_shadowed);
   }
 }
 
@@ -198,7 +200,7 @@ TEST(HardShadowOracles, LightInACastersPlane) {
   auto on = make_hand_built_case(point_light({0, 8, 0}));
   on.add_triangle({-1, 8, -1}, {1, 8, -1}, {0, 8, 1});
   const std::size_t i = on.add_ground_sample({3, 0, 0});
-  const HardShadowTruth exact = exact_hard_shadow_oracle(on.c, on.samples);
+  const HardShadowTruth exact = exact_hard_shadow_oracle_with_exponents(on.c, on.samples);
   EXPECT_EQ(exact.shadowed[i], 1);
   EXPECT_EQ(exact.band[i], BandClass::robust_shadowed);
 }
@@ -300,10 +302,10 @@ TEST(HardShadowOracles, RejectLightsWithoutHardShadows) {
   h.add_ground_sample({0, 0, 0});
   h.c.light->kind = ShadowLightKind::sun_disk;
   h.c.light->direction = {0, 1, 0};
-  EXPECT_THROW(exact_hard_shadow_oracle(h.c, h.samples), InputError);
+  EXPECT_THROW(exact_hard_shadow_oracle_with_exponents(h.c, h.samples), InputError);
   EXPECT_THROW(embree_hard_shadow_oracle(h.c, h.samples), InputError);
   h.c.light.reset();
-  EXPECT_THROW(exact_hard_shadow_oracle(h.c, h.samples), InputError);
+  EXPECT_THROW(exact_hard_shadow_oracle_with_exponents(h.c, h.samples), InputError);
 }
 
 // A sample at distance D = 2^-12 inside (or outside) the straight edge z = -1 of a blocker at
@@ -332,7 +334,7 @@ TEST_P(BandAroundAnEdge, RobustExponentAgreesWithTheBandAtEveryEpsRel) {
     ++expected_exponent;
   ASSERT_EQ(expected_exponent, -15);  // the configuration is what the comment says
 
-  const HardShadowTruth base = exact_hard_shadow_oracle(h.c, h.samples);
+  const HardShadowTruth base = exact_hard_shadow_oracle_with_exponents(h.c, h.samples);
   EXPECT_EQ(base.shadowed[i], side > 0 ? 1 : 0);
   EXPECT_EQ(base.robust_exponent[i], expected_exponent);
 
@@ -340,7 +342,7 @@ TEST_P(BandAroundAnEdge, RobustExponentAgreesWithTheBandAtEveryEpsRel) {
   // no move length eps_rel S 2^-j >= 2^-24 S flips the answer.
   for (double eps_rel = 0x1p-24; eps_rel <= 0x1p-8; eps_rel *= std::sqrt(std::sqrt(2.0))) {
     h.c.parameters.eps_rel = eps_rel;
-    const HardShadowTruth t = exact_hard_shadow_oracle(h.c, h.samples);
+    const HardShadowTruth t = exact_hard_shadow_oracle_with_exponents(h.c, h.samples);
     bool robust = true;
     for (double delta = eps_rel * scale; delta >= std::ldexp(scale, -24); delta *= 0.5)
       robust = robust && !flips(delta, distance);
@@ -385,11 +387,11 @@ INSTANTIATE_TEST_SUITE_P(PointAndDirectional, RandomCaseAgreement, ::testing::Va
 TEST(HardShadowOracles, ExactOracleIsTheSameForAnyThreadCount) {
   auto h = testing::make_random_case(5, 8, 1500, 0.75f, 3000, point_light({1.5f, 10.0f, 0.75f}));
   h.c.parameters.threads = 1;
-  const HardShadowTruth one = exact_hard_shadow_oracle(h.c, h.samples);
+  const HardShadowTruth one = exact_hard_shadow_oracle_with_exponents(h.c, h.samples);
   h.c.parameters.threads = 0;
-  const HardShadowTruth all = exact_hard_shadow_oracle(h.c, h.samples);
+  const HardShadowTruth all = exact_hard_shadow_oracle_with_exponents(h.c, h.samples);
   h.c.parameters.threads = 3;
-  const HardShadowTruth three = exact_hard_shadow_oracle(h.c, h.samples);
+  const HardShadowTruth three = exact_hard_shadow_oracle_with_exponents(h.c, h.samples);
   for (const HardShadowTruth* other : {&all, &three}) {
     EXPECT_EQ(one.shadowed, other->shadowed);
     EXPECT_EQ(one.band, other->band);

@@ -49,6 +49,7 @@ ordered_json hand_case(const std::string& name) {
           {"robust_lit", 6},
           {"robust_shadowed", 2},
           {"ambiguous", 0},
+          {"ambiguous_fraction", 0.0},
           {"mask_image", "images/" + name + "/oracle.mask.png"}}}}},
       {"left_out", ordered_json::array()}};
 }
