@@ -237,20 +237,33 @@ void expect_all_lit(const Case& c, ViewSamples& samples, std::size_t at_least) {
 }
 
 // (1) A tessellated tilted floor (exactly planar), its samples one ulp below the plane beside a
-// coplanar neighbour that meets their segment to the point light.
+// coplanar neighbour that meets their segment to the point light; also scaled by 2^-60 and 2^60
+// (exactly: every predicate keeps its sign), where the reject box's bounds must still hold.
+Case scaled_floor_case(const ShadowLight& light, float scale) {
+  ShadowLight scaled = light;
+  if (scaled.kind == ShadowLightKind::point) scaled.position *= scale;
+  Case c = base_case(scaled, scale * glm::vec3(0.375f, 12.0f, 9.125f));
+  c.camera.near_plane *= scale;
+  c.camera.far_plane *= scale;
+  add_floor(c, 4.0f * scale, 8, 0.5f, 0.25f);
+  return c;
+}
+
 TEST(StencilReceiverRule, SamplesBelowATessellatedFloorBesideACoplanarNeighbourAreLit) {
-  Case c = base_case(point_light({1.25f, 9.5f, -0.75f}), {0.375f, 12.0f, 9.125f});
-  add_floor(c, 4.0f, 8, 0.5f, 0.25f);
-  ViewSamples samples = samples_below_beside_edges(c, 0, 1, -1.0f);
-  expect_all_lit(c, samples, 100);
+  for (const float scale : {1.0f, 0x1p-60f, 0x1p60f}) {
+    Case c = scaled_floor_case(point_light({1.25f, 9.5f, -0.75f}), scale);
+    ViewSamples samples = samples_below_beside_edges(c, 0, 1, -1.0f);
+    expect_all_lit(c, samples, 100);
+  }
 }
 
 // (4) The same under a directional light.
 TEST(StencilReceiverRule, SamplesBelowATessellatedFloorAreLitUnderADirectionalLight) {
-  Case c = base_case(directional_light({0.3125f, 1.0f, -0.1875f}), {0.375f, 12.0f, 9.125f});
-  add_floor(c, 4.0f, 8, 0.5f, 0.25f);
-  ViewSamples samples = samples_below_beside_edges(c, 0, 1, -1.0f);
-  expect_all_lit(c, samples, 100);
+  for (const float scale : {1.0f, 0x1p-60f, 0x1p60f}) {
+    Case c = scaled_floor_case(directional_light({0.3125f, 1.0f, -0.1875f}), scale);
+    ViewSamples samples = samples_below_beside_edges(c, 0, 1, -1.0f);
+    expect_all_lit(c, samples, 100);
+  }
 }
 
 // (2) A convex closed mesh (the silhouette path: one volume for its front caps): samples one ulp
