@@ -225,6 +225,7 @@ int main(int argc, char** argv) {
                                           : OracleChoice::automatic;
     if (!shard.empty()) parse_shard(shard, options);
     options.progress = isatty(STDERR_FILENO) != 0;
+    options.progress_lines = !options.progress;
     return run_suite(options, builtin_registry(), std::cout, std::cerr);
   } catch (const InputError& e) {
     std::cerr << "shadowcts: bad input: " << e.what() << "\n";

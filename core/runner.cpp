@@ -7,16 +7,19 @@
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <cstdio>
 #include <filesystem>
 #include <iomanip>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <ostream>
 #include <set>
 #include <sstream>
 #include <system_error>
+#include <thread>
 
 #include <tbb/global_control.h>
 #include <tbb/info.h>
@@ -36,6 +39,7 @@
 #include "shadowcts/errors.h"
 #include "shadowcts/fixtures.h"
 #include "shadowcts/gbuffer_exr.h"
+#include "shadowcts/phase_progress.h"
 #include "shadowcts/registry.h"
 #include "soft_shadow_evaluation.h"
 
@@ -274,19 +278,89 @@ class StagedOutput {
   bool committed_ = false;
 };
 
+// The current step and how far its phase is (phase_progress.h): on a terminal a line redrawn
+// four times a second with done / total and an ETA; otherwise, for CI logs, a plain line once a
+// minute while a step runs (short steps print nothing).
 class Progress {
  public:
-  Progress(bool enabled, std::ostream& err) : enabled_(enabled), err_(err) {}
-  void show(const std::string& line) {
-    if (enabled_) err_ << "\r\033[K" << line << std::flush;
+  Progress(bool terminal, bool plain_lines, double plain_interval_s, std::ostream& err)
+      : terminal_(terminal),
+        plain_lines_(plain_lines && !terminal),
+        plain_interval_(std::chrono::duration<double>(plain_interval_s)),
+        err_(err) {
+    if (terminal_ || plain_lines_) reporter_ = std::thread([this] { report(); });
+  }
+  void show(const std::string& step) {
+    phase_progress::begin(0);  // a phase that reports calls begin() with its total
+    std::lock_guard<std::mutex> lock(mutex_);
+    step_ = step;
+    step_start_ = std::chrono::steady_clock::now();
+    last_plain_ = step_start_;
+    if (terminal_) err_ << "\r\033[K" << step_ << std::flush;
   }
   ~Progress() {
-    if (enabled_) err_ << "\r\033[K" << std::flush;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    if (reporter_.joinable()) reporter_.join();
+    if (terminal_) err_ << "\r\033[K" << std::flush;
   }
 
  private:
-  bool enabled_;
+  static std::string duration_text(double seconds) {
+    const long s = std::lround(seconds);
+    std::ostringstream out;
+    if (s >= 60)
+      out << s / 60 << " min " << std::setw(2) << std::setfill('0') << s % 60 << " s";
+    else
+      out << s << " s";
+    return out.str();
+  }
+
+  std::string status_line(std::chrono::steady_clock::time_point now) const {
+    const double elapsed = std::chrono::duration<double>(now - step_start_).count();
+    const phase_progress::Snapshot p = phase_progress::snapshot();
+    std::ostringstream line;
+    line << step_ << " — ";
+    if (p.total > 0) {
+      const double fraction = std::min(1.0, double(p.done) / double(p.total));
+      line << p.done << " / " << p.total << " (" << std::fixed << std::setprecision(1)
+           << 100.0 * fraction << " %), " << duration_text(elapsed);
+      if (fraction > 0.0 && fraction < 1.0)
+        line << ", ETA " << duration_text(elapsed * (1.0 - fraction) / fraction);
+    } else {
+      line << duration_text(elapsed);
+    }
+    return line.str();
+  }
+
+  void report() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    while (!stop_) {
+      wake_.wait_for(lock, std::min<std::chrono::duration<double>>(std::chrono::milliseconds(250),
+                                                                   plain_interval_));
+      if (stop_ || step_.empty()) continue;
+      const auto now = std::chrono::steady_clock::now();
+      if (terminal_ && now - step_start_ > std::chrono::milliseconds(500)) {
+        err_ << "\r\033[K" << status_line(now) << std::flush;
+      } else if (plain_lines_ && now - last_plain_ >= plain_interval_) {
+        err_ << "progress: " << status_line(now) << "\n" << std::flush;
+        last_plain_ = now;
+      }
+    }
+  }
+
+  const bool terminal_, plain_lines_;
+  const std::chrono::duration<double> plain_interval_;
   std::ostream& err_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stop_ = false;
+  std::string step_;
+  std::chrono::steady_clock::time_point step_start_{}, last_plain_{};
+  std::thread reporter_;
 };
 
 RunRecord new_record(const Case& c, const std::string& selector, const std::string& image_folder,
@@ -451,7 +525,7 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
   StagedOutput staged(target);
   const std::filesystem::path& out_dir = staged.dir();
 
-  Progress progress(options.progress, err);
+  Progress progress(options.progress, options.progress_lines, options.progress_line_seconds, err);
   std::vector<CaseSummary> summaries;
   std::vector<RunRecord> records;
 

@@ -13,6 +13,7 @@
 #include "shadowcts/case.h"
 #include "shadowcts/embree_scene.h"
 #include "shadowcts/errors.h"
+#include "shadowcts/phase_progress.h"
 
 namespace shadowcts {
 namespace {
@@ -56,7 +57,9 @@ ViewSamples generate_view_samples(const Case& c) {
   out.samples.resize(std::size_t(cam.width) * cam.height);
 
   // Rows are independent and every sample is written by exactly one task: deterministic.
+  phase_progress::begin(cam.height);
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, cam.height), [&](const auto& rows) {
+    phase_progress::advance(rows.size());
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     for (std::uint32_t y = rows.begin(); y != rows.end(); ++y) {

@@ -11,6 +11,7 @@
 #include "oracles/exact_segment_triangle.h"
 #include "oracles/hard_shadow_inputs.h"
 #include "oracles/thread_limit.h"
+#include "shadowcts/phase_progress.h"
 
 namespace shadowcts {
 namespace {
@@ -67,9 +68,11 @@ HardShadowTruth embree_hard_shadow_oracle(const Case& c, const ViewSamples& samp
   run_with_thread_limit(c.parameters.threads, [&] {
     const EmbreeShadowRays rays(c);
     const ExactShadowPredicate predicate(hard_shadow_light(c), scale);
+    phase_progress::begin(n);
     tbb::parallel_for(
         tbb::blocked_range<std::size_t>(0, n, 256),
         [&](const tbb::blocked_range<std::size_t>& range) {
+          phase_progress::advance(range.size());
           for (std::size_t i = range.begin(); i != range.end(); ++i) {
             const ViewSample& sample = samples.samples[i];
             if (sample.sample_class != SampleClass::regular) continue;

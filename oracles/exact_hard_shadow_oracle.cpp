@@ -12,6 +12,7 @@
 #include "oracles/exact_segment_triangle.h"
 #include "oracles/hard_shadow_inputs.h"
 #include "oracles/thread_limit.h"
+#include "shadowcts/phase_progress.h"
 
 namespace shadowcts {
 namespace {
@@ -89,8 +90,10 @@ HardShadowTruth exact_hard_shadow_oracle(const Case& c, const ViewSamples& sampl
   const ExactBandClassifier& classifier = lazy->classifier();
   run_with_thread_limit(c.parameters.threads, [&] {
     // Every sample is classified on its own: the result does not depend on the partitioning.
+    phase_progress::begin(n);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256),
                       [&](const tbb::blocked_range<std::size_t>& range) {
+                        phase_progress::advance(range.size());
                         std::vector<BandCandidate> candidates;
                         for (std::size_t i = range.begin(); i != range.end(); ++i) {
                           const ViewSample& sample = samples.samples[i];

@@ -33,6 +33,10 @@ struct RunOptions {
   std::uint32_t shard_index = 0;
   std::uint32_t shard_count = 1;
   bool progress = false;  // progress lines on stderr (the tool sets it when stderr is a terminal)
+  // Otherwise a plain progress line on stderr once a minute while a long step runs (the tool sets
+  // it when stderr is not a terminal: CI logs show a long case as it happens).
+  bool progress_lines = false;
+  double progress_line_seconds = 60.0;  // the interval of those lines
 };
 
 // Exit codes of the tool.

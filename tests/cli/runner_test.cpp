@@ -73,6 +73,27 @@ TEST(Runner, WritesResultsJunitAndImagesAndPasses) {
     EXPECT_EQ(entry.path().string().find(".partial"), std::string::npos) << entry.path();
 }
 
+// Without a terminal, long steps print plain progress lines (once a minute by default; here
+// every 10 ms, so the G-buffer pass and the oracle of a 100k-triangle case show some) with the
+// phase's done / total.
+TEST(Runner, PrintsPlainProgressLinesWhenStderrIsNoTerminal) {
+  const fs::path out = fresh_dir("progress_lines");
+  RunOptions o;
+  o.fixtures = {"gate_house.100k"};
+  o.out_dir = out.string();
+  o.repeats = 1;
+  o.threads = 1;
+  o.algorithms = {{"embree", ""}};
+  o.progress_lines = true;
+  o.progress_line_seconds = 0.01;
+  std::ostringstream log, err;
+  ASSERT_EQ(run_suite(o, builtin_registry(), log, err), exit_pass) << log.str() << err.str();
+  const std::string lines = err.str();
+  EXPECT_NE(lines.find("progress: [1/1] gate_house.100k: "), std::string::npos) << lines;
+  EXPECT_NE(lines.find(" / "), std::string::npos) << lines;  // a phase that counts its work
+  EXPECT_EQ(lines.find("\r"), std::string::npos);            // no terminal control characters
+}
+
 TEST(Runner, OutputsAreIdenticalForOneAndTwoThreads) {
   const fs::path one = fresh_dir("threads1"), two = fresh_dir("threads2");
   std::ostringstream log, err;
