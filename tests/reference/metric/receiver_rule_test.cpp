@@ -195,6 +195,24 @@ RuleCase wall_on_floor(bool directional) {
   return rule;
 }
 
+// The same case with every coordinate multiplied by 2^exponent (exact in float for these cases):
+// the rule's orientations and the float tests must hold far from unit scale.
+RuleCase scaled(RuleCase rule, int exponent) {
+  const auto scale = [exponent](glm::vec3& v) {
+    v = glm::vec3(std::ldexp(v.x, exponent), std::ldexp(v.y, exponent), std::ldexp(v.z, exponent));
+  };
+  for (Triangle& t : rule.h.c.triangles) {
+    scale(t.v0);
+    scale(t.v1);
+    scale(t.v2);
+  }
+  for (ViewSample& s : rule.h.samples.samples) scale(s.position);
+  if (rule.h.c.light->kind == ShadowLightKind::point) scale(rule.h.c.light->position);
+  scale(rule.h.c.camera.position);
+  scale(rule.h.c.camera.target);
+  return rule;
+}
+
 // Every (algorithm, backend, variant) of metric and bruteforce gives the expected answers; the
 // cuda backend without a device reports "no CUDA device" instead.
 void expect_every_variant_follows_the_rule(const RuleCase& rule, const std::string& what) {
@@ -253,6 +271,19 @@ TEST(ReceiverHalfSpaceRule, WallStandingOnTheFloorShadowsItsFoot) {
     expect_every_variant_follows_the_rule(
         rule, directional ? "wall on floor, directional light" : "wall on floor, point light");
   }
+}
+
+TEST(ReceiverHalfSpaceRule, HoldsAtScales2ToTheMinus60And60) {
+  for (const int exponent : {-60, 60})
+    for (const bool directional : {false, true}) {
+      const std::string at = " at scale 2^" + std::to_string(exponent);
+      expect_every_variant_follows_the_rule(scaled(tessellated_floor(directional), exponent),
+                                            (directional ? "directional floor" : "floor") + at);
+      expect_every_variant_follows_the_rule(scaled(wall_on_floor(directional), exponent),
+                                            (directional ? "directional wall" : "wall") + at);
+    }
+  expect_every_variant_follows_the_rule(scaled(convex_mesh(), -60), "convex mesh at 2^-60");
+  expect_every_variant_follows_the_rule(scaled(convex_mesh(), 60), "convex mesh at 2^60");
 }
 
 }  // namespace
