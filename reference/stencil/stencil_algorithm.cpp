@@ -87,6 +87,29 @@ class StencilAlgorithm final : public Algorithm {
         cap_of_triangle[occluders.caps[k].triangle] = std::uint32_t(k);
       const StencilReceiverRule rule(c, light, occluders, volumes.extrusion, mode, eye);
       clock.lap(build_phase);
+      // The winding of one regular sample's p- without the receiver's own volume
+      // (volume_counting.h) and, where that is non-zero, without the caps the receiver
+      // half-space rule rejects (receiver_rule.h).
+      const auto winding_of = [&](const ViewSample& s, FaceTally& tally, std::uint64_t& asked,
+                                  std::uint64_t& candidates) {
+        const glm::dvec3 p(s.position);
+        int winding = 0;
+        grid.for_each_candidate(p, [&](std::uint32_t f) {
+          ++tally.faces;
+          (faces[f].is_quad() ? tally.quads : tally.caps) += 1;
+          winding += count_crossings(faces[f], sides[f], mode, eye, p, light);
+        });
+        const std::uint32_t own =
+            s.receiver < cap_of_triangle.size() ? cap_of_triangle[s.receiver] : no_triangle;
+        if (own != no_triangle)
+          winding -=
+              count_own_volume(occluders.caps[own], volumes.extrusion, mode, eye, p, light, tally);
+        if (winding == 0 || s.receiver == no_receiver) return winding;
+        const RuleOutcome outcome = rule.rejected(s.receiver, p, tally);
+        ++asked;
+        candidates += outcome.candidates;
+        return outcome.every_cap_rejected ? 0 : winding - outcome.rejected;
+      };
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.samples.size(), 256),
                         [&](const tbb::blocked_range<std::size_t>& range) {
                           FaceTally tally;
@@ -94,31 +117,10 @@ class StencilAlgorithm final : public Algorithm {
                           for (std::size_t i = range.begin(); i != range.end(); ++i) {
                             const ViewSample& s = samples.samples[i];
                             if (s.sample_class != SampleClass::regular) continue;
-                            const glm::dvec3 p(s.position);
-                            int winding = 0;
                             tally.faces = 0;
-                            grid.for_each_candidate(p, [&](std::uint32_t f) {
-                              ++tally.faces;
-                              (faces[f].is_quad() ? tally.quads : tally.caps) += 1;
-                              winding += count_crossings(faces[f], sides[f], mode, eye, p, light);
-                            });
-                            // Without the receiver's own volume (volume_counting.h).
-                            const std::uint32_t own = s.receiver < cap_of_triangle.size()
-                                                          ? cap_of_triangle[s.receiver]
-                                                          : no_triangle;
-                            if (own != no_triangle)
-                              winding -= count_own_volume(occluders.caps[own], volumes.extrusion,
-                                                          mode, eye, p, light, tally);
-                            // Without the caps the receiver half-space rule rejects
-                            // (receiver_rule.h).
-                            if (winding != 0 && s.receiver != no_receiver) {
-                              const RuleOutcome outcome = rule.rejected(s.receiver, p, tally);
-                              ++asked;
-                              candidates += outcome.candidates;
-                              winding = outcome.every_cap_rejected ? 0 : winding - outcome.rejected;
-                            }
+                            output.shadowed[i] =
+                                winding_of(s, tally, asked, candidates) != 0 ? 1 : 0;
                             faces_tested[i] = tally.faces;
-                            output.shadowed[i] = winding != 0 ? 1 : 0;
                           }
                           // Integer sums: the totals do not depend on the partitioning.
                           quads_tested += tally.quads;
