@@ -25,7 +25,9 @@ struct PsvOptions {
 };
 
 struct PsvResult {
-  std::vector<std::uint8_t> shadowed;        // per view sample, 1 = shadowed
+  // Per view sample, 1 = shadowed: some caster other than its receiver meets its segment (ray)
+  // strictly on the light's side of the receiver's plane (the receiver half-space rule).
+  std::vector<std::uint8_t> shadowed;
   std::vector<std::uint32_t> nodes_visited;  // per view sample (0 for non-regular samples)
   // In this order: triangles_inserted, triangles_culled_front_facing, triangles_culled_flat,
   // triangles_dropped_in_shadow, tree_nodes, tree_height, queries, nodes_visited_total,
