@@ -33,12 +33,7 @@ glm::dvec3 vertex(const Triangle& t, int i) {
 ExactBandClassifier::ExactBandClassifier(const Case& c, const HardShadowLight& light,
                                          const CasterBvh& casters,
                                          const ExactShadowPredicate& predicate)
-    : case_(c),
-      light_(light),
-      casters_(casters),
-      predicate_(predicate),
-      closure_(c, casters, predicate),
-      scale_(c.scale()) {
+    : case_(c), light_(light), casters_(casters), predicate_(predicate), scale_(c.scale()) {
   for (int k = band_min_exponent; k <= band_max_exponent; ++k)
     level_lengths_.push_back(std::ldexp(scale_, k));  // exact: S times a power of two
 
@@ -65,6 +60,12 @@ ExactBandClassifier::ExactBandClassifier(const Case& c, const HardShadowLight& l
     has_class_length_ = true;
     class_length_ = class_lengths_.back();
   }
+}
+
+const CasterClosure& ExactBandClassifier::closure() const {
+  tbb::collaborative_call_once(closure_once_,
+                               [&] { closure_.emplace(case_, casters_, predicate_); });
+  return *closure_;
 }
 
 bool ExactBandClassifier::blocks(const Query& q, const BandCandidate& candidate,
@@ -121,10 +122,10 @@ bool ExactBandClassifier::boundary_misses(const Query& q, const ExactCubeQuery& 
     if (candidates[i].reach == PlaneReach::straddles && cube.clip_wedge_meets(tri, q.plane))
       return false;
     for (int k = 0; k < 3; ++k) {
-      if (!closure_.may_expose(t, k, q.receiver)) continue;
+      if (!closure().may_expose(t, k, q.receiver)) continue;
       // Every piece's wedge and every point's ray lies in the wedge behind the whole edge.
       if (!cube.shadow_wedge_meets(vertex(tri, k), vertex(tri, (k + 1) % 3))) continue;
-      const bool exposed = closure_.any_exposed(
+      const bool exposed = closure().any_exposed(
           t, k, q.receiver,
           [&](const glm::vec3& a, const glm::vec3& b) {
             return cube.shadow_wedge_meets(glm::dvec3(a), glm::dvec3(b));

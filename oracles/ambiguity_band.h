@@ -34,7 +34,10 @@
 //   caster's shadow makes a sample ambiguous that may not be), never the other way round.
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
+
+#include <tbb/collaborative_call_once.h>
 
 #include "oracles/caster_bvh.h"
 #include "oracles/caster_closure.h"
@@ -85,7 +88,11 @@ class ExactBandClassifier {
   HardShadowLight light_;
   const CasterBvh& casters_;
   const ExactShadowPredicate& predicate_;
-  CasterClosure closure_;
+  // Built on first use (only shadowed samples that no single blocker certifies need it), by every
+  // thread that asks at once.
+  const CasterClosure& closure() const;
+  mutable tbb::collaborative_once_flag closure_once_;
+  mutable std::optional<CasterClosure> closure_;
   double scale_;
   std::vector<double> level_lengths_;  // 2^k S for k = band_min_exponent ... band_max_exponent
   // The band at eps_rel: either read off robust_exponent (eps_rel = 2^e, e in the level range),

@@ -47,6 +47,15 @@ int line_axis(const glm::vec3& a, const glm::vec3& b) {
 }
 
 bool collinear(const glm::vec3& a, const glm::vec3& b, const glm::vec3& x) {
+  // A cheap certificate first: a component of (b - a) x (x - a), evaluated in doubles, whose
+  // magnitude exceeds its rounding bound (each difference and product rounds once, relative
+  // 2^-53, so the error stays below 5 * 2^-53 of the two products' magnitudes) is not zero.
+  const glm::dvec3 u = glm::dvec3(b) - glm::dvec3(a), w = glm::dvec3(x) - glm::dvec3(a);
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    const double p = u[i] * w[j], q = u[j] * w[i];
+    if (std::fabs(p - q) > 0x1p-50 * (std::fabs(p) + std::fabs(q))) return false;
+  }
   return is_zero_area(Triangle{a, b, x, 0});
 }
 

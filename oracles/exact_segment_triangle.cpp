@@ -11,6 +11,7 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Exact_rational.h>
+#include <CGAL/Interval_nt.h>
 #include <CGAL/Iso_cuboid_3.h>
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/intersections.h>
@@ -133,9 +134,20 @@ RationalPoint rational_point(const glm::dvec3& x) {
   return RationalPoint(x.x, x.y, x.z);
 }
 
-// det[b - a, c - a, d] for a direction d: exact.
+// det[b - a, c - a, d] for a direction d: exact (filtered doubles where the differences are
+// exact, which they are for float vertices of similar magnitude; rationals otherwise).
 int orientation_towards(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
                         const glm::dvec3& d) {
+  std::array<double, 3> u{}, v{};
+  bool exact = true;
+  for (int i = 0; i < 3; ++i) {
+    exact = exact_double_sum(b[i], -a[i], u[std::size_t(i)]) && exact;
+    exact = exact_double_sum(c[i], -a[i], v[std::size_t(i)]) && exact;
+  }
+  if (exact) {
+    using V = Epick::Vector_3;
+    return int(CGAL::orientation(V(u[0], u[1], u[2]), V(v[0], v[1], v[2]), V(d.x, d.y, d.z)));
+  }
   using V = RationalKernel::Vector_3;
   const RationalPoint pa = rational_point(a);
   return int(CGAL::orientation(rational_point(b) - pa, rational_point(c) - pa, V(d.x, d.y, d.z)));
@@ -151,6 +163,67 @@ int side_of(const ReceiverPlane& plane, const Point& x) {
 
 int side_of_vertex(const ReceiverPlane& plane, const glm::vec3& v) {
   return side_of(plane, Epick::Point_3(v.x, v.y, v.z));
+}
+
+using Interval = CGAL::Interval_nt<>;  // rounding-safe interval arithmetic
+
+// det[b - a, c - a, d] and det[b - a, c - a, x - a] in intervals.
+Interval interval_det(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+                      const std::array<Interval, 3>& w) {
+  std::array<Interval, 3> u, v;
+  for (int i = 0; i < 3; ++i) {
+    u[std::size_t(i)] = Interval(b[i]) - Interval(a[i]);
+    v[std::size_t(i)] = Interval(c[i]) - Interval(a[i]);
+  }
+  return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+         u[2] * (v[0] * w[1] - v[1] * w[0]);
+}
+
+Interval interval_orientation(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+                              const glm::dvec3& x) {
+  return interval_det(a, b, c,
+                      {Interval(x.x) - Interval(a.x), Interval(x.y) - Interval(a.y),
+                       Interval(x.z) - Interval(a.z)});
+}
+
+Interval interval_towards(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+                          const glm::dvec3& d) {
+  return interval_det(a, b, c, {Interval(d.x), Interval(d.y), Interval(d.z)});
+}
+
+// The rule's side for a straddling caster that meets the query of x at one point, decided in
+// interval arithmetic where the intervals decide it: with g the caster's orientation and f the
+// receiver's (positive on the light's side), the crossing of the caster's plane has
+// f = (g(x) f(L) - f(x) g(L)) / (g(x) - g(L)), or f(x) - g(x) Df / Dg towards a direction d.
+// Empty where an interval holds 0 or x is not a double (the exact construction decides then).
+std::optional<bool> hit_side_by_intervals(const HardShadowLight& light, const ReceiverPlane& plane,
+                                          const Triangle& t, const MovedPoint& x) {
+  std::array<double, 3> moved{};
+  for (int i = 0; i < 3; ++i)
+    if (!exact_double_sum(x.base[i], x.delta * x.direction[i], moved[std::size_t(i)]))
+      return std::nullopt;
+  const glm::dvec3 p(moved[0], moved[1], moved[2]);
+  const glm::dvec3 v0(t.v0), v1(t.v1), v2(t.v2);
+  const Interval side(double(plane.light_side));
+  const Interval fp = interval_orientation(plane.a, plane.b, plane.c, p) * side;
+  const Interval gp = interval_orientation(v0, v1, v2, p);
+  Interval numerator, denominator;
+  if (!light.directional) {
+    const Interval fl = interval_orientation(plane.a, plane.b, plane.c, light.position) * side;
+    const Interval gl = interval_orientation(v0, v1, v2, light.position);
+    numerator = gp * fl - fp * gl;
+    denominator = gp - gl;
+  } else {
+    const Interval df = interval_towards(plane.a, plane.b, plane.c, light.direction) * side;
+    const Interval dg = interval_towards(v0, v1, v2, light.direction);
+    numerator = fp * dg - gp * df;
+    denominator = dg;
+  }
+  if (!CGAL::is_certain(CGAL::sign(numerator) != CGAL::ZERO) ||
+      !CGAL::is_certain(CGAL::sign(denominator) != CGAL::ZERO))
+    return std::nullopt;
+  const int s = int(CGAL::sign(numerator)) * int(CGAL::sign(denominator));
+  return s > 0;
 }
 
 }  // namespace
@@ -188,6 +261,7 @@ bool ExactShadowPredicate::blocks(const Triangle& t, const MovedPoint& x,
                                   const ReceiverPlane& plane, PlaneReach reach) const {
   if (reach == PlaneReach::none || !blocks(t, x)) return false;
   if (reach == PlaneReach::whole) return true;
+  if (const std::optional<bool> side = hit_side_by_intervals(light_, plane, t, x)) return *side;
   // A straddling caster: the part of t that meets the query, constructed in exact rationals (a
   // point, or a segment when the query lies in t's plane); the receiver's orientation is linear
   // along it, so one of its end points is strictly on the light's side iff some point is.
