@@ -175,8 +175,14 @@ TEST(EmbreeHardShadow, ARayThroughASharedVertexCanMissEveryTriangleAroundIt) {
                             {5.90625f, -7.625f, 0.889648438f}};
   for (int i = 0; i < 3; ++i) h.add_triangle(apex, rim[i], rim[(i + 1) % 3]);
   // Beyond the apex: p = apex + 3.75 (apex - L), exact in float, so the segment to L passes
-  // exactly through the apex, inside the fan as seen from the light.
-  const std::size_t through_apex = h.add_ground_sample({1.46875f, -113.1875f, -57.40625f});
+  // exactly through the apex, inside the fan as seen from the light. Its receiver is a floor
+  // through p (the fan lies on the light's side of its plane, as the receiver half-space rule
+  // needs; the hand-built ground at y = 0 would put the fan beyond it).
+  const float floor_y = -113.1875f;
+  const std::uint32_t floor =
+      h.add_triangle({-200.0f, floor_y, -200.0f}, {200.0f, floor_y, -200.0f},
+                     {0.0f, floor_y, 200.0f}, testing::ground_mesh);
+  const std::size_t through_apex = h.add_sample({1.46875f, floor_y, -57.40625f}, floor);
   const HardShadowTruth truth = exact_hard_shadow_oracle(h.c, h.samples);
   ASSERT_EQ(truth.band[through_apex], BandClass::robust_shadowed);
   EXPECT_EQ(make_embree_hard_shadow()->run(h.c, h.samples, "robust").shadowed[through_apex], 0);
