@@ -19,10 +19,10 @@
 //
 // Two limits, both outside what a robust sample can depend on (docs/specification.md explains
 // why): a segment lying in the caster's plane (the caster seen edge-on, where float segment tests
-// report no hit either) never counts, and where the exact products would need more than 16
-// components per factor (a degree-3 orientation spanning more than about 420 bits: float inputs
-// whose magnitudes differ by more than about 2^110 within one predicate) the filter's doubt is
-// answered "not on the light's side".
+// report no hit either) never counts, and where a factor of the exact products would need more
+// than 16 components (a degree-3 orientation spanning more than about 420 bits: float inputs whose
+// magnitudes differ by more than about 2^110 within one predicate) the answer is "not on the
+// light's side".
 #include <cmath>
 #include <cstdint>
 
@@ -89,26 +89,63 @@ SHADOWCTS_HD inline CasterReach caster_reach(const ReceiverHalfSpace& h, const g
 
 namespace detail {
 
-// Sign of a b - c d for exact factors; 2 when the factors are too long for the exact products.
+// The factors of the degree-6 sign, compressed to at most this many components (a compressed
+// expansion needs about one component per 26 bits of its value's span: 16 hold an orientation of
+// float inputs whose magnitudes differ by up to about 2^110). Small arrays keep the stack of a
+// device thread small.
+inline constexpr int factor_components = 16;
+using Factor = Expansion<factor_components>;
+
+// A factor from an exact expansion; false when it needs more components.
 template <int N>
-SHADOWCTS_HD inline int sign_of_product_difference(const Expansion<N>& a_full,
-                                                   const Expansion<N>& b_full,
-                                                   const Expansion<N>& c_full,
-                                                   const Expansion<N>& d_full) {
-  const int ab = sign(a_full) * sign(b_full), cd = sign(c_full) * sign(d_full);
+SHADOWCTS_HD inline bool to_factor(const Expansion<N>& e, int sign_factor, Factor& out) {
+  const Expansion<N> c = compressed(e);
+  if (!narrowed(c, out)) return false;
+  if (sign_factor < 0) out = negated(out);
+  return true;
+}
+
+SHADOWCTS_HD inline bool orientation_factor(const glm::dvec3& a, const glm::dvec3& b,
+                                            const glm::dvec3& c, const glm::dvec3& d,
+                                            int sign_factor, Factor& out) {
+  return to_factor(orientation_value(a, b, c, d), sign_factor, out);
+}
+
+SHADOWCTS_HD inline bool towards_factor(const glm::dvec3& a, const glm::dvec3& b,
+                                        const glm::dvec3& c, const glm::dvec3& d, int sign_factor,
+                                        Factor& out) {
+  return to_factor(orientation_towards_value(a, b, c, d), sign_factor, out);
+}
+
+// Sign of a b - c d for exact factors; 2 when the exact sum would outgrow its array (impossible
+// by the span argument above, kept as a guard).
+SHADOWCTS_HD inline int sign_of_product_difference(const Factor& a, const Factor& b,
+                                                   const Factor& c, const Factor& d) {
+  const int ab = sign(a) * sign(b), cd = sign(c) * sign(d);
   if (ab == 0 || cd == 0 || ab != cd) return ab != 0 ? ab : -cd;
-  const Expansion<N> a = compressed(a_full), b = compressed(b_full), c = compressed(c_full),
-                     d = compressed(d_full);
   // Same signs: compare the magnitudes, first in doubles with a certified margin (the estimate of
-  // a compressed expansion of at most 16 components is within 2^-48 of its value; each product
-  // adds one rounding).
+  // a compressed expansion is within 2^-50 of its value; each product adds one rounding).
   const double x = estimate(a) * estimate(b), y = estimate(c) * estimate(d);
   const double margin = 0x1p-44 * (fabs(x) + fabs(y));
   if (x - y > margin) return 1;
   if (y - x > margin) return -1;
-  Expansion<16> a16, b16, c16, d16;
-  if (!narrowed(a, a16) || !narrowed(b, b16) || !narrowed(c, c16) || !narrowed(d, d16)) return 2;
-  return sign(sum(product(a16, b16), negated(product(c16, d16))));
+  // Exactly: the partial products grown into one sum, compressed after each term (the partial
+  // sums span at most twice a factor's bits, so they stay far below the array's size).
+  constexpr int capacity = 8 * factor_components;
+  Expansion<capacity> sum_;
+  sum_.size = 0;
+  const auto add = [&](const Factor& e, double scale) {
+    const Expansion<2 * factor_components> term = scaled(e, scale);
+    if (sum_.size + term.size > capacity) return false;
+    for (int i = 0; i < term.size; ++i) grow(sum_, term.component[i]);
+    sum_ = compressed(sum_);
+    return true;
+  };
+  for (int j = 0; j < b.size; ++j)
+    if (!add(a, b.component[j])) return 2;
+  for (int j = 0; j < d.size; ++j)
+    if (!add(c, -d.component[j])) return 2;
+  return sign(sum_);
 }
 
 }  // namespace detail
@@ -121,14 +158,16 @@ SHADOWCTS_HD inline bool hit_on_light_side(const ReceiverHalfSpace& h, const glm
                                            const glm::dvec3& v2) {
   if (!h.has_plane) return true;
   if (h.light_side == 0) return false;
-  const Expansion<192> fp = h.light_side > 0 ? orientation_value(h.a, h.b, h.c, p)
-                                             : negated(orientation_value(h.a, h.b, h.c, p));
-  const Expansion<192> gp = orientation_value(v0, v1, v2, p);
+  detail::Factor fp, gp;
+  if (!detail::orientation_factor(h.a, h.b, h.c, p, h.light_side, fp) ||
+      !detail::orientation_factor(v0, v1, v2, p, 1, gp))
+    return false;
   int s = 0;
   if (!h.directional) {
-    const Expansion<192> fl = h.light_side > 0 ? orientation_value(h.a, h.b, h.c, h.light)
-                                               : negated(orientation_value(h.a, h.b, h.c, h.light));
-    const Expansion<192> gl = orientation_value(v0, v1, v2, h.light);
+    detail::Factor fl, gl;
+    if (!detail::orientation_factor(h.a, h.b, h.c, h.light, h.light_side, fl) ||
+        !detail::orientation_factor(v0, v1, v2, h.light, 1, gl))
+      return false;
     const int sgp = sign(gp), sgl = sign(gl);
     if (sgp == 0 && sgl == 0) return false;  // the segment lies in the caster's plane
     // sign(g(p) - g(L)): the segment crosses the caster's plane, so g(p) and g(L) differ in sign
@@ -138,18 +177,13 @@ SHADOWCTS_HD inline bool hit_on_light_side(const ReceiverHalfSpace& h, const glm
     if (s == 2) return false;
     s *= denominator;
   } else {
-    const Expansion<96> dg96 = orientation_towards_value(v0, v1, v2, h.light);
-    const int sdg = sign(dg96);
+    detail::Factor dg, df;
+    if (!detail::towards_factor(v0, v1, v2, h.light, 1, dg) ||
+        !detail::towards_factor(h.a, h.b, h.c, h.light, h.light_side, df))
+      return false;
+    const int sdg = sign(dg);
     if (sdg == 0) return false;  // the ray is parallel to the caster's plane (and lies in it)
-    Expansion<96> df96 = orientation_towards_value(h.a, h.b, h.c, h.light);
-    if (h.light_side < 0) df96 = negated(df96);
-    // f(p) Dg - g(p) Df, with every factor in one capacity.
-    Expansion<192> dg, df;
-    dg.size = dg96.size;
-    df.size = df96.size;
-    for (int i = 0; i < dg96.size; ++i) dg.component[i] = dg96.component[i];
-    for (int i = 0; i < df96.size; ++i) df.component[i] = df96.component[i];
-    s = detail::sign_of_product_difference(fp, dg, gp, df);
+    s = detail::sign_of_product_difference(fp, dg, gp, df);  // f(p) Dg - g(p) Df
     if (s == 2) return false;
     s *= sdg;
   }
