@@ -81,6 +81,24 @@ TEST(ReceiverHalfSpace, CoplanarNeighbourAndConvexNextFaceNeverCount) {
   EXPECT_TRUE(caster_counts(line, f(0, 0, 0), f(1, 0, 0), f(0, 0, 1), f(1, 0, 1)));
 }
 
+// A segment in the caster's plane that ends at a light inside the caster: shadowed under every
+// move of the sample, so the rule must count it.
+TEST(ReceiverHalfSpace, ASegmentInTheCastersPlaneCountsThroughALightInsideTheCaster) {
+  const glm::dvec3 light = f(1, 1, 0);
+  const ReceiverHalfSpace h =
+      receiver_half_space(f(-8, -3, -8), f(-8, -3, 8), f(8, -3, 0), false, light);
+  const glm::dvec3 caster[3] = {f(0, 0, 0), f(4, 0, 0), f(0, 4, 0)};  // in z = 0, holds L
+  const glm::dvec3 p = f(1, -3, 0);                                   // in z = 0 too
+  ASSERT_TRUE(meets(p, light, false, caster));
+  EXPECT_EQ(caster_reach(h, caster[0], caster[1], caster[2]), CasterReach::every_hit);
+  EXPECT_TRUE(hit_on_light_side(h, p, caster[0], caster[1], caster[2]));
+  // The light outside the caster, still in its plane: only a move off the plane can tell.
+  const glm::dvec3 beside = f(5, 1, 0);
+  const ReceiverHalfSpace h2 =
+      receiver_half_space(f(-8, -3, -8), f(-8, -3, 8), f(8, -3, 0), false, beside);
+  EXPECT_FALSE(hit_on_light_side(h2, f(-1, -3, 0), caster[0], caster[1], caster[2]));
+}
+
 // Straddling casters through the shadow segments of samples within rounding of a tilted
 // receiver: the shared predicate must agree with exact constructions on every hit.
 TEST(ReceiverHalfSpace, HitSideAgreesWithExactConstructions) {

@@ -19,10 +19,10 @@
 //
 // Two limits, both outside what a robust sample can depend on (docs/specification.md explains
 // why): a segment lying in the caster's plane (the caster seen edge-on, where float segment tests
-// report no hit either) never counts, and where a factor of the exact products would need more
-// than 16 components (a degree-3 orientation spanning more than about 420 bits: float inputs whose
-// magnitudes differ by more than about 2^110 within one predicate) the answer is "not on the
-// light's side".
+// report no hit either) counts only through a light inside the caster, and where a factor of the
+// exact products would need more than 16 components (a degree-3 orientation spanning more than
+// about 420 bits: float inputs whose magnitudes differ by more than about 2^110 within one
+// predicate) the answer is "not on the light's side".
 #include <cmath>
 #include <cstdint>
 
@@ -117,6 +117,23 @@ SHADOWCTS_HD inline bool towards_factor(const glm::dvec3& a, const glm::dvec3& b
   return to_factor(orientation_towards_value(a, b, c, d), sign_factor, out);
 }
 
+// Whether x, in the plane of the non-degenerate triangle (v0, v1, v2), lies in the closed
+// triangle: the three edge orientations seen along an axis the triangle's plane is not parallel
+// to agree with the triangle's own (exact).
+SHADOWCTS_HD inline bool point_in_coplanar_triangle(const glm::dvec3& x, const glm::dvec3& v0,
+                                                    const glm::dvec3& v1, const glm::dvec3& v2) {
+  for (int k = 0; k < 3; ++k) {
+    glm::dvec3 axis(0.0);
+    axis[k] = 1.0;
+    const int own = orientation_towards(v0, v1, v2, axis);
+    if (own == 0) continue;
+    return orientation_towards(v0, v1, x, axis) * own >= 0 &&
+           orientation_towards(v1, v2, x, axis) * own >= 0 &&
+           orientation_towards(v2, v0, x, axis) * own >= 0;
+  }
+  return false;  // zero area
+}
+
 // Sign of a b - c d for exact factors; 2 when the exact sum would outgrow its array (impossible
 // by the span argument above, kept as a guard).
 SHADOWCTS_HD inline int sign_of_product_difference(const Factor& a, const Factor& b,
@@ -169,7 +186,10 @@ SHADOWCTS_HD inline bool hit_on_light_side(const ReceiverHalfSpace& h, const glm
         !detail::orientation_factor(v0, v1, v2, h.light, 1, gl))
       return false;
     const int sgp = sign(gp), sgl = sign(gl);
-    if (sgp == 0 && sgl == 0) return false;  // the segment lies in the caster's plane
+    // The segment lies in the caster's plane: it meets the caster at L itself (strictly on the
+    // light's side) when L lies in the caster; other such hits vanish under every move of p off
+    // that plane, so no robust sample depends on them.
+    if (sgp == 0 && sgl == 0) return detail::point_in_coplanar_triangle(h.light, v0, v1, v2);
     // sign(g(p) - g(L)): the segment crosses the caster's plane, so g(p) and g(L) differ in sign
     // or one of them is zero.
     const int denominator = sgp != 0 ? sgp : -sgl;
