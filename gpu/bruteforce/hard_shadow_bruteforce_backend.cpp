@@ -13,6 +13,7 @@
 #include "oracles/shadow_segment.h"
 #include "oracles/thread_limit.h"
 #include "reference/light_on_caster.h"
+#include "reference/sample_half_space.h"
 #include "shadowcts/geometry/receiver_half_space.h"
 
 namespace shadowcts {
@@ -55,17 +56,6 @@ HardShadowLight exact_light(const Case& c) {
   light.position = glm::dvec3(c.light->position);
   light.direction = glm::dvec3(c.light->direction);
   return light;
-}
-
-// The receiver half-space rule of a sample (DESIGN.md); without a receiver there is no plane and
-// every caster counts.
-geometry::ReceiverHalfSpace sample_half_space(const Case& c, const HardShadowLight& light,
-                                              const ViewSample& sample) {
-  if (sample.receiver == no_receiver) return {};
-  const Triangle& r = c.triangles[sample.receiver];
-  return geometry::receiver_half_space(glm::dvec3(r.v0), glm::dvec3(r.v1), glm::dvec3(r.v2),
-                                       light.directional,
-                                       light.directional ? light.direction : light.position);
 }
 
 struct ExactFallback {

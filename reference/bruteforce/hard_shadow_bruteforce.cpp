@@ -13,6 +13,7 @@
 #include "oracles/hard_shadow_inputs.h"
 #include "oracles/shadow_segment.h"
 #include "oracles/thread_limit.h"
+#include "reference/sample_half_space.h"
 #include "shadowcts/geometry/receiver_half_space.h"
 
 namespace shadowcts {
@@ -22,17 +23,6 @@ struct CasterBox {
   float lo[3], hi[3];
   std::uint32_t triangle;
 };
-
-// The receiver half-space rule of a sample (DESIGN.md); without a receiver there is no plane and
-// every caster counts.
-geometry::ReceiverHalfSpace sample_half_space(const Case& c, const HardShadowLight& light,
-                                              const ViewSample& sample) {
-  if (sample.receiver == no_receiver) return {};
-  const Triangle& r = c.triangles[sample.receiver];
-  return geometry::receiver_half_space(glm::dvec3(r.v0), glm::dvec3(r.v1), glm::dvec3(r.v2),
-                                       light.directional,
-                                       light.directional ? light.direction : light.position);
-}
 
 class BruteforceHardShadow final : public Algorithm {
  public:

@@ -12,6 +12,7 @@
 #include "oracles/embree_shadow_rays.h"
 #include "oracles/hard_shadow_inputs.h"
 #include "oracles/thread_limit.h"
+#include "reference/sample_half_space.h"
 #include "shadowcts/geometry/receiver_half_space.h"
 #include "shadowcts/phase_clock.h"
 
@@ -106,28 +107,22 @@ class EmbreeHardShadow final : public Algorithm {
       clock.restart();
       const EmbreeShadowRays tracer(c);
       clock.lap(build_phase);
-      tbb::parallel_for(
-          tbb::blocked_range<std::size_t>(0, samples.samples.size(), 256),
-          [&](const tbb::blocked_range<std::size_t>& range) {
-            std::uint64_t traced = 0;
-            for (std::size_t i = range.begin(); i != range.end(); ++i) {
-              const ViewSample& sample = samples.samples[i];
-              if (sample.sample_class != SampleClass::regular) continue;
-              ++traced;
-              SharedRule rule{&c, {}, glm::dvec3(sample.position)};
-              if (sample.receiver != no_receiver) {
-                const Triangle& r = c.triangles[sample.receiver];
-                rule.half_space = geometry::receiver_half_space(
-                    glm::dvec3(r.v0), glm::dvec3(r.v1), glm::dvec3(r.v2), light.directional,
-                    light.directional ? light.direction : light.position);
-              }
-              output.shadowed[i] =
-                  tracer.occluded(sample.position, sample.receiver, {&rule, &SharedRule::counts})
-                      ? 1
-                      : 0;
-            }
-            rays += traced;
-          });
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.samples.size(), 256),
+                        [&](const tbb::blocked_range<std::size_t>& range) {
+                          std::uint64_t traced = 0;
+                          for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                            const ViewSample& sample = samples.samples[i];
+                            if (sample.sample_class != SampleClass::regular) continue;
+                            ++traced;
+                            const SharedRule rule{&c, sample_half_space(c, light, sample),
+                                                  glm::dvec3(sample.position)};
+                            output.shadowed[i] = tracer.occluded(sample.position, sample.receiver,
+                                                                 {&rule, &SharedRule::counts})
+                                                     ? 1
+                                                     : 0;
+                          }
+                          rays += traced;
+                        });
       clock.lap(query_phase);
     });
     output.counters = {{"rays", rays.load()}};
