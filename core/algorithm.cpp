@@ -54,4 +54,9 @@ SoftErrorBudget Algorithm::soft_error_budget(const std::string&) const {
   return {};
 }
 
+AlgorithmOutput Algorithm::run(const Case& c, const ViewSamples& samples,
+                               const std::string& variant) const {
+  return run(prepare_scene(c, samples), variant);
+}
+
 }  // namespace shadowcts

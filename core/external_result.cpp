@@ -269,8 +269,9 @@ class ExternalResult : public Algorithm {
     return {result_.budget_per_sample, result_.budget_mean};
   }
 
-  AlgorithmOutput run(const Case& c, const ViewSamples& samples,
-                      const std::string&) const override {
+  AlgorithmOutput run(const PreparedScene& scene, const std::string&) const override {
+    const Case& c = scene.source;
+    const ViewSamples& samples = scene.view_samples;
     AlgorithmOutput out;
     const std::size_t n = samples.samples.size();
     auto pixel = [&](const ViewSample& s) {

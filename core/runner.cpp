@@ -624,22 +624,33 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
     for (const std::string& why : summary.left_out) out << "  left out: " << why << "\n";
     out << std::flush;  // stdout may be a pipe or a CI log: show the plan before the runs
 
+    // One prepared scene per case view, built once and read by every algorithm.
+    std::optional<PreparedScene> hard_scene, full_scene;
+    for (const PlannedRun& p : planned) {
+      if (p.algorithm->info().capabilities.output == OutputKind::hard_shadow) {
+        if (!hard_scene) hard_scene.emplace(prepare_scene(hard_case, samples));
+      } else if (!full_scene) {
+        full_scene.emplace(prepare_scene(c, samples));
+      }
+    }
+
     for (const PlannedRun& p : planned) {
       const AlgorithmInfo& meta = p.algorithm->info();
       RunRecord record =
           new_record(c, selectors[case_index], image_folders[case_index], *p.algorithm, p.variant);
       progress.show(step + meta.id + ":" + p.variant + " [" + meta.backend + "]");
-      const Case& view = record.output == OutputKind::hard_shadow ? hard_case : c;
+      const PreparedScene& scene =
+          record.output == OutputKind::hard_shadow ? *hard_scene : *full_scene;
       try {
         const std::vector<std::string> declared = p.algorithm->timed_phases(p.variant);
         for (const std::string& name : declared) record.phases.push_back({name, {}, 0});
         // An untimed warm-up run gives the output that is judged; the timed repeats after it
         // must reproduce it exactly. Phases are timed inside run(), so within each repeat.
-        const AlgorithmOutput first = p.algorithm->run(view, samples, p.variant);
+        const AlgorithmOutput first = p.algorithm->run(scene, p.variant);
         check_phases(declared, first);
         for (std::uint32_t r = 0; r < c.parameters.repeats; ++r) {
           const auto start = Clock::now();
-          const AlgorithmOutput again = p.algorithm->run(view, samples, p.variant);
+          const AlgorithmOutput again = p.algorithm->run(scene, p.variant);
           record.run_ms.push_back(elapsed_ms(start));
           check_phases(declared, again);
           for (std::size_t k = 0; k < declared.size(); ++k)

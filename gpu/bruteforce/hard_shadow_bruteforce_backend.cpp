@@ -145,8 +145,9 @@ class BruteforceKernelAlgorithm final : public Algorithm {
     return backend_.unavailable_reason ? backend_.unavailable_reason() : std::nullopt;
   }
 
-  AlgorithmOutput run(const Case& c, const ViewSamples& samples,
-                      const std::string& variant) const override {
+  AlgorithmOutput run(const PreparedScene& scene, const std::string& variant) const override {
+    const Case& c = scene.source;
+    const ViewSamples& samples = scene.view_samples;
     const std::string name = "bruteforce/" + backend_.backend;
     if (variant != info_.variants.front()) {
       throw std::invalid_argument(name + ": unknown variant '" + variant + "'");

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "shadowcts/case.h"
+#include "shadowcts/prepared_scene.h"
 #include "shadowcts/view_samples.h"
 
 namespace shadowcts {
@@ -107,10 +108,13 @@ class Algorithm {
   // reports exactly these.
   virtual std::vector<std::string> timed_phases(const std::string& variant) const;
 
-  // Runs on every regular sample. Deterministic for any thread count (the outputs; phase_ms are
-  // times).
-  virtual AlgorithmOutput run(const Case& c, const ViewSamples& samples,
-                              const std::string& variant) const = 0;
+  // Runs on every regular sample of the prepared scene (the runner builds it once per case).
+  // Deterministic for any thread count (the outputs; phase_ms are times).
+  virtual AlgorithmOutput run(const PreparedScene& scene, const std::string& variant) const = 0;
+
+  // Prepares the scene of `c` and `samples`, then runs: for tools and tests that run one
+  // algorithm on one case.
+  AlgorithmOutput run(const Case& c, const ViewSamples& samples, const std::string& variant) const;
 };
 
 }  // namespace shadowcts

@@ -44,8 +44,9 @@ class BruteforceHardShadow final : public Algorithm {
 
   const AlgorithmInfo& info() const override { return info_; }
 
-  AlgorithmOutput run(const Case& c, const ViewSamples& samples,
-                      const std::string& variant) const override {
+  AlgorithmOutput run(const PreparedScene& scene, const std::string& variant) const override {
+    const Case& c = scene.source;
+    const ViewSamples& samples = scene.view_samples;
     if (variant != "exact")
       throw std::invalid_argument("bruteforce: unknown variant '" + variant + "'");
     const HardShadowLight light = hard_shadow_light(c);

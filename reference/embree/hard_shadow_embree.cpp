@@ -93,8 +93,9 @@ class EmbreeHardShadow final : public Algorithm {
     return build_and_query_phases();
   }
 
-  AlgorithmOutput run(const Case& c, const ViewSamples& samples,
-                      const std::string& variant) const override {
+  AlgorithmOutput run(const PreparedScene& scene, const std::string& variant) const override {
+    const Case& c = scene.source;
+    const ViewSamples& samples = scene.view_samples;
     if (variant != "robust")
       throw std::invalid_argument("embree: unknown variant '" + variant + "'");
     check_receivers(c, samples);

@@ -83,8 +83,9 @@ class LightAssign final : public Algorithm {
     return std::nullopt;
   }
 
-  AlgorithmOutput run(const Case& c, const ViewSamples& samples,
-                      const std::string& variant) const override {
+  AlgorithmOutput run(const PreparedScene& scene, const std::string& variant) const override {
+    const Case& c = scene.source;
+    const ViewSamples& samples = scene.view_samples;
     if (samples.samples.size() != std::size_t(samples.width) * samples.height)
       throw std::invalid_argument("lightassign: sample count is not width x height");
     AlgorithmOutput output;

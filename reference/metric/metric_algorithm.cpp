@@ -29,8 +29,9 @@ class MetricAlgorithm final : public Algorithm {
     return build_and_query_phases();
   }
 
-  AlgorithmOutput run(const Case& c, const ViewSamples& samples,
-                      const std::string& variant) const override {
+  AlgorithmOutput run(const PreparedScene& scene, const std::string& variant) const override {
+    const Case& c = scene.source;
+    const ViewSamples& samples = scene.view_samples;
     metric::MetricRun run = metric::run_metric(c, samples, metric::parse_metric_variant(variant));
     run.output.phase_ms = {{build_phase, 1e3 * (run.clustering_seconds + run.build_seconds)},
                            {query_phase, 1e3 * run.traversal_seconds}};

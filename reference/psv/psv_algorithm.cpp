@@ -54,8 +54,9 @@ class PsvAlgorithm final : public Algorithm {
     return build_and_query_phases();
   }
 
-  AlgorithmOutput run(const Case& c, const ViewSamples& samples,
-                      const std::string& variant) const override {
+  AlgorithmOutput run(const PreparedScene& scene, const std::string& variant) const override {
+    const Case& c = scene.source;
+    const ViewSamples& samples = scene.view_samples;
     psv::PsvOptions options = variant_options(variant);
     options.seed = c.parameters.seed;
     psv::PsvResult result = psv::psv_hard_shadows(c, samples, options);

@@ -106,8 +106,9 @@ class Ptsv final : public Algorithm {
     return std::nullopt;
   }
 
-  AlgorithmOutput run(const Case& c, const ViewSamples& samples,
-                      const std::string& variant) const override {
+  AlgorithmOutput run(const PreparedScene& scene, const std::string& variant) const override {
+    const Case& c = scene.source;
+    const ViewSamples& samples = scene.view_samples;
     const VariantConfig& config = variant_config(variant);
     hard_shadow_light(c);  // throws InputError without a point or directional light
     check_receivers(c, samples);

@@ -89,8 +89,9 @@ class ShadowMapAlgorithm final : public Algorithm {
     return build_and_query_phases();
   }
 
-  AlgorithmOutput run(const Case& c, const ViewSamples& samples,
-                      const std::string& variant) const override {
+  AlgorithmOutput run(const PreparedScene& scene, const std::string& variant) const override {
+    const Case& c = scene.source;
+    const ViewSamples& samples = scene.view_samples;
     const ShadowMapVariant v = parse_variant(variant);
     const HardShadowLight light = hard_shadow_light(c);
     PhaseClock clock;

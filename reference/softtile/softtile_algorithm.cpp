@@ -102,8 +102,9 @@ class Softtile final : public Algorithm {
     return softtile_error_budget(variant);
   }
 
-  AlgorithmOutput run(const Case& c, const ViewSamples& samples,
-                      const std::string& variant_name) const override {
+  AlgorithmOutput run(const PreparedScene& scene, const std::string& variant_name) const override {
+    const Case& c = scene.source;
+    const ViewSamples& samples = scene.view_samples;
     const Variant variant = parse_variant(variant_name);
     check_receivers(c, samples);
     PhaseClock clock;

@@ -49,8 +49,9 @@ class StencilAlgorithm final : public Algorithm {
     return build_and_query_phases();
   }
 
-  AlgorithmOutput run(const Case& c, const ViewSamples& samples,
-                      const std::string& variant) const override {
+  AlgorithmOutput run(const PreparedScene& scene, const std::string& variant) const override {
+    const Case& c = scene.source;
+    const ViewSamples& samples = scene.view_samples;
     const CountingMode mode = parse_variant(variant);
     const HardShadowLight light = hard_shadow_light(c);
     check_receivers(c, samples);

@@ -134,7 +134,8 @@ class PhaseReporter : public Algorithm {
   }
   const AlgorithmInfo& info() const override { return info_; }
   std::vector<std::string> timed_phases(const std::string&) const override { return declared_; }
-  AlgorithmOutput run(const Case&, const ViewSamples& samples, const std::string&) const override {
+  AlgorithmOutput run(const PreparedScene& scene, const std::string&) const override {
+    const ViewSamples& samples = scene.view_samples;
     PhaseClock clock(reported_);
     AlgorithmOutput out;
     out.shadowed.assign(samples.samples.size(), 0);

@@ -53,8 +53,9 @@ class BrokenHardShadow : public Algorithm {
     info_.capabilities.point_light = info_.capabilities.directional_light = true;
   }
   const AlgorithmInfo& info() const override { return info_; }
-  AlgorithmOutput run(const Case& c, const ViewSamples& samples,
-                      const std::string&) const override {
+  AlgorithmOutput run(const PreparedScene& scene, const std::string&) const override {
+    const Case& c = scene.source;
+    const ViewSamples& samples = scene.view_samples;
     AlgorithmOutput out;
     out.shadowed.assign(samples.samples.size(), 0);
     for (std::size_t i = 0; i < samples.samples.size(); ++i) {
