@@ -16,12 +16,6 @@
 #include "shadowcts/phase_clock.h"
 
 namespace shadowcts {
-namespace {
-
-struct TileRect {
-  std::uint32_t x0 = 1, x1 = 0, y0 = 1, y1 = 0;  // inclusive tile ranges; empty when x0 > x1
-};
-
 // The tiles that the screen-space bounding rectangle of a light's sphere covers (Paper I,
 // Section 6.1): the tangent planes x = s z through the eye bound its projection while the sphere
 // lies in front of the eye plane; a sphere reaching the eye plane covers the whole screen.
@@ -61,8 +55,6 @@ TileRect covered_tiles(const ViewFrustum& frustum, const RangedLight& light,
   rect.y1 = tile(py1, tiles_y);
   return rect;
 }
-
-}  // namespace
 
 AlgorithmOutput assign_lights_tiled(const Case& c, const ViewSamples& samples,
                                     std::uint32_t tile_size) {

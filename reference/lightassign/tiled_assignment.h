@@ -11,6 +11,17 @@
 
 namespace shadowcts {
 
+class ViewFrustum;
+
+struct TileRect {
+  std::uint32_t x0 = 1, x1 = 0, y0 = 1, y1 = 0;  // inclusive tile ranges; empty when x0 > x1
+};
+
+// The tiles that the screen-space bounding rectangle of a light's sphere covers (shared with the
+// simd port, whose candidate lists must be the same).
+TileRect covered_tiles(const ViewFrustum& frustum, const RangedLight& light,
+                       std::uint32_t tile_size, std::uint32_t tiles_x, std::uint32_t tiles_y);
+
 AlgorithmOutput assign_lights_tiled(const Case& c, const ViewSamples& samples,
                                     std::uint32_t tile_size);
 

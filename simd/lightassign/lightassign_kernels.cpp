@@ -1,0 +1,221 @@
+// The one Highway translation unit of the simd `lightassign` (see lightassign_kernels.h).
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "simd/lightassign/lightassign_kernels.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+
+#include <algorithm>
+#include <bit>
+#include <cstring>
+
+#include "simd/lightassign/lightassign_kernels.h"
+#include "simd/lightassign/sphere_box.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace shadowcts::simd {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+constexpr std::size_t node_width = LightBvh::branching;  // 32
+
+// Bit i set for lane i of mask m (at most 64 lanes).
+template <class D, class M>
+HWY_INLINE std::uint64_t mask_bits(D d, M m) {
+  std::uint8_t bytes[16] = {};
+  hn::StoreMaskBits(d, m, bytes);
+  std::uint64_t bits = 0;
+  std::memcpy(&bits, bytes, sizeof(bits));
+  return bits;
+}
+
+// LightBvh::overlap(boxes[first + i], box) for the 32 boxes from `first`, as bits.
+HWY_INLINE std::uint32_t overlap_bits(const BoxArrays& boxes, std::size_t first, const Aabb& box) {
+  const hn::CappedTag<float, node_width> d;
+  const std::size_t lanes = hn::Lanes(d);
+  const auto qmin_x = hn::Set(d, box.min.x), qmin_y = hn::Set(d, box.min.y),
+             qmin_z = hn::Set(d, box.min.z);
+  const auto qmax_x = hn::Set(d, box.max.x), qmax_y = hn::Set(d, box.max.y),
+             qmax_z = hn::Set(d, box.max.z);
+  std::uint64_t bits = 0;
+  for (std::size_t i = 0; i < node_width; i += lanes) {
+    const std::size_t at = first + i;
+    auto m = hn::And(hn::Le(hn::LoadU(d, boxes.min[0].data() + at), qmax_x),
+                     hn::Le(qmin_x, hn::LoadU(d, boxes.max[0].data() + at)));
+    m = hn::And(m, hn::And(hn::Le(hn::LoadU(d, boxes.min[1].data() + at), qmax_y),
+                           hn::Le(qmin_y, hn::LoadU(d, boxes.max[1].data() + at))));
+    m = hn::And(m, hn::And(hn::Le(hn::LoadU(d, boxes.min[2].data() + at), qmax_z),
+                           hn::Le(qmin_z, hn::LoadU(d, boxes.max[2].data() + at))));
+    bits |= mask_bits(d, m) << i;
+  }
+  return std::uint32_t(bits);
+}
+
+// The reference's double filter of sphere_meets_box on lanes: `inside` where the squared
+// distance plus its error bound is below r^2, `outside` where minus the bound it is above.
+template <class D, class V>
+HWY_INLINE void sphere_box_filter(D d, const V cx, const V cy, const V cz, const V r2,
+                                  const Aabb& box, std::uint64_t& inside, std::uint64_t& outside) {
+  const V zero = hn::Zero(d);
+  V distance2 = zero, magnitude2 = zero;
+  const V c[3] = {cx, cy, cz};
+  for (int k = 0; k < 3; ++k) {
+    const V low = hn::Set(d, double(box.min[k])), high = hn::Set(d, double(box.max[k]));
+    // Rounding is monotone: the max of the rounded gaps is the rounded true gap.
+    const V gap = hn::Max(zero, hn::Max(hn::Sub(low, c[k]), hn::Sub(c[k], high)));
+    const V b = hn::Add(hn::Add(hn::Abs(low), hn::Abs(c[k])), hn::Abs(high));
+    distance2 = hn::Add(distance2, hn::Mul(gap, gap));
+    magnitude2 = hn::Add(magnitude2, hn::Mul(b, b));
+  }
+  const V error = hn::Add(hn::Mul(hn::Set(d, sphere_box_error_scale), magnitude2),
+                          hn::Set(d, sphere_box_underflow_guard));
+  inside = mask_bits(d, hn::Lt(hn::Add(distance2, error), r2));
+  outside = mask_bits(d, hn::Gt(hn::Sub(distance2, error), r2));
+}
+
+ListWork QueryLightBvh(const LightBvhLanes& bvh, const Aabb& box,
+                       std::vector<std::uint32_t>& list) {
+  ListWork w;
+  if (bvh.levels.empty()) return w;
+  w.nodes_tested = 1;
+  const std::size_t top = bvh.levels.size() - 1;
+  if (!(overlap_bits(bvh.levels[top], 0, box) & 1u)) return w;
+  struct Entry {
+    std::uint32_t level, node;
+  };
+  Entry stack[64 * node_width];
+  std::size_t size = 0;
+  stack[size++] = {std::uint32_t(top), 0};
+  const hn::ScalableTag<double> dd;
+  const std::size_t dlanes = hn::Lanes(dd);
+  const std::uint64_t dlane_mask = dlanes >= 64 ? ~0ull : (1ull << dlanes) - 1;
+  while (size > 0) {
+    const Entry e = stack[--size];
+    const std::size_t first = std::size_t(e.node) * node_width;
+    if (e.level == 0) {
+      const std::size_t last = std::min(first + node_width, bvh.leaves.count);
+      w.nodes_tested += last - first;
+      const std::uint32_t overlapping = overlap_bits(bvh.leaves, first, box);
+      if (overlapping == 0) continue;
+      w.light_tests += std::uint64_t(std::popcount(overlapping));
+      // The filter on the lanes that hold an overlapping leaf.
+      std::uint64_t inside = 0, outside = 0;
+      for (std::size_t i = 0; i < node_width; i += dlanes) {
+        if (((overlapping >> i) & dlane_mask) == 0) continue;
+        const std::size_t at = first + i;
+        std::uint64_t in_bits = 0, out_bits = 0;
+        sphere_box_filter(dd, hn::LoadU(dd, bvh.centre_d[0].data() + at),
+                          hn::LoadU(dd, bvh.centre_d[1].data() + at),
+                          hn::LoadU(dd, bvh.centre_d[2].data() + at),
+                          hn::LoadU(dd, bvh.range_squared.data() + at), box, in_bits, out_bits);
+        inside |= (in_bits & dlane_mask) << i;
+        outside |= (out_bits & dlane_mask) << i;
+      }
+      for (std::uint32_t bits = overlapping; bits != 0; bits &= bits - 1) {
+        const int i = std::countr_zero(bits);
+        const std::size_t leaf = first + std::size_t(i);
+        bool meets = (inside >> i) & 1u;
+        if (!meets && !((outside >> i) & 1u))
+          meets = sphere_meets_box_exact(
+              {bvh.centre[0][leaf], bvh.centre[1][leaf], bvh.centre[2][leaf]}, bvh.range[leaf],
+              box);
+        if (meets) list.push_back(bvh.order[leaf]);
+      }
+      continue;
+    }
+    const BoxArrays& children = bvh.levels[e.level - 1];
+    const std::size_t last = std::min(first + node_width, children.count);
+    w.nodes_tested += last - first;
+    // Pushed from the last child down, so they pop in order (as the reference).
+    for (std::uint32_t bits = overlap_bits(children, first, box); bits != 0;) {
+      const int i = 31 - std::countl_zero(bits);
+      bits &= ~(1u << i);
+      stack[size++] = {e.level - 1, std::uint32_t(first + std::size_t(i))};
+    }
+  }
+  return w;
+}
+
+ListWork CullTileCandidates(const LightViewArrays& lights, const TileVolume& tile,
+                            const std::uint32_t* candidates, std::size_t count,
+                            std::vector<std::uint32_t>& list) {
+  ListWork w;
+  w.light_tests = count;
+  const hn::ScalableTag<double> d;
+  const hn::RebindToSigned<decltype(d)> di;
+  using V = hn::Vec<decltype(d)>;
+  const std::size_t lanes = hn::Lanes(d);
+  const V near_depth = hn::Set(d, tile.near_depth), far_depth = hn::Set(d, tile.far_depth);
+  const V origin_length = hn::Set(d, tile.origin_length);
+  const V rounding_margin = hn::Set(d, 0x1p-40);
+  HWY_ALIGN std::int64_t index[HWY_MAX_BYTES / sizeof(std::int64_t)];
+  for (std::size_t start = 0; start < count; start += lanes) {
+    const std::size_t n = std::min(lanes, count - start);
+    for (std::size_t i = 0; i < lanes; ++i)
+      index[i] = i < n ? std::int64_t(candidates[start + i]) : 0;
+    const auto idx = hn::Load(di, index);
+    const V vx = hn::GatherIndex(d, lights.view[0].data(), idx);
+    const V vy = hn::GatherIndex(d, lights.view[1].data(), idx);
+    const V vz = hn::GatherIndex(d, lights.view[2].data(), idx);
+    const V radius = hn::GatherIndex(d, lights.range.data(), idx);
+    const V centre_length = hn::GatherIndex(d, lights.centre_length.data(), idx);
+    // ViewFrustum::sphere_may_meet, operation by operation.
+    const V margin =
+        hn::Mul(rounding_margin,
+                hn::Add(hn::Add(hn::Add(centre_length, origin_length), radius), far_depth));
+    const V reach = hn::Add(radius, margin);
+    const V minus_reach = hn::Neg(reach);
+    auto rejected =
+        hn::Or(hn::Lt(vz, hn::Sub(near_depth, reach)), hn::Gt(vz, hn::Add(far_depth, reach)));
+    const V along[4] = {vx, hn::Neg(vx), hn::Neg(vy), vy};
+    for (int p = 0; p < 4; ++p) {
+      const V distance = hn::Div(hn::Sub(along[p], hn::Mul(hn::Set(d, tile.slope[p]), vz)),
+                                 hn::Set(d, tile.norm[p]));
+      rejected = hn::Or(rejected, hn::Lt(distance, minus_reach));
+    }
+    const std::uint64_t lane_mask = n >= 64 ? ~0ull : (1ull << n) - 1;
+    std::uint64_t passing = ~mask_bits(d, rejected) & lane_mask;
+    if (passing == 0) continue;
+    std::uint64_t inside = 0, outside = 0;
+    sphere_box_filter(d, hn::GatherIndex(d, lights.centre[0].data(), idx),
+                      hn::GatherIndex(d, lights.centre[1].data(), idx),
+                      hn::GatherIndex(d, lights.centre[2].data(), idx),
+                      hn::GatherIndex(d, lights.range_squared.data(), idx), tile.box, inside,
+                      outside);
+    for (; passing != 0; passing &= passing - 1) {
+      const int i = std::countr_zero(passing);
+      const std::uint32_t light = candidates[start + std::size_t(i)];
+      bool meets = (inside >> i) & 1u;
+      if (!meets && !((outside >> i) & 1u))
+        meets = sphere_meets_box_exact(
+            {lights.centre_f[0][light], lights.centre_f[1][light], lights.centre_f[2][light]},
+            lights.range_f[light], tile.box);
+      if (meets) list.push_back(light);
+    }
+  }
+  return w;
+}
+
+// NOLINTNEXTLINE(google-readability-namespace-comments)
+}  // namespace HWY_NAMESPACE
+}  // namespace shadowcts::simd
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace shadowcts::simd {
+
+HWY_EXPORT(QueryLightBvh);
+HWY_EXPORT(CullTileCandidates);
+
+ListWork query_light_bvh(const LightBvhLanes& bvh, const Aabb& box,
+                         std::vector<std::uint32_t>& list) {
+  return HWY_DYNAMIC_DISPATCH(QueryLightBvh)(bvh, box, list);
+}
+
+ListWork cull_tile_candidates(const LightViewArrays& lights, const TileVolume& tile,
+                              const std::uint32_t* candidates, std::size_t count,
+                              std::vector<std::uint32_t>& list) {
+  return HWY_DYNAMIC_DISPATCH(CullTileCandidates)(lights, tile, candidates, count, list);
+}
+
+}  // namespace shadowcts::simd
+#endif  // HWY_ONCE

@@ -1,0 +1,49 @@
+#pragma once
+// The Highway part of the simd `lightassign`, dispatched at run time to the best target
+// (lightassign_kernels.cpp is the one translation unit foreach_target compiles per target). Each
+// kernel takes one list's volume and tests many lights against it in lanes, with the reference's
+// float/double operations in the reference's order, so every decision equals the reference's.
+#include <cstdint>
+#include <vector>
+
+#include "reference/lightassign/light_list_builder.h"
+#include "shadowcts/algorithm.h"
+#include "simd/lightassign/light_bvh.h"
+
+namespace shadowcts::simd {
+
+// Clustered: the depth-first traversal of LightBvh::traverse over the cluster box (32 children
+// against the box per node, in lanes), then for the leaves whose boxes overlap it the exact
+// sphere/box cull (the reference's double filter in lanes, undecided pairs exactly). Appends the
+// lights that meet the box in Morton order; reports nodes_tested and light_tests as the
+// reference does.
+ListWork query_light_bvh(const LightBvhLanes& bvh, const Aabb& box,
+                         std::vector<std::uint32_t>& list);
+
+// Per light, in light order: what the tile test reads (ViewFrustum::to_view of the centre, the
+// length of the centre, the range; the centre and range squared for the sphere/box filter).
+struct LightViewArrays {
+  std::vector<double> view[3];
+  std::vector<double> centre_length, range;
+  std::vector<double> centre[3], range_squared;
+  std::vector<float> centre_f[3], range_f;
+};
+
+// Per tile: ViewFrustum::sphere_may_meet's quantities for the tile's sub-frustum, and its box.
+struct TileVolume {
+  double near_depth = 0, far_depth = 0;
+  // The four side planes (along = slope * depth), with along = x, -x, -y, y and the slopes
+  // sx0, -sx1, -sy0, sy1; norm = sqrt(1 + slope^2).
+  double slope[4] = {0, 0, 0, 0}, norm[4] = {1, 1, 1, 1};
+  double origin_length = 0;  // |eye|
+  Aabb box;
+};
+
+// Tiled: each candidate (light indices, in order) against the tile's sub-frustum planes
+// (ViewFrustum::sphere_may_meet) and, exactly, the tile's box; appends those that pass, in order.
+// light_tests counts the candidates.
+ListWork cull_tile_candidates(const LightViewArrays& lights, const TileVolume& tile,
+                              const std::uint32_t* candidates, std::size_t count,
+                              std::vector<std::uint32_t>& list);
+
+}  // namespace shadowcts::simd

@@ -1,0 +1,182 @@
+#include "simd/lightassign/tiled_assignment.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <glm/geometric.hpp>
+
+#include "reference/lightassign/light_list_builder.h"
+#include "reference/lightassign/tiled_assignment.h"
+#include "reference/lightassign/view_frustum.h"
+#include "shadowcts/phase_clock.h"
+#include "simd/lightassign/lightassign_kernels.h"
+#include "simd/lightassign/unique_clusters.h"
+
+namespace shadowcts::simd {
+
+AlgorithmOutput assign_lights_tiled(const PreparedScene& scene, std::uint32_t tile_size) {
+  PhaseClock clock;
+  const Case& c = scene.source;
+  const ViewSamples& samples = scene.view_samples;
+  const RegularSamples& regular = scene.samples;
+  const ViewFrustum frustum(c.camera);
+  const std::uint32_t tiles_x = (samples.width + tile_size - 1) / tile_size;
+  const std::uint32_t tiles_y = (samples.height + tile_size - 1) / tile_size;
+  const std::uint32_t tile_count = tiles_x * tiles_y;
+  const std::size_t n = samples.samples.size();
+
+  // One cluster per tile with regular samples (a constant key), the view depth per sample.
+  std::vector<std::uint32_t> pixel_key(n, 0);
+  std::vector<std::uint8_t> clustered(n, 0);
+  std::vector<double> depth(n, 0.0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, regular.size(), 4096), [&](const auto& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const std::uint32_t s = regular.index[i];
+      clustered[s] = 1;
+      depth[s] = frustum.depth(glm::dvec3(regular.position(i)));
+    }
+  });
+  const UniqueClusters tiles =
+      find_unique_clusters(pixel_key, clustered, samples.width, samples.height, tile_size);
+  const std::size_t lists = tiles.keys.size();
+
+  // Per tile: the min/max depth sub-frustum, the declared box, and what its plane test reads.
+  std::vector<TileVolume> volumes(lists);
+  LightLists out;
+  out.bounds.resize(lists);
+  std::vector<std::uint32_t> grown(lists, 0);
+  std::vector<std::uint32_t> list_of_tile(tile_count, UniqueClusters::no_cluster);
+  const double origin_length = glm::length(frustum.origin());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, lists, 16), [&](const auto& r) {
+    for (std::size_t t = r.begin(); t != r.end(); ++t) {
+      const std::uint32_t tile = tiles.tiles[t];
+      list_of_tile[tile] = std::uint32_t(t);
+      SubFrustum f;
+      f.x0 = double(tile % tiles_x) * tile_size;
+      f.x1 = std::min(f.x0 + tile_size, double(samples.width));
+      f.y0 = double(tile / tiles_x) * tile_size;
+      f.y1 = std::min(f.y0 + tile_size, double(samples.height));
+      f.near_depth = std::numeric_limits<double>::infinity();
+      f.far_depth = -f.near_depth;
+      for (std::uint32_t m = tiles.member_offsets[t]; m < tiles.member_offsets[t + 1]; ++m) {
+        f.near_depth = std::min(f.near_depth, depth[tiles.members[m]]);
+        f.far_depth = std::max(f.far_depth, depth[tiles.members[m]]);
+      }
+      out.bounds[t] = frustum.bounding_box(f);
+      for (std::uint32_t m = tiles.member_offsets[t]; m < tiles.member_offsets[t + 1]; ++m)
+        grown[t] += grow_to_contain(out.bounds[t], samples.samples[tiles.members[m]].position);
+      // ViewFrustum::sphere_may_meet's planes: along - slope * depth >= 0 with along = x, -x,
+      // -y, y.
+      TileVolume& v = volumes[t];
+      v.near_depth = f.near_depth;
+      v.far_depth = f.far_depth;
+      v.slope[0] = frustum.slope_x(f.x0);
+      v.slope[1] = -frustum.slope_x(f.x1);
+      v.slope[2] = -frustum.slope_y(f.y0);
+      v.slope[3] = frustum.slope_y(f.y1);
+      for (int p = 0; p < 4; ++p) v.norm[p] = std::sqrt(1.0 + v.slope[p] * v.slope[p]);
+      v.origin_length = origin_length;
+      v.box = out.bounds[t];
+    }
+  });
+
+  clock.lap(build_phase);
+
+  // Per light: its covered tiles and what the plane and box tests read.
+  const std::size_t light_count = c.ranged_lights.size();
+  std::vector<TileRect> rects(light_count);
+  LightViewArrays view;
+  for (int k = 0; k < 3; ++k) {
+    view.view[k].resize(light_count);
+    view.centre[k].resize(light_count);
+    view.centre_f[k].resize(light_count);
+  }
+  view.centre_length.resize(light_count);
+  view.range.resize(light_count);
+  view.range_squared.resize(light_count);
+  view.range_f.resize(light_count);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, light_count, 4096), [&](const auto& r) {
+    for (std::size_t l = r.begin(); l != r.end(); ++l) {
+      const RangedLight& light = c.ranged_lights[l];
+      rects[l] = covered_tiles(frustum, light, tile_size, tiles_x, tiles_y);
+      const glm::dvec3 centre(light.centre);
+      const glm::dvec3 v = frustum.to_view(centre);
+      for (int k = 0; k < 3; ++k) {
+        view.view[k][l] = v[k];
+        view.centre[k][l] = centre[k];
+        view.centre_f[k][l] = light.centre[k];
+      }
+      view.centre_length[l] = glm::length(centre);
+      view.range[l] = double(light.range);
+      view.range_squared[l] = double(light.range) * double(light.range);
+      view.range_f[l] = light.range;
+    }
+  });
+
+  // Candidate lists in light order, as the reference's, built over chunks of lights in parallel:
+  // each chunk counts per tile, a scan over (tile, chunk) places every chunk's entries, then each
+  // chunk writes its own.
+  auto for_each_list = [&](const TileRect& rect, auto&& f) {
+    for (std::uint32_t y = rect.y0; y <= rect.y1 && rect.x0 <= rect.x1; ++y)
+      for (std::uint32_t x = rect.x0; x <= rect.x1; ++x)
+        if (const std::uint32_t list = list_of_tile[y * tiles_x + x];
+            list != UniqueClusters::no_cluster)
+          f(list);
+  };
+  constexpr std::size_t chunk = 8192;
+  const std::size_t chunks = (light_count + chunk - 1) / chunk;
+  std::vector<std::uint64_t> place(chunks * lists, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 1), [&](const auto& r) {
+    for (std::size_t ch = r.begin(); ch != r.end(); ++ch) {
+      std::uint64_t* counts = place.data() + ch * lists;
+      for (std::size_t l = ch * chunk; l < std::min(light_count, (ch + 1) * chunk); ++l)
+        for_each_list(rects[l], [&](std::uint32_t list) { ++counts[list]; });
+    }
+  });
+  std::vector<std::uint64_t> candidate_offsets(lists + 1, 0);
+  for (std::size_t t = 0; t < lists; ++t) {
+    std::uint64_t at = candidate_offsets[t];
+    for (std::size_t ch = 0; ch < chunks; ++ch) {
+      const std::uint64_t count = place[ch * lists + t];
+      place[ch * lists + t] = at;
+      at += count;
+    }
+    candidate_offsets[t + 1] = at;
+  }
+  std::vector<std::uint32_t> candidates(candidate_offsets.back());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 1), [&](const auto& r) {
+    for (std::size_t ch = r.begin(); ch != r.end(); ++ch) {
+      std::uint64_t* fill = place.data() + ch * lists;
+      for (std::size_t l = ch * chunk; l < std::min(light_count, (ch + 1) * chunk); ++l)
+        for_each_list(rects[l],
+                      [&](std::uint32_t list) { candidates[fill[list]++] = std::uint32_t(l); });
+    }
+  });
+
+  // Per tile: the sub-frustum planes, then the exact sphere/box test against the declared box.
+  const ListWork work = build_light_lists(lists, out, [&](std::size_t t, auto& list) {
+    return cull_tile_candidates(view, volumes[t], candidates.data() + candidate_offsets[t],
+                                std::size_t(candidate_offsets[t + 1] - candidate_offsets[t]), list);
+  });
+  out.list_of_sample = tiles.cluster_of_sample;
+  clock.lap(query_phase);
+
+  std::uint64_t grown_total = 0;
+  for (const std::uint32_t g : grown) grown_total += g;
+  AlgorithmOutput output;
+  const int tile_bits = int(std::bit_width(std::max(tiles_x, 1u) - 1)) +
+                        int(std::bit_width(std::max(tiles_y, 1u) - 1));
+  output.counters =
+      light_assignment_counters(out, samples, work, std::uint64_t(tile_bits), grown_total);
+  output.light_lists = std::move(out);
+  output.phase_ms = clock.times();
+  return output;
+}
+
+}  // namespace shadowcts::simd

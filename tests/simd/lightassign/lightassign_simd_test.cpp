@@ -1,0 +1,283 @@
+// The simd lightassign against the reference: every list (its lights in order), every declared
+// box (bit for bit), list_of_sample and every counter identical, on the default fixtures with
+// ranged lights, the light-assignment fixtures, the reference's stiff cases, for 1 and 2 threads
+// and a second Highway target. The first difference is reported by list and position.
+#include <gtest/gtest.h>
+#include <hwy/targets.h>
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "oracles/light_assignment/light_volume_predicates.h"
+#include "reference/lightassign/lightassign_algorithm.h"
+#include "shadowcts/fixtures.h"
+#include "shadowcts/prepared_scene.h"
+#include "shadowcts/view_samples.h"
+#include "simd/lightassign/lightassign_algorithm.h"
+#include "simd/lightassign/sphere_box.h"
+
+namespace shadowcts {
+namespace {
+
+const Algorithm& reference() {
+  static const std::unique_ptr<Algorithm> a = make_lightassign();
+  return *a;
+}
+
+const Algorithm& ported() {
+  static const std::unique_ptr<Algorithm> a = make_simd_lightassign();
+  return *a;
+}
+
+bool same_float(float a, float b) {
+  return std::memcmp(&a, &b, sizeof(float)) == 0;
+}
+
+// Empty when identical, else the first difference.
+std::string first_difference(const AlgorithmOutput& ref, const AlgorithmOutput& simd) {
+  const LightLists& a = ref.light_lists;
+  const LightLists& b = simd.light_lists;
+  std::ostringstream why;
+  if (a.list_of_sample.size() != b.list_of_sample.size()) return "list_of_sample sizes differ";
+  for (std::size_t s = 0; s < a.list_of_sample.size(); ++s)
+    if (a.list_of_sample[s] != b.list_of_sample[s]) {
+      why << "sample " << s << ": list " << a.list_of_sample[s] << " vs " << b.list_of_sample[s];
+      return why.str();
+    }
+  if (a.offsets.size() != b.offsets.size() || a.bounds.size() != b.bounds.size()) {
+    why << "list counts " << a.offsets.size() - 1 << " vs " << b.offsets.size() - 1;
+    return why.str();
+  }
+  for (std::size_t k = 0; k < a.bounds.size(); ++k)
+    for (int i = 0; i < 3; ++i)
+      if (!same_float(a.bounds[k].min[i], b.bounds[k].min[i]) ||
+          !same_float(a.bounds[k].max[i], b.bounds[k].max[i])) {
+        why << "list " << k << ": box axis " << i << " [" << a.bounds[k].min[i] << ", "
+            << a.bounds[k].max[i] << "] vs [" << b.bounds[k].min[i] << ", " << b.bounds[k].max[i]
+            << "]";
+        return why.str();
+      }
+  for (std::size_t k = 0; k + 1 < a.offsets.size(); ++k) {
+    const std::uint32_t na = a.offsets[k + 1] - a.offsets[k], nb = b.offsets[k + 1] - b.offsets[k];
+    for (std::uint32_t e = 0; e < std::min(na, nb); ++e)
+      if (a.lights[a.offsets[k] + e] != b.lights[b.offsets[k] + e]) {
+        why << "list " << k << " entry " << e << ": light " << a.lights[a.offsets[k] + e] << " vs "
+            << b.lights[b.offsets[k] + e];
+        return why.str();
+      }
+    if (na != nb) {
+      why << "list " << k << ": " << na << " lights vs " << nb;
+      return why.str();
+    }
+  }
+  if (ref.counters != simd.counters) {
+    for (std::size_t i = 0; i < std::min(ref.counters.size(), simd.counters.size()); ++i)
+      if (ref.counters[i] != simd.counters[i]) {
+        why << "counter " << ref.counters[i].first << ": " << ref.counters[i].second << " vs "
+            << simd.counters[i].first << " " << simd.counters[i].second;
+        return why.str();
+      }
+    return "counter lists differ in length";
+  }
+  return {};
+}
+
+// Every ported variant on one case: the reference's unsupported reasons, the same outputs.
+void expect_identical(const Case& c, const ViewSamples& samples, const std::string& what) {
+  const PreparedScene scene = prepare_scene(c, samples);
+  for (const std::string& variant : ported().info().variants) {
+    SCOPED_TRACE(what + " " + variant);
+    const auto why = reference().unsupported_reason(c, samples, variant);
+    ASSERT_EQ(ported().unsupported_reason(c, samples, variant), why);
+    if (why) continue;
+    const AlgorithmOutput ref = reference().run(scene, variant);
+    const AlgorithmOutput simd = ported().run(scene, variant);
+    EXPECT_EQ(first_difference(ref, simd), "");
+    EXPECT_GT(ref.light_lists.lights.size(), 0u) << "nothing listed: a weak case";
+  }
+}
+
+ViewSamples samples_at(Case& c, std::uint32_t side) {
+  c.camera.width = c.camera.height = side;
+  return generate_view_samples(c);
+}
+
+TEST(SimdLightAssign, IdenticalToTheReferenceOnTheDefaultFixturesWithRangedLights) {
+  int cases = 0;
+  for (const std::string& name : default_fixtures()) {
+    Case c = make_fixture(name);
+    if (c.ranged_lights.empty()) continue;
+    ++cases;
+    const ViewSamples samples = generate_view_samples(c);
+    expect_identical(c, samples, name);
+  }
+  EXPECT_GE(cases, 2);
+}
+
+TEST(SimdLightAssign, IdenticalToTheReferenceOnTheLightFixtures) {
+  for (const auto& [name, side] : std::vector<std::pair<std::string, std::uint32_t>>{
+           {"many_lights.20k", 200}, {"depth_gaps.20k", 160}, {"many_lights.2k", 77}}) {
+    Case c = make_fixture(name);
+    const ViewSamples samples = samples_at(c, side);
+    expect_identical(c, samples, name);
+  }
+}
+
+// The reference's stiff cases (tests/reference/lightassign/lightassign_stiff_test.cpp).
+Case small_city() {
+  Case c = make_fixture("many_lights.2k");
+  c.camera.width = c.camera.height = 64;
+  return c;
+}
+
+TEST(SimdLightAssign, IdenticalWithLightsLargerThanTheSceneAndAroundTheCamera) {
+  Case c = small_city();
+  const glm::vec3 eye = c.camera.position;
+  const glm::vec3 forward = glm::vec3(c.camera.target) - eye;
+  const glm::vec3 ahead =
+      forward / std::sqrt(forward.x * forward.x + forward.y * forward.y + forward.z * forward.z);
+  RangedLight huge;
+  huge.centre = {0, 3, 0};
+  huge.range = 1e6f;
+  c.ranged_lights.push_back(huge);
+  RangedLight behind;
+  behind.centre = eye - 5.0f * ahead;
+  behind.range = 40.0f;
+  c.ranged_lights.push_back(behind);
+  behind.range = 2.0f;
+  c.ranged_lights.push_back(behind);
+  RangedLight near_plane;
+  near_plane.centre = eye + c.camera.near_plane * ahead;
+  near_plane.range = 30.0f;
+  c.ranged_lights.push_back(near_plane);
+  RangedLight at_eye;
+  at_eye.kind = RangedLightKind::spot;
+  at_eye.centre = eye;
+  at_eye.range = 60.0f;
+  at_eye.direction = ahead;
+  at_eye.cone_half_angle = 0.2f;
+  c.ranged_lights.push_back(at_eye);
+  validate(c);
+  expect_identical(c, generate_view_samples(c), "around the camera");
+}
+
+TEST(SimdLightAssign, IdenticalWithANearFarRatioOf1e7) {
+  Case c = small_city();
+  c.camera.near_plane = 1e-5f;
+  c.camera.far_plane = 100.0f;
+  validate(c);
+  expect_identical(c, generate_view_samples(c), "near/far 1e-7");
+}
+
+// Lights whose spheres touch cluster boxes within rounding: the exact fallback decides them.
+TEST(SimdLightAssign, IdenticalWithLightsTangentToTheBoxes) {
+  Case c = small_city();
+  const ViewSamples samples = generate_view_samples(c);
+  std::mt19937_64 random(7);
+  std::vector<RangedLight> lights;
+  for (const std::string variant : {"clustered", "clustered+eb", "tiled"}) {
+    const std::vector<Aabb> boxes = reference().run(c, samples, variant).light_lists.bounds;
+    for (std::size_t k = 0; k < boxes.size(); k += 2) {
+      const Aabb& b = boxes[k];
+      // Beyond a face at a power-of-two distance (the tie is exact) and beyond a corner.
+      RangedLight l;
+      const int axis = int(random() % 3);
+      l.centre = 0.5f * (b.min + b.max);
+      l.centre[axis] = b.max[axis] + 0.25f;
+      l.range = random() % 2 ? 0.25f : std::nextafter(0.25f, 0.0f);
+      lights.push_back(l);
+      l.centre = b.min - glm::vec3(0.5f, 0.5f, 0.5f);
+      l.range = std::sqrt(0.75f);
+      lights.push_back(l);
+    }
+  }
+  c.ranged_lights = lights;
+  validate(c);
+  // The reference's filter (the one the lanes evaluate) leaves some of these pairs undecided.
+  const std::uint64_t fallbacks = exact_light_predicate_fallbacks();
+  expect_identical(c, samples, "tangent lights");
+  EXPECT_GT(exact_light_predicate_fallbacks(), fallbacks);
+}
+
+TEST(SimdLightAssign, ExactSphereBoxEqualsTheReferencePredicate) {
+  std::mt19937_64 random(3);
+  std::uniform_real_distribution<float> coordinate(-4.0f, 4.0f);
+  for (int trial = 0; trial < 20000; ++trial) {
+    Aabb box;
+    for (int i = 0; i < 3; ++i) {
+      const float a = coordinate(random), b = coordinate(random);
+      box.min[i] = std::min(a, b);
+      box.max[i] = std::max(a, b);
+    }
+    glm::vec3 centre(coordinate(random), coordinate(random), coordinate(random));
+    // The range at the rounded distance, nudged by up to 2 ulps: near ties for the filter.
+    double d2 = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      const double gap =
+          std::max({0.0, double(box.min[i]) - centre[i], centre[i] - double(box.max[i])});
+      d2 += gap * gap;
+    }
+    float r = float(std::sqrt(d2));
+    for (int step = int(random() % 5) - 2; step != 0; step += step > 0 ? -1 : 1)
+      r = std::nextafter(r, step > 0 ? 8.0f : 0.0f);
+    if (!(r > 0.0f)) continue;
+    ASSERT_EQ(simd::sphere_meets_box_exact(centre, r, box),
+              exact_only::sphere_meets_box(centre, r, box))
+        << "centre (" << centre.x << ", " << centre.y << ", " << centre.z << ") r " << r;
+    // An exact tie: the sphere touches a face.
+    const int axis = trial % 3;
+    centre = 0.5f * (box.min + box.max);
+    centre[axis] = box.max[axis] + 0.375f;
+    EXPECT_TRUE(simd::sphere_meets_box_exact(centre, 0.375f, box));
+    EXPECT_FALSE(simd::sphere_meets_box_exact(centre, std::nextafter(0.375f, 0.0f), box));
+  }
+}
+
+TEST(SimdLightAssign, ResultsDoNotDependOnTheThreadCountOrTheHighwayTarget) {
+  Case c = make_fixture("depth_gaps.20k");
+  const ViewSamples samples = samples_at(c, 96);
+  const PreparedScene scene = prepare_scene(c, samples);
+  for (const std::string& variant : ported().info().variants) {
+    SCOPED_TRACE(variant);
+    AlgorithmOutput one, two;
+    {
+      const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+      one = ported().run(scene, variant);
+    }
+    {
+      const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+      two = ported().run(scene, variant);
+    }
+    EXPECT_EQ(first_difference(one, two), "");
+    // Every other target this CPU runs (SSE4 and AVX2 where AVX3 is the best, and so on).
+    const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
+    for (std::size_t t = 1; t < targets.size(); ++t) {
+      SCOPED_TRACE(hwy::TargetName(targets[t]));
+      hwy::SetSupportedTargetsForTest(targets[t]);
+      const AlgorithmOutput other = ported().run(scene, variant);
+      hwy::SetSupportedTargetsForTest(0);
+      EXPECT_EQ(first_difference(one, other), "");
+    }
+  }
+}
+
+TEST(SimdLightAssign, ReportsTheReferenceIdAndVariants) {
+  const AlgorithmInfo& info = ported().info();
+  EXPECT_EQ(info.id, "lightassign");
+  EXPECT_EQ(info.backend, "simd");
+  EXPECT_EQ(info.capabilities.output, OutputKind::light_lists);
+  for (const std::string& v : info.variants)
+    EXPECT_NE(std::find(reference().info().variants.begin(), reference().info().variants.end(), v),
+              reference().info().variants.end())
+        << v;
+}
+
+}  // namespace
+}  // namespace shadowcts
