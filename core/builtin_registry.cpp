@@ -2,6 +2,7 @@
 #include "gpu/bruteforce/hard_shadow_bruteforce_emu.h"
 #include "reference/bruteforce/hard_shadow_bruteforce.h"
 #include "reference/embree/hard_shadow_embree.h"
+#include "reference/embree/soft_shadow_embree.h"
 #include "reference/lightassign/lightassign_algorithm.h"
 #include "reference/metric/metric_algorithm.h"
 #include "reference/psv/psv_algorithm.h"
@@ -10,6 +11,7 @@
 #include "reference/softtile/softtile_algorithm.h"
 #include "reference/stencil/stencil_algorithm.h"
 #include "shadowcts/registry.h"
+#include "simd/lightassign/lightassign_algorithm.h"
 #if SHADOWCTS_HAVE_CUDA
 #include "gpu/bruteforce/hard_shadow_bruteforce_cuda.h"
 #endif
@@ -21,6 +23,7 @@ const Registry& builtin_registry() {
     Registry r;
     r.add(make_bruteforce_hard_shadow());
     r.add(make_embree_hard_shadow());
+    r.add(make_embree_soft_shadow());
     r.add(make_ptsv());
     r.add(make_psv());
     r.add(make_metric());
@@ -30,6 +33,7 @@ const Registry& builtin_registry() {
     r.add(make_lightassign());
     // The device kernels run by the emulator: on every machine, in their own records.
     r.add(make_bruteforce_hard_shadow_cuda_emu());
+    r.add(make_simd_lightassign());
 #if SHADOWCTS_HAVE_CUDA
     r.add(make_bruteforce_hard_shadow_cuda());
 #endif
