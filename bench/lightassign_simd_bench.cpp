@@ -1,0 +1,103 @@
+// The simd lightassign against the reference at 1920 x 1080 on many_lights and depth_gaps with
+// 32 ... 1 M lights (the cases of lightassign_bench: triangles/4 lights), in one run. Every
+// iteration's output is checked to be the reference's (lists, bounds, counters): a port that
+// differs is an error, not a time.
+//   build/bench/lightassign_simd_bench [--benchmark_filter=clustered/many_lights/1048576]
+#include <benchmark/benchmark.h>
+
+#include <map>
+#include <memory>
+#include <string>
+
+#include "reference/lightassign/lightassign_algorithm.h"
+#include "shadowcts/fixtures.h"
+#include "shadowcts/prepared_scene.h"
+#include "simd/lightassign/lightassign_algorithm.h"
+#include "simd/simd_target.h"
+
+namespace shadowcts {
+namespace {
+
+struct FullHdCase {
+  Case c;
+  ViewSamples samples;
+  std::unique_ptr<PreparedScene> scene;
+  std::map<std::string, AlgorithmOutput> reference;  // per variant, for the check
+};
+
+FullHdCase& full_hd_case(const std::string& generator, std::uint64_t lights) {
+  static std::map<std::pair<std::string, std::uint64_t>, std::unique_ptr<FullHdCase>> cache;
+  auto& entry = cache[{generator, lights}];
+  if (!entry) {
+    cache.clear();  // one case in memory at a time (1 M lights: 4 M triangles)
+    auto& fresh = cache[{generator, lights}];
+    fresh = std::make_unique<FullHdCase>();
+    fresh->c = make_fixture(generator, 4 * lights);
+    fresh->c.camera.width = 1920;
+    fresh->c.camera.height = 1080;
+    fresh->samples = generate_view_samples(fresh->c);
+    fresh->scene = std::make_unique<PreparedScene>(prepare_scene(fresh->c, fresh->samples));
+    return *fresh;
+  }
+  return *entry;
+}
+
+bool same_output(const AlgorithmOutput& a, const AlgorithmOutput& b) {
+  const LightLists &x = a.light_lists, &y = b.light_lists;
+  if (x.offsets != y.offsets || x.lights != y.lights || x.list_of_sample != y.list_of_sample ||
+      x.bounds.size() != y.bounds.size() || a.counters != b.counters)
+    return false;
+  for (std::size_t k = 0; k < x.bounds.size(); ++k)
+    if (x.bounds[k].min != y.bounds[k].min || x.bounds[k].max != y.bounds[k].max) return false;
+  return true;
+}
+
+void BM_LightAssign(benchmark::State& state, const std::string& generator,
+                    const std::string& variant, bool simd) {
+  static const std::unique_ptr<Algorithm> reference = make_lightassign();
+  static const std::unique_ptr<Algorithm> ported = make_simd_lightassign();
+  FullHdCase& f = full_hd_case(generator, std::uint64_t(state.range(0)));
+  const Algorithm& algorithm = simd ? *ported : *reference;
+  AlgorithmOutput output;
+  double build_ms = 0.0, query_ms = 0.0;
+  for (auto _ : state) {
+    output = algorithm.run(*f.scene, variant);
+    for (const auto& [phase, ms] : output.phase_ms) (phase == "build" ? build_ms : query_ms) += ms;
+  }
+  auto known = f.reference.find(variant);
+  if (known == f.reference.end())
+    known = f.reference.emplace(variant, simd ? reference->run(*f.scene, variant) : output).first;
+  if (!same_output(known->second, output)) state.SkipWithError("not the reference's lists");
+  state.counters["lights"] = double(f.c.ranged_lights.size());
+  state.counters["build_ms"] = build_ms / double(state.iterations());
+  state.counters["query_ms"] = query_ms / double(state.iterations());
+  if (simd) state.SetLabel(simd::dispatched_target_name());
+}
+
+// Reference before simd for every (generator, lights, variant): each case is built once.
+void register_all() {
+  for (const std::string generator : {"many_lights", "depth_gaps"})
+    for (const std::int64_t lights : {32, 1024, 32768, 1048576})
+      for (const std::string variant : {"tiled", "clustered", "clustered+eb", "clustered+en"})
+        for (const bool simd : {false, true}) {
+          const std::string name = std::string(simd ? "simd/" : "reference/") + variant + "/" +
+                                   generator + "/" + std::to_string(lights);
+          benchmark::RegisterBenchmark(name.c_str(), BM_LightAssign, generator, variant, simd)
+              ->Arg(lights)
+              ->Unit(benchmark::kMillisecond)
+              ->UseRealTime()
+              ->MinTime(0.5);
+        }
+}
+
+}  // namespace
+}  // namespace shadowcts
+
+int main(int argc, char** argv) {
+  shadowcts::register_all();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
