@@ -11,18 +11,6 @@
 namespace shadowcts::metric {
 namespace {
 
-// Section 5.4, step 2: the slabs along the normal-cone axis reject a shadow segment that stays on
-// one side of them. Both ends of the segment are exact in double up to the rounding of the dot
-// products (a few 2^-53 * scale), which the margin covers many times over.
-bool segment_meets_slabs(const TraversalScene& scene, const ClusterVolume& volume,
-                         const glm::dvec3& from, const glm::dvec3& to) {
-  const double lo = volume.slab_min - scene.frame.margin;
-  const double hi = volume.slab_max + scene.frame.margin;
-  const double s_from = glm::dot(volume.slab_normal, from);
-  const double s_to = glm::dot(volume.slab_normal, to);
-  return std::max(s_from, s_to) >= lo && std::min(s_from, s_to) <= hi;
-}
-
 // The receiver half-space rule of the sample (DESIGN.md): no plane, so every caster counts, for a
 // sample without a receiver.
 geometry::ReceiverHalfSpace sample_half_space(const Case& c, const LightFrame& frame,
@@ -36,6 +24,49 @@ geometry::ReceiverHalfSpace sample_half_space(const Case& c, const LightFrame& f
 }
 
 }  // namespace
+
+std::unique_ptr<const ExactShadowPredicate> make_traversal_exact(const Case& c) {
+  return std::make_unique<const ExactShadowPredicate>(hard_shadow_light(c), c.scale());
+}
+
+// Section 5.4, step 2: the slabs along the normal-cone axis reject a shadow segment that stays on
+// one side of them. Both ends of the segment are exact in double up to the rounding of the dot
+// products (a few 2^-53 * scale), which the margin covers many times over.
+bool segment_meets_slabs(const TraversalScene& scene, const ClusterVolume& volume,
+                         const glm::dvec3& from, const glm::dvec3& to) {
+  const double lo = volume.slab_min - scene.frame.margin;
+  const double hi = volume.slab_max + scene.frame.margin;
+  const double s_from = glm::dot(volume.slab_normal, from);
+  const double s_to = glm::dot(volume.slab_normal, to);
+  return std::max(s_from, s_to) >= lo && std::min(s_from, s_to) <= hi;
+}
+
+bool triangle_blocks_sample(const TraversalScene& scene, const ViewSample& sample,
+                            const RaySpace& ray_space, std::uint32_t t,
+                            std::optional<geometry::ReceiverHalfSpace>& half_space) {
+  const Case& c = *scene.c;
+  const glm::dvec3 p(sample.position);
+  const Triangle& triangle = c.triangles[t];
+  const bool float_hit = ray_hits_triangle(ray_space, triangle.v0, triangle.v1, triangle.v2);
+  // The float test rounds each vertex on its own: beside an edge its miss may be a crack
+  // (a vertex on another triangle's edge, found by fuzz_watertight). A hit there is
+  // never wrong on a robust sample (the ray then passes within rounding of an open edge,
+  // which makes the sample ambiguous, or of a covered one).
+  if (!float_hit && !ray_near_triangle_edge(ray_space, triangle.v0, triangle.v1, triangle.v2))
+    return false;
+  // The receiver half-space rule, built once a triangle may block: a hit counts only
+  // strictly on the light's side of the receiver's plane, so a coplanar neighbour or the
+  // next face of a convex mesh is passed over and the search goes on.
+  if (!half_space) half_space = sample_half_space(c, scene.frame, sample);
+  const glm::dvec3 v0(triangle.v0), v1(triangle.v1), v2(triangle.v2);
+  const geometry::CasterReach reach = geometry::caster_reach(*half_space, v0, v1, v2);
+  if (reach == geometry::CasterReach::no_hit) return false;
+  if (!float_hit && !scene.exact->blocks(triangle, MovedPoint{p, 0.0, {0, 0, 0}})) return false;
+  if (reach == geometry::CasterReach::every_hit ||
+      geometry::hit_on_light_side(*half_space, p, v0, v1, v2))
+    return true;
+  return false;
+}
 
 bool sample_is_shadowed(const TraversalScene& scene, const ViewSample& sample,
                         TraversalCounters& counters, std::vector<std::uint32_t>& stack) {
@@ -64,27 +95,7 @@ bool sample_is_shadowed(const TraversalScene& scene, const ViewSample& sample,
           const std::uint32_t t = clustering.triangles[k];
           if (t == sample.receiver) continue;  // the receiver never shadows its own sample
           ++counters.triangle_tests;
-          const Triangle& triangle = c.triangles[t];
-          const bool float_hit =
-              ray_hits_triangle(ray_space, triangle.v0, triangle.v1, triangle.v2);
-          // The float test rounds each vertex on its own: beside an edge its miss may be a crack
-          // (a vertex on another triangle's edge, found by fuzz_watertight). A hit there is
-          // never wrong on a robust sample (the ray then passes within rounding of an open edge,
-          // which makes the sample ambiguous, or of a covered one).
-          if (!float_hit &&
-              !ray_near_triangle_edge(ray_space, triangle.v0, triangle.v1, triangle.v2))
-            continue;
-          // The receiver half-space rule, built once a triangle may block: a hit counts only
-          // strictly on the light's side of the receiver's plane, so a coplanar neighbour or the
-          // next face of a convex mesh is passed over and the search goes on.
-          if (!half_space) half_space = sample_half_space(c, frame, sample);
-          const glm::dvec3 v0(triangle.v0), v1(triangle.v1), v2(triangle.v2);
-          const geometry::CasterReach reach = geometry::caster_reach(*half_space, v0, v1, v2);
-          if (reach == geometry::CasterReach::no_hit) continue;
-          if (!float_hit && !scene.exact->blocks(triangle, MovedPoint{p, 0.0, {0, 0, 0}})) continue;
-          if (reach == geometry::CasterReach::every_hit ||
-              geometry::hit_on_light_side(*half_space, p, v0, v1, v2))
-            return true;
+          if (triangle_blocks_sample(scene, sample, ray_space, t, half_space)) return true;
         }
         ++counters.clusters_tested_without_hit;
         return false;

@@ -5,6 +5,8 @@
 // with an early exit on the first hit; the near or far child by the partitioning distance, and the
 // overlap child only when the pivot distance lies in its interval.
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <vector>
 
 #include "oracles/exact_segment_triangle.h"
@@ -14,6 +16,8 @@
 #include "reference/metric/light_space_elements.h"
 #include "reference/metric/metric_tree.h"
 #include "shadowcts/case.h"
+#include "shadowcts/geometry/receiver_half_space.h"
+#include "shadowcts/geometry/segment_triangle.h"
 #include "shadowcts/view_samples.h"
 
 namespace shadowcts::metric {
@@ -68,6 +72,21 @@ bool for_each_candidate_element(const MetricTree& tree,
   }
   return false;
 }
+
+// The exact predicate of the case's light that TraversalScene::exact points to.
+std::unique_ptr<const ExactShadowPredicate> make_traversal_exact(const Case& c);
+
+// Section 5.4, step 2: whether the segment from `from` to `to` meets the cluster's slabs.
+bool segment_meets_slabs(const TraversalScene& scene, const ClusterVolume& volume,
+                         const glm::dvec3& from, const glm::dvec3& to);
+
+// One caster triangle t (not the sample's receiver) against the sample's shadow segment, as
+// sample_is_shadowed decides it: the watertight test, decided again exactly beside an edge, and
+// the receiver half-space rule, whose half space is built on first need. Ports call it for the
+// triangles their own filters cannot rule out, so that every decision is the reference's.
+bool triangle_blocks_sample(const TraversalScene& scene, const ViewSample& sample,
+                            const RaySpace& ray_space, std::uint32_t t,
+                            std::optional<geometry::ReceiverHalfSpace>& half_space);
 
 // Whether some caster triangle other than the sample's receiver blocks the segment to the point
 // light or the ray towards the directional light, by the watertight test, among the clusters of

@@ -1,0 +1,179 @@
+#include "simd/metric/metric_shadows.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <stdexcept>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <glm/geometric.hpp>
+
+#include "reference/metric/seeded_random.h"
+#include "simd/metric/metric_tree.h"
+#include "simd/metric/traversal.h"
+
+namespace shadowcts::simd::metric {
+namespace {
+
+namespace ref = shadowcts::metric;
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The reference's seed stream of the tree build (metric_shadows.cpp: tree_stream).
+constexpr std::uint64_t tree_stream = 2;
+
+std::uint64_t tree_depth(const ref::MetricTree& tree) {
+  if (tree.nodes.empty()) return 0;
+  std::uint64_t deepest = 0;
+  std::vector<std::pair<std::uint32_t, std::uint64_t>> stack{{0, 0}};
+  while (!stack.empty()) {
+    const auto [node, depth] = stack.back();
+    stack.pop_back();
+    deepest = std::max(deepest, depth);
+    for (std::uint32_t child : tree.nodes[node].child)
+      if (child != ref::no_node) stack.push_back({child, depth + 1});
+  }
+  return deepest;
+}
+
+// As the reference's meshes_around_light: closed meshes whose bounding box, enlarged by the
+// margin, may hold the point light (then their clusters are never culled by their normals).
+std::vector<bool> meshes_around_light(const PreparedScene& scene, const ref::LightFrame& frame) {
+  const std::size_t meshes = scene.casters.mesh_closed.size();
+  std::vector<bool> around(meshes, false);
+  if (frame.directional) return around;
+  std::vector<glm::dvec3> lo(meshes, glm::dvec3(INFINITY)), hi(meshes, glm::dvec3(-INFINITY));
+  const CasterArrays& t = scene.casters;
+  for (std::size_t i = 0; i < t.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      const glm::dvec3 v(t.corner(i, k));
+      lo[t.mesh[i]] = glm::min(lo[t.mesh[i]], v);
+      hi[t.mesh[i]] = glm::max(hi[t.mesh[i]], v);
+    }
+  for (std::size_t m = 0; m < meshes; ++m)
+    around[m] = glm::all(glm::greaterThanEqual(frame.light_position, lo[m] - frame.margin)) &&
+                glm::all(glm::lessThanEqual(frame.light_position, hi[m] + frame.margin));
+  return around;
+}
+
+}  // namespace
+
+SimdMetricOptions parse_simd_metric_variant(const std::string& variant) {
+  SimdMetricOptions options;
+  options.metric = ref::parse_metric_variant(variant);
+  if (options.metric.build != ref::TreeBuild::insertion)
+    throw std::invalid_argument("metric (simd): variant '" + variant +
+                                "' uses the median build, which the simd backend does not port");
+  return options;
+}
+
+ref::LightStructure build_light_structure(const PreparedScene& scene,
+                                          const ref::ClusteredScene& clustered,
+                                          const ref::MetricOptions& options) {
+  const Case& c = scene.source;
+  ref::LightStructure structure;
+  structure.frame = ref::make_light_frame(c);
+  const ref::LightFrame& frame = structure.frame;
+  const std::vector<bool> around_light = meshes_around_light(scene, frame);
+  const glm::dvec3 light = frame.directional ? frame.towards_light : frame.light_position;
+  const std::size_t count = clustered.volumes.size();
+  std::vector<ref::LightSpaceElement> all(count);
+  std::vector<std::uint8_t> culled(count, 0);
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, count, 256),
+      [&](const tbb::blocked_range<std::size_t>& range) {
+        for (std::size_t k = range.begin(); k != range.end(); ++k) {
+          const ref::ClusterVolume& volume = clustered.volumes[k];
+          if (options.normal_cone_culling && !around_light[clustered.clustering.cluster_mesh[k]]) {
+            const glm::dvec3 centre = 0.5 * (volume.axis_begin + volume.axis_end);
+            const double reach = volume.radius + frame.margin +
+                                 0.5 * glm::length(volume.axis_end - volume.axis_begin);
+            if (ref::faces_away_from_light(clustered.normal_cones[k], centre, reach,
+                                           !frame.directional, light)) {
+              culled[k] = 1;
+              continue;
+            }
+          }
+          all[k] = ref::make_light_space_element(frame, volume, std::uint32_t(k));
+        }
+      });
+  structure.elements.reserve(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    if (culled[k])
+      ++structure.clusters_culled_facing_away;
+    else
+      structure.elements.push_back(all[k]);
+  }
+  const std::uint64_t seed = ref::mix_seed(c.parameters.seed, tree_stream);
+  structure.tree = simd::metric::build_metric_tree_by_insertion(
+      frame, structure.elements, ref::scene_partition_distance(frame, c), seed);
+  return structure;
+}
+
+SimdMetricRun run_metric(const PreparedScene& scene, const SimdMetricOptions& options) {
+  const Case& c = scene.source;
+  // Throws InputError without a point or directional light, as the reference does.
+  const std::unique_ptr<const ExactShadowPredicate> exact = ref::make_traversal_exact(c);
+  SimdMetricRun run;
+
+  auto start = std::chrono::steady_clock::now();
+  const ref::ClusteredScene clustered = ref::cluster_scene(c, options.metric);
+  const ClusterTriangles triangles = cluster_triangles_soa(scene.casters, clustered.clustering);
+  run.clustering_seconds = seconds_since(start);
+
+  start = std::chrono::steady_clock::now();
+  const ref::LightStructure structure = build_light_structure(scene, clustered, options.metric);
+  ref::TraversalScene traversal_scene;
+  traversal_scene.c = &c;
+  traversal_scene.exact = exact.get();
+  traversal_scene.clustering = &clustered.clustering;
+  traversal_scene.volumes = &clustered.volumes;
+  traversal_scene.elements = &structure.elements;
+  traversal_scene.tree = &structure.tree;
+  traversal_scene.frame = structure.frame;
+  traversal_scene.ray_length = 4.0 * structure.frame.scale;  // as the reference
+  const std::vector<PacketNode> nodes = packet_nodes(traversal_scene);
+  run.build_seconds = seconds_since(start);
+
+  start = std::chrono::steady_clock::now();
+  const SampleTiles tiles =
+      sample_tiles(scene.samples, scene.view_samples.width, options.packet <= 8 ? 8 : 16);
+  PacketTraversal traversal;
+  traversal.scene = &traversal_scene;
+  traversal.nodes = &nodes;
+  traversal.triangles = &triangles;
+  traversal.prepared = &scene;
+  traversal.tiles = &tiles;
+  std::vector<std::uint8_t> shadowed(scene.samples.size(), 0);
+  std::atomic<std::uint64_t> nodes_visited{0}, clusters_without_hit{0}, triangle_tests{0};
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tiles.size(), 16),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      ref::TraversalCounters local;
+                      traverse_tiles(traversal, range.begin(), range.end(), shadowed.data(), local);
+                      // Sums of integers: the totals do not depend on the partitioning.
+                      nodes_visited += local.nodes_visited;
+                      clusters_without_hit += local.clusters_tested_without_hit;
+                      triangle_tests += local.triangle_tests;
+                    });
+  run.output.shadowed = scene.per_view_sample(shadowed, std::uint8_t(0));
+  run.traversal_seconds = seconds_since(start);
+
+  ref::MetricCounters& counters = run.counters;
+  counters.clusters = clustered.clustering.cluster_count();
+  counters.capsules = std::uint64_t(std::count_if(
+      clustered.volumes.begin(), clustered.volumes.end(),
+      [](const ref::ClusterVolume& v) { return v.shape == ref::VolumeShape::capsule; }));
+  counters.clusters_culled_facing_away = structure.clusters_culled_facing_away;
+  counters.tree_nodes = structure.tree.nodes.size();
+  counters.tree_depth = tree_depth(structure.tree);
+  counters.traversal.nodes_visited = nodes_visited.load();
+  counters.traversal.clusters_tested_without_hit = clusters_without_hit.load();
+  counters.traversal.triangle_tests = triangle_tests.load();
+  run.output.counters = ref::to_counters(counters);
+  return run;
+}
+
+}  // namespace shadowcts::simd::metric

@@ -1,0 +1,497 @@
+// The packet traversal of the simd `metric` (traversal.h): the one translation unit of the port
+// that Highway compiles once per target; the plain C++ precomputations are at the end (HWY_ONCE).
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "simd/metric/traversal.cpp"
+#include <hwy/foreach_target.h>  // must come before highway.h
+#include <hwy/highway.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <numbers>
+#include <optional>
+
+#include <glm/geometric.hpp>
+
+#include "simd/metric/traversal.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace shadowcts::simd::metric::HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+using shadowcts::metric::LightFrame;
+using shadowcts::metric::LightSpaceQuery;
+using shadowcts::metric::TraversalCounters;
+using shadowcts::metric::TraversalScene;
+using shadowcts::metric::TreeChild;
+
+// Half-width of the band around a threshold where the lanes hand a decision to the reference:
+// far above the error of s cos T - c sin T (a few 2^-53) and of the reference's atan2, subtraction
+// and threshold sums (a few ulp of numbers below 8), and, in the plane, of any evaluation order.
+constexpr double angle_window = 0x1p-40;
+
+template <std::size_t P>
+struct Packet {
+  alignas(64) double ux[P], uy[P], uz[P], qld[P];
+  std::uint32_t regular[P];
+  const ViewSample* sample[P];
+  LightSpaceQuery query[P];
+  RaySpace ray[P];
+  glm::dvec3 from[P], to[P];
+  std::optional<geometry::ReceiverHalfSpace> half_space[P];
+};
+
+// Lane bits of a mask of at most 8 lanes (doubles in vectors of at most 512 bits).
+template <class D, class M>
+HWY_INLINE std::uint32_t lane_bits(D d, M mask) {
+  std::uint8_t bytes[8] = {};
+  hn::StoreMaskBits(d, mask, bytes);
+  return bytes[0];
+}
+
+// The decisions of one node for the lanes of a packet, as lane masks.
+struct NodeDecisions {
+  std::uint32_t reached = 0;  // step 1 passed: the sample is not closer to the light
+  std::uint32_t deep = 0;     // not in front of the pivot's own volume
+  std::uint32_t inside = 0, overlap = 0, far = 0, near = 0;
+};
+
+template <class D, class V>
+HWY_INLINE void angle_thresholds(D d, const PacketNode& n, V s, V c, int k, V& f) {
+  f = hn::Add(hn::Sub(hn::Mul(s, hn::Set(d, n.cos_t[k])), hn::Mul(c, hn::Set(d, n.sin_t[k]))),
+              hn::Set(d, n.bias[k]));
+}
+
+// Angle between u and a unit direction as (|u x a|, u . a), in glm's order of operations.
+template <class V>
+HWY_INLINE void sine_cosine(V ux, V uy, V uz, V ax, V ay, V az, V& s, V& c) {
+  const V cx = hn::Sub(hn::Mul(uy, az), hn::Mul(ay, uz));
+  const V cy = hn::Sub(hn::Mul(uz, ax), hn::Mul(az, ux));
+  const V cz = hn::Sub(hn::Mul(ux, ay), hn::Mul(ax, uy));
+  s = hn::Sqrt(hn::Add(hn::Add(hn::Mul(cx, cx), hn::Mul(cy, cy)), hn::Mul(cz, cz)));
+  c = hn::Add(hn::Add(hn::Mul(ux, ax), hn::Mul(uy, ay)), hn::Mul(uz, az));
+}
+
+template <std::size_t P>
+NodeDecisions evaluate_node(const PacketTraversal& traversal, const PacketNode& n,
+                            const Packet<P>& pk, std::uint32_t lanes) {
+  const hn::ScalableTag<double> d;
+  using V = hn::Vec<decltype(d)>;
+  constexpr std::size_t max_lanes = 8;
+  const std::size_t N = std::min(hn::Lanes(d), max_lanes);
+  const std::uint32_t chunk = (1u << N) - 1;
+  const LightFrame& frame = traversal.scene->frame;
+  const double window = frame.directional ? angle_window * frame.scale : angle_window;
+  const V lo = hn::Set(d, -window), hi = hn::Set(d, window);
+  bool needed[thresholds];
+  needed[inside] = true;
+  needed[overlap_low] = needed[overlap_high] = n.has_child[int(TreeChild::overlap)];
+  needed[far_side] = n.has_child[int(TreeChild::far)];
+  needed[near_side] = n.has_child[int(TreeChild::near)];
+
+  NodeDecisions out;
+  std::uint32_t below[thresholds] = {}, above[thresholds] = {}, unsure = 0;
+  for (std::size_t j = 0; j < P; j += N) {
+    const std::uint32_t here = (lanes >> j) & chunk;
+    if (here == 0) continue;
+    const V qld = hn::Load(d, pk.qld + j);
+    const std::uint32_t reached =
+        lane_bits(d, hn::Not(hn::Lt(qld, hn::Set(d, n.light_distance)))) & here;
+    if (reached == 0) continue;
+    out.reached |= reached << j;
+    out.deep |= (lane_bits(d, hn::Ge(qld, hn::Set(d, n.pivot_light_distance))) & reached) << j;
+    if (n.kind == NodeKind::covers_everything) {
+      unsure |= reached << j;
+      continue;
+    }
+    const V ux = hn::Load(d, pk.ux + j), uy = hn::Load(d, pk.uy + j);
+    V f[thresholds];
+    if (n.kind == NodeKind::point_cone || n.kind == NodeKind::arc_cone) {
+      const V uz = hn::Load(d, pk.uz + j);
+      const V ax = hn::Set(d, n.a[0]), ay = hn::Set(d, n.a[1]), az = hn::Set(d, n.a[2]);
+      V s, c;
+      sine_cosine(ux, uy, uz, ax, ay, az, s, c);
+      if (n.kind == NodeKind::point_cone) {
+        for (int k = 0; k < thresholds; ++k) {
+          if (!needed[k]) continue;
+          angle_thresholds(d, n, s, c, k, f[k]);
+          below[k] |= (lane_bits(d, hn::Lt(f[k], lo)) & reached) << j;
+          above[k] |= (lane_bits(d, hn::Gt(f[k], hi)) & reached) << j;
+        }
+      } else {
+        // distance_to_arc: the projection on the arc's plane when the arc spans it, else the
+        // nearer endpoint (below if either endpoint is below, above if both are above).
+        const V bx = hn::Set(d, n.b[0]), by = hn::Set(d, n.b[1]), bz = hn::Set(d, n.b[2]);
+        const V nx = hn::Set(d, n.normal[0]), ny = hn::Set(d, n.normal[1]),
+                nz = hn::Set(d, n.normal[2]);
+        const V h = hn::Add(hn::Add(hn::Mul(ux, nx), hn::Mul(uy, ny)), hn::Mul(uz, nz));
+        const V px = hn::Sub(ux, hn::Mul(h, nx)), py = hn::Sub(uy, hn::Mul(h, ny)),
+                pz = hn::Sub(uz, hn::Mul(h, nz));
+        const V length =
+            hn::Sqrt(hn::Add(hn::Add(hn::Mul(px, px), hn::Mul(py, py)), hn::Mul(pz, pz)));
+        // arc_spans: (a x w) . n >= 0 and (w x b) . n >= 0.
+        const V awx = hn::Sub(hn::Mul(ay, pz), hn::Mul(py, az));
+        const V awy = hn::Sub(hn::Mul(az, px), hn::Mul(pz, ax));
+        const V awz = hn::Sub(hn::Mul(ax, py), hn::Mul(px, ay));
+        const V wbx = hn::Sub(hn::Mul(py, bz), hn::Mul(by, pz));
+        const V wby = hn::Sub(hn::Mul(pz, bx), hn::Mul(bz, px));
+        const V wbz = hn::Sub(hn::Mul(px, by), hn::Mul(bx, py));
+        const V zero = hn::Zero(d);
+        const auto spans = hn::And(
+            hn::Gt(length, zero),
+            hn::And(hn::Ge(hn::Add(hn::Add(hn::Mul(awx, nx), hn::Mul(awy, ny)), hn::Mul(awz, nz)),
+                           zero),
+                    hn::Ge(hn::Add(hn::Add(hn::Mul(wbx, nx), hn::Mul(wby, ny)), hn::Mul(wbz, nz)),
+                           zero)));
+        const std::uint32_t span_bits = lane_bits(d, spans);
+        V sb, cb;
+        sine_cosine(ux, uy, uz, bx, by, bz, sb, cb);
+        const V sp = hn::Abs(h);
+        for (int k = 0; k < thresholds; ++k) {
+          if (!needed[k]) continue;
+          V fa, fb, fp;
+          angle_thresholds(d, n, s, c, k, fa);
+          angle_thresholds(d, n, sb, cb, k, fb);
+          angle_thresholds(d, n, sp, length, k, fp);
+          const std::uint32_t below_spanned = lane_bits(d, hn::Lt(fp, lo)),
+                              above_spanned = lane_bits(d, hn::Gt(fp, hi));
+          const std::uint32_t below_ends = lane_bits(d, hn::Or(hn::Lt(fa, lo), hn::Lt(fb, lo))),
+                              above_ends = lane_bits(d, hn::And(hn::Gt(fa, hi), hn::Gt(fb, hi)));
+          below[k] |= (((span_bits & below_spanned) | (~span_bits & below_ends)) & reached) << j;
+          above[k] |= (((span_bits & above_spanned) | (~span_bits & above_ends)) & reached) << j;
+        }
+      }
+    } else {
+      const V dx = hn::Sub(ux, hn::Set(d, n.a[0])), dy = hn::Sub(uy, hn::Set(d, n.a[1]));
+      V ex = dx, ey = dy;
+      if (n.kind == NodeKind::capsule_2d) {
+        // closest_parameter, then p - (a + t (b - a)).
+        const V abx = hn::Set(d, n.b[0]), aby = hn::Set(d, n.b[1]);
+        V t = hn::Zero(d);
+        if (n.segment_length_squared > 0.0) {
+          t = hn::Div(hn::Add(hn::Mul(dx, abx), hn::Mul(dy, aby)),
+                      hn::Set(d, n.segment_length_squared));
+          t = hn::Min(hn::Max(t, hn::Zero(d)), hn::Set(d, 1.0));
+        }
+        ex = hn::Sub(ux, hn::Add(hn::Set(d, n.a[0]), hn::Mul(t, abx)));
+        ey = hn::Sub(uy, hn::Add(hn::Set(d, n.a[1]), hn::Mul(t, aby)));
+      }
+      const V distance =
+          hn::Sub(hn::Sqrt(hn::Add(hn::Mul(ex, ex), hn::Mul(ey, ey))), hn::Set(d, n.radius));
+      for (int k = 0; k < thresholds; ++k) {
+        if (!needed[k]) continue;
+        f[k] = hn::Sub(distance, hn::Set(d, n.threshold[k]));
+        below[k] |= (lane_bits(d, hn::Lt(f[k], lo)) & reached) << j;
+        above[k] |= (lane_bits(d, hn::Gt(f[k], hi)) & reached) << j;
+      }
+    }
+  }
+  for (int k = 0; k < thresholds; ++k)
+    if (needed[k]) unsure |= out.reached & ~(below[k] | above[k]);
+  out.inside = below[inside];
+  out.overlap = above[overlap_low] & below[overlap_high];
+  out.far = above[far_side];
+  out.near = below[near_side];
+  // The reference's own pivot distance and comparisons for the lanes near a threshold.
+  const auto& scene = *traversal.scene;
+  for (std::uint32_t rest = unsure; rest != 0; rest &= rest - 1) {
+    const int l = std::countr_zero(rest);
+    const std::uint32_t bit = 1u << l;
+    const double distance =
+        shadowcts::metric::pivot_distance(frame, (*scene.elements)[n.pivot], pk.query[l]);
+    out.inside = (out.inside & ~bit) | (distance <= n.threshold[inside] ? bit : 0);
+    out.overlap =
+        (out.overlap & ~bit) |
+        (distance >= n.threshold[overlap_low] && distance <= n.threshold[overlap_high] ? bit : 0);
+    out.far = (out.far & ~bit) | (distance >= n.threshold[far_side] ? bit : 0);
+    out.near = (out.near & ~bit) | (distance <= n.threshold[near_side] ? bit : 0);
+  }
+  if (!needed[overlap_low]) out.overlap = 0;
+  if (!needed[far_side]) out.far = 0;
+  if (!needed[near_side]) out.near = 0;
+  return out;
+}
+
+// The cluster's slots [begin, begin + count), count <= 64, that the reference's
+// triangle_blocks_sample might not reject: those whose exact double edge functions do not have
+// strictly mixed signs, or lie within ray_near_triangle_edge's bound (both bit for bit as
+// segment_triangle.h computes them from the same float ray-space vertices).
+std::uint64_t triangles_to_decide(const ClusterTriangles& triangles, std::uint32_t begin,
+                                  std::uint32_t count, const RaySpace& ray) {
+  if (ray.zero_direction) return 0;  // the reference's tests hit nothing
+  const hn::ScalableTag<double> d;
+  const hn::Rebind<float, decltype(d)> df;
+  using V = hn::Vec<decltype(d)>;
+  using VF = hn::Vec<decltype(df)>;
+  constexpr std::size_t max_lanes = 8;
+  const std::size_t N = std::min(hn::Lanes(d), max_lanes);
+  const VF ox = hn::Set(df, component(ray.origin, ray.kx)),
+           oy = hn::Set(df, component(ray.origin, ray.ky)),
+           oz = hn::Set(df, component(ray.origin, ray.kz));
+  const VF shear_x = hn::Set(df, ray.shear_x), shear_y = hn::Set(df, ray.shear_y);
+  const V edge_scale = hn::Set(d, 0x1p-16), zero = hn::Zero(d);
+  std::uint64_t decide = 0;
+  for (std::uint32_t j = 0; j < count; j += std::uint32_t(N)) {
+    V x[3], y[3], extent[3];
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t slot = begin + j;
+      const VF rx = hn::Sub(hn::LoadU(df, triangles.xyz[ray.kx][k].data() + slot), ox);
+      const VF ry = hn::Sub(hn::LoadU(df, triangles.xyz[ray.ky][k].data() + slot), oy);
+      const VF rz = hn::Sub(hn::LoadU(df, triangles.xyz[ray.kz][k].data() + slot), oz);
+      const VF fx = hn::Sub(rx, hn::Mul(shear_x, rz));
+      const VF fy = hn::Sub(ry, hn::Mul(shear_y, rz));
+      x[k] = hn::PromoteTo(d, fx);
+      y[k] = hn::PromoteTo(d, fy);
+      extent[k] = hn::Add(hn::Add(hn::PromoteTo(d, hn::Abs(fx)), hn::PromoteTo(d, hn::Abs(fy))),
+                          hn::PromoteTo(d, hn::Abs(rz)));
+    }
+    // exact_edge_function(p, q) = q.x p.y - q.y p.x for (b, c), (c, a), (a, b).
+    const int p_of[3] = {1, 2, 0}, q_of[3] = {2, 0, 1};
+    auto near = hn::Lt(edge_scale, zero);  // all false
+    auto negative = near, positive = near;
+    for (int e = 0; e < 3; ++e) {
+      const int p = p_of[e], q = q_of[e];
+      const V edge = hn::Sub(hn::Mul(x[q], y[p]), hn::Mul(y[q], x[p]));
+      near =
+          hn::Or(near, hn::Le(hn::Abs(edge), hn::Mul(hn::Mul(edge_scale, extent[p]), extent[q])));
+      negative = hn::Or(negative, hn::Lt(edge, zero));
+      positive = hn::Or(positive, hn::Gt(edge, zero));
+    }
+    const auto undecided = hn::Or(near, hn::Not(hn::And(negative, positive)));
+    decide |= std::uint64_t(lane_bits(d, undecided)) << j;
+  }
+  return count >= 64 ? decide : decide & ((std::uint64_t(1) << count) - 1);
+}
+
+// Step 2 for one lane: the slabs, then the pivot cluster's triangles in cluster order with the
+// reference's counters and decisions.
+template <std::size_t P>
+bool cluster_blocks(const PacketTraversal& traversal, Packet<P>& pk, int l, std::uint32_t cluster,
+                    TraversalCounters& counters) {
+  const TraversalScene& scene = *traversal.scene;
+  if (!shadowcts::metric::segment_meets_slabs(scene, (*scene.volumes)[cluster], pk.from[l],
+                                              pk.to[l]))
+    return false;
+  const shadowcts::metric::Clustering& clustering = *scene.clustering;
+  const std::uint32_t receiver = pk.sample[l]->receiver;
+  const std::uint32_t end = clustering.cluster_begin[cluster + 1];
+  for (std::uint32_t begin = clustering.cluster_begin[cluster]; begin < end; begin += 64) {
+    const std::uint32_t count = std::min<std::uint32_t>(64, end - begin);
+    const std::uint64_t decide = triangles_to_decide(*traversal.triangles, begin, count, pk.ray[l]);
+    for (std::uint32_t k = 0; k < count; ++k) {
+      const std::uint32_t t = clustering.triangles[begin + k];
+      if (t == receiver) continue;
+      ++counters.triangle_tests;
+      if ((decide >> k & 1) == 0) continue;
+      if (shadowcts::metric::triangle_blocks_sample(scene, *pk.sample[l], pk.ray[l], t,
+                                                    pk.half_space[l]))
+        return true;
+    }
+  }
+  ++counters.clusters_tested_without_hit;
+  return false;
+}
+
+template <std::size_t P>
+void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* members,
+                     std::uint32_t count, Packet<P>& pk,
+                     std::vector<std::pair<std::uint32_t, std::uint32_t>>& stack,
+                     std::uint8_t* shadowed, TraversalCounters& counters) {
+  const TraversalScene& scene = *traversal.scene;
+  const LightFrame& frame = scene.frame;
+  const Case& c = *scene.c;
+  const PreparedScene& prepared = *traversal.prepared;
+  std::uint32_t active = 0;
+  for (std::uint32_t l = 0; l < P; ++l) {
+    pk.ux[l] = pk.uy[l] = pk.uz[l] = pk.qld[l] = 0.0;
+    if (l >= count) continue;
+    const std::uint32_t i = members[l];
+    const ViewSample& sample = prepared.view_samples.samples[prepared.samples.index[i]];
+    pk.regular[l] = i;
+    pk.sample[l] = &sample;
+    shadowed[i] = 0;
+    const glm::dvec3 p(sample.position);
+    pk.query[l] = shadowcts::metric::make_light_space_query(frame, p);
+    if (pk.query[l].at_light) continue;  // the segment is a point: nothing hits it
+    const ShadowRay ray = frame.directional
+                              ? ray_to_directional_light(sample.position, c.light->direction)
+                              : segment_to_point_light(sample.position, c.light->position);
+    pk.ray[l] = make_ray_space(ray);
+    pk.from[l] = p;
+    pk.to[l] =
+        frame.directional ? p + scene.ray_length * frame.towards_light : frame.light_position;
+    pk.half_space[l].reset();
+    pk.ux[l] = pk.query[l].position.x;
+    pk.uy[l] = pk.query[l].position.y;
+    pk.uz[l] = pk.query[l].position.z;
+    pk.qld[l] = pk.query[l].light_distance;
+    active |= 1u << l;
+  }
+  const std::vector<PacketNode>& nodes = *traversal.nodes;
+  if (nodes.empty() || active == 0) return;
+  stack.clear();
+  stack.push_back({0, active});
+  while (!stack.empty()) {
+    const auto [index, pushed] = stack.back();
+    stack.pop_back();
+    const std::uint32_t lanes = pushed & active;
+    if (lanes == 0) continue;
+    counters.nodes_visited += std::uint64_t(std::popcount(lanes));
+    const PacketNode& n = nodes[index];
+    const NodeDecisions decisions = evaluate_node(traversal, n, pk, lanes);
+    for (std::uint32_t visit = decisions.inside & decisions.deep; visit != 0; visit &= visit - 1) {
+      const int l = std::countr_zero(visit);
+      if (cluster_blocks(traversal, pk, l, (*scene.elements)[n.pivot].cluster, counters)) {
+        shadowed[pk.regular[l]] = 1;
+        active &= ~(1u << l);
+      }
+    }
+    const std::uint32_t going = decisions.reached & active;
+    // Pushed overlap, far, near, so that near is walked first, as the reference walks it.
+    const std::uint32_t overlap = decisions.overlap & going, far = decisions.far & going,
+                        near = decisions.near & going;
+    if (overlap) stack.push_back({n.child[int(TreeChild::overlap)], overlap});
+    if (far) stack.push_back({n.child[int(TreeChild::far)], far});
+    if (near) stack.push_back({n.child[int(TreeChild::near)], near});
+  }
+}
+
+template <std::size_t P>
+void traverse_tiles_of(const PacketTraversal& traversal, std::size_t tile_begin,
+                       std::size_t tile_end, std::uint8_t* shadowed, TraversalCounters& counters) {
+  Packet<P> packet;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> stack;
+  stack.reserve(256);
+  const SampleTiles& tiles = *traversal.tiles;
+  for (std::size_t k = tile_begin; k < tile_end; ++k)
+    traverse_packet<P>(traversal, tiles.samples.data() + tiles.begin[k],
+                       tiles.begin[k + 1] - tiles.begin[k], packet, stack, shadowed, counters);
+}
+
+void TraverseTiles(const PacketTraversal& traversal, std::size_t tile_begin, std::size_t tile_end,
+                   std::uint8_t* shadowed, TraversalCounters& counters) {
+  if (traversal.tiles->packet <= 8)
+    traverse_tiles_of<8>(traversal, tile_begin, tile_end, shadowed, counters);
+  else
+    traverse_tiles_of<16>(traversal, tile_begin, tile_end, shadowed, counters);
+}
+
+}  // namespace shadowcts::simd::metric::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace shadowcts::simd::metric {
+
+HWY_EXPORT(TraverseTiles);
+
+void traverse_tiles(const PacketTraversal& traversal, std::size_t tile_begin, std::size_t tile_end,
+                    std::uint8_t* shadowed, shadowcts::metric::TraversalCounters& counters) {
+  HWY_DYNAMIC_DISPATCH(TraverseTiles)(traversal, tile_begin, tile_end, shadowed, counters);
+}
+
+ClusterTriangles cluster_triangles_soa(const CasterArrays& casters,
+                                       const shadowcts::metric::Clustering& clustering) {
+  // Room for one full vector (up to 16 floats) past the last slot.
+  constexpr std::size_t padding = 16;
+  ClusterTriangles out;
+  const std::size_t slots = clustering.triangles.size();
+  const std::vector<float>* source[3] = {casters.x, casters.y, casters.z};
+  for (int axis = 0; axis < 3; ++axis)
+    for (int k = 0; k < 3; ++k) {
+      std::vector<float>& to = out.xyz[axis][k];
+      to.assign(slots + padding, 0.0f);
+      const std::vector<float>& from = source[axis][k];
+      for (std::size_t j = 0; j < slots; ++j) to[j] = from[clustering.triangles[j]];
+    }
+  return out;
+}
+
+std::vector<PacketNode> packet_nodes(const shadowcts::metric::TraversalScene& scene) {
+  using shadowcts::metric::CentreKind;
+  const shadowcts::metric::LightFrame& frame = scene.frame;
+  const auto& tree_nodes = scene.tree->nodes;
+  std::vector<PacketNode> nodes(tree_nodes.size());
+  for (std::size_t i = 0; i < tree_nodes.size(); ++i) {
+    const shadowcts::metric::MetricTreeNode& t = tree_nodes[i];
+    const shadowcts::metric::LightSpaceElement& e = (*scene.elements)[t.pivot];
+    PacketNode& n = nodes[i];
+    n.light_distance = t.light_distance;
+    n.pivot_light_distance = e.light_distance;
+    n.pivot = t.pivot;
+    for (int c = 0; c < 3; ++c) {
+      n.has_child[c] = t.child[c] != shadowcts::metric::no_node;
+      n.child[c] = n.has_child[c] ? t.child[c] : 0;
+    }
+    n.radius = e.radius;
+    // The reference's comparisons: distance <= 0, >= overlap_min - slack, <= overlap_max +
+    // slack, >= delta - slack, <= delta + slack.
+    n.threshold[inside] = 0.0;
+    n.threshold[overlap_low] = t.overlap_min - frame.slack;
+    n.threshold[overlap_high] = t.overlap_max + frame.slack;
+    n.threshold[far_side] = t.partition_distance - frame.slack;
+    n.threshold[near_side] = t.partition_distance + frame.slack;
+    const bool point = e.centre == CentreKind::point;
+    if (e.covers_everything) {
+      n.kind = NodeKind::covers_everything;
+    } else if (frame.directional) {
+      n.kind = point ? NodeKind::disk : NodeKind::capsule_2d;
+    } else {
+      n.kind = point ? NodeKind::point_cone : NodeKind::arc_cone;
+    }
+    const glm::dvec3 a = n.kind == NodeKind::arc_cone ? e.arc.a : e.a;
+    n.a[0] = a.x, n.a[1] = a.y, n.a[2] = a.z;
+    if (n.kind == NodeKind::arc_cone) {
+      n.b[0] = e.arc.b.x, n.b[1] = e.arc.b.y, n.b[2] = e.arc.b.z;
+      n.normal[0] = e.arc.normal.x, n.normal[1] = e.arc.normal.y, n.normal[2] = e.arc.normal.z;
+    }
+    if (n.kind == NodeKind::capsule_2d) {
+      // b - a and dot(b - a, b - a) as closest_parameter computes them (z is 0 in the plane).
+      const glm::dvec3 ab = e.b - e.a;
+      n.b[0] = ab.x, n.b[1] = ab.y;
+      n.segment_length_squared = glm::dot(ab, ab);
+    }
+    if (!frame.directional && !e.covers_everything) {
+      for (int k = 0; k < thresholds; ++k) {
+        const double shifted = n.threshold[k] + e.radius;
+        if (std::isnan(shifted)) {
+          n.cos_t[k] = n.sin_t[k] = n.bias[k] = 0.0;  // always near: decided by the reference
+        } else if (shifted < -0x1p-30) {
+          n.bias[k] = 1.0;  // every angle is above
+        } else if (shifted > std::numbers::pi + 0x1p-30) {
+          n.bias[k] = -1.0;  // every angle is below
+        } else {
+          n.cos_t[k] = std::cos(shifted);
+          n.sin_t[k] = std::sin(shifted);
+        }
+      }
+    }
+  }
+  return nodes;
+}
+
+SampleTiles sample_tiles(const RegularSamples& samples, std::uint32_t width, std::uint32_t packet) {
+  SampleTiles tiles;
+  tiles.packet = packet;
+  const std::uint32_t tile_width = 4, tile_height = packet / tile_width;
+  const std::uint32_t columns = (std::max(width, 1u) + tile_width - 1) / tile_width;
+  std::vector<std::uint32_t> tile_of(samples.size());
+  std::uint32_t tile_count = 0;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const std::uint32_t pixel = samples.index[i];
+    const std::uint32_t x = width > 0 ? pixel % width : 0, y = width > 0 ? pixel / width : 0;
+    tile_of[i] = (y / tile_height) * columns + x / tile_width;
+    tile_count = std::max(tile_count, tile_of[i] + 1);
+  }
+  std::vector<std::uint32_t> begin(tile_count + 1, 0);
+  for (std::uint32_t t : tile_of) ++begin[t + 1];
+  for (std::uint32_t t = 0; t < tile_count; ++t) begin[t + 1] += begin[t];
+  tiles.samples.resize(samples.size());
+  std::vector<std::uint32_t> next(begin.begin(), begin.end() - 1);
+  for (std::uint32_t i = 0; i < samples.size(); ++i) tiles.samples[next[tile_of[i]]++] = i;
+  for (std::uint32_t t = 0; t < tile_count; ++t)
+    if (begin[t + 1] > begin[t]) tiles.begin.push_back(begin[t + 1]);
+  return tiles;
+}
+
+}  // namespace shadowcts::simd::metric
+#endif  // HWY_ONCE

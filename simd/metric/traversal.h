@@ -1,0 +1,91 @@
+#pragma once
+// Packet traversal of the ternary metric tree (Deves et al. 2018, section 5.4) for the simd
+// `metric`: the samples of a 4 x 4 (or 4 x 2) pixel tile walk the tree together, one Highway lane
+// per sample for the node tests, one stack of (node, lane mask) entries. A lane's entries are
+// pushed and popped in the order its own depth-first walk would push and pop them, so every
+// per-sample counter is the reference's (reference/metric/traversal.h).
+//
+// Exactness: the node tests decide in lanes only where the decision is certain, and hand a lane
+// back to the reference's scalar pivot_distance where a float comparison lies within 2^-40 (of an
+// angle, or of S in the plane) of its threshold. The angle test needs no atan2: for an angle
+// theta = atan2(s, c) with s >= 0 and a threshold T in [0, pi], sign(theta - T) is the sign of
+// s cos T - c sin T. The triangles of a candidate cluster are filtered in lanes by the exact
+// signs of their double edge functions and the reference's near-edge bound (both bit for bit the
+// reference's); the ones the filter cannot rule out are decided by the reference's own
+// triangle_blocks_sample.
+#include <cstdint>
+#include <vector>
+
+#include "reference/metric/clustering.h"
+#include "reference/metric/counters.h"
+#include "reference/metric/traversal.h"
+#include "shadowcts/prepared_scene.h"
+
+namespace shadowcts::simd::metric {
+
+// The caster triangles in cluster order as structure of arrays: corner k of the triangle in slot
+// j is (xyz[0][k][j], xyz[1][k][j], xyz[2][k][j]); padded so that full vectors can be loaded.
+// Light-independent: part of the per-model precomputation.
+struct ClusterTriangles {
+  std::vector<float> xyz[3][3];
+};
+
+ClusterTriangles cluster_triangles_soa(const CasterArrays& casters,
+                                       const shadowcts::metric::Clustering& clustering);
+
+// Thresholds of a node, in the order of PacketNode::threshold.
+enum Threshold : int { inside = 0, overlap_low, overlap_high, far_side, near_side, thresholds };
+
+enum class NodeKind : std::uint8_t {
+  point_cone,         // point light, point centre: an angle to a direction
+  arc_cone,           // point light, arc centre
+  disk,               // directional, point centre: a distance in the plane
+  capsule_2d,         // directional, segment centre
+  covers_everything,  // decided per lane by the reference
+};
+
+// One tree node with what the lanes compare against, precomputed per frame.
+struct alignas(64) PacketNode {
+  double light_distance = 0.0;
+  double pivot_light_distance = 0.0;
+  std::uint32_t child[3] = {0, 0, 0};
+  std::uint32_t pivot = 0;
+  NodeKind kind = NodeKind::point_cone;
+  std::uint8_t has_child[3] = {0, 0, 0};
+  double a[3] = {0, 0, 0}, b[3] = {0, 0, 0}, normal[3] = {0, 0, 0};
+  double radius = 0.0;
+  double segment_length_squared = 0.0;  // capsule_2d: |b - a|^2
+  // The reference's thresholds of the pivot distance: 0, overlap_min - slack,
+  // overlap_max + slack, delta - slack, delta + slack.
+  double threshold[thresholds] = {};
+  // Point light: theta <= threshold + radius iff (s cos - c sin) + bias <= 0, bias = +-1 where
+  // the shifted threshold lies outside [0, pi] (the answer is then the same for every angle).
+  double cos_t[thresholds] = {}, sin_t[thresholds] = {}, bias[thresholds] = {};
+};
+
+std::vector<PacketNode> packet_nodes(const shadowcts::metric::TraversalScene& scene);
+
+// The regular samples grouped into image tiles of `packet` samples (4 pixels wide).
+struct SampleTiles {
+  std::uint32_t packet = 16;
+  std::vector<std::uint32_t> begin{0};  // tile k holds samples[begin[k] .. begin[k + 1])
+  std::vector<std::uint32_t> samples;   // indices into RegularSamples
+  std::size_t size() const { return begin.size() - 1; }
+};
+
+SampleTiles sample_tiles(const RegularSamples& samples, std::uint32_t width, std::uint32_t packet);
+
+struct PacketTraversal {
+  const shadowcts::metric::TraversalScene* scene = nullptr;  // the reference's, for its decisions
+  const std::vector<PacketNode>* nodes = nullptr;
+  const ClusterTriangles* triangles = nullptr;
+  const PreparedScene* prepared = nullptr;
+  const SampleTiles* tiles = nullptr;
+};
+
+// Answers the samples of tiles [tile_begin, tile_end): shadowed[i] for regular sample i, and adds
+// the work to `counters`. Dispatched to the best Highway target of the CPU.
+void traverse_tiles(const PacketTraversal& traversal, std::size_t tile_begin, std::size_t tile_end,
+                    std::uint8_t* shadowed, shadowcts::metric::TraversalCounters& counters);
+
+}  // namespace shadowcts::simd::metric
