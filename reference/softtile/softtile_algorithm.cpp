@@ -2,20 +2,18 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
-#include <numbers>
 #include <stdexcept>
 #include <vector>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <glm/geometric.hpp>
 
 #include "oracles/hard_shadow_inputs.h"
 #include "oracles/thread_limit.h"
 #include "reference/softtile/disk_bitmask.h"
 #include "reference/softtile/fragment_occlusion.h"
 #include "reference/softtile/softtile_gather.h"
+#include "reference/softtile/softtile_tile.h"
 #include "reference/softtile/softtile_variant.h"
 #include "shadowcts/phase_clock.h"
 
@@ -24,58 +22,12 @@ namespace {
 
 using namespace softtile;
 
+static_assert(softtile_tile_size == tile_size);
+
 struct TileCounters {
   std::uint64_t relevant = 0, capsule = 0, candidates = 0, overflow_batches = 0, tests = 0,
                 rasterized = 0, rasterized_max = 0;
 };
-
-// The bound of a tile's relevant samples. The samples lie in the tile's slice of the view frustum
-// between its min and max depth; seen from the eye along the tile's mean direction c, a sample at
-// distance t along c lies within k t of the axis (k the largest ratio over the tile). A tapered
-// capsule from t_min to t_max with radii k t_min, k t_max contains them all; when the depth range
-// is short against the radius, one sphere around them is tighter and is used instead.
-TileBound tile_bound(const glm::dvec3& eye, const std::vector<glm::dvec3>& positions) {
-  glm::dvec3 direction(0.0), lo(positions[0]), hi(positions[0]);
-  for (const glm::dvec3& p : positions) {
-    direction += glm::normalize(p - eye);
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
-  const double scale = glm::length(eye) + std::max(glm::length(lo), glm::length(hi));
-  const double margin = 1e-6 * scale;
-  TileBound sphere;
-  sphere.a = 0.5 * (lo + hi);
-  for (const glm::dvec3& p : positions)
-    sphere.radius_a = std::max(sphere.radius_a, glm::length(p - sphere.a));
-  sphere.radius_a = sphere.radius_a * (1.0 + 1e-9) + margin;
-  if (positions.size() == 1 || !(glm::length(direction) > 0.0)) return sphere;
-  direction = glm::normalize(direction);
-  double t_min = std::numeric_limits<double>::max(), t_max = 0.0, k = 0.0;
-  for (const glm::dvec3& p : positions) {
-    const double t = glm::dot(p - eye, direction);
-    if (!(t > 0.0)) return sphere;
-    t_min = std::min(t_min, t);
-    t_max = std::max(t_max, t);
-    k = std::max(k, glm::length(p - eye - t * direction) / t);
-  }
-  TileBound capsule;
-  capsule.capsule = true;
-  capsule.a = eye + t_min * direction;
-  capsule.b = eye + t_max * direction;
-  capsule.radius_a = k * t_min * (1.0 + 1e-9) + margin;
-  capsule.radius_b = k * t_max * (1.0 + 1e-9) + margin;
-  return t_max - t_min > 2.0 * capsule.radius_b ? capsule : sphere;
-}
-
-// A per-pixel rotation angle in [0, 2 pi): a hash of the seed and the pixel, so every run and
-// every thread count gives the same grid.
-double rotation_angle(std::uint64_t seed, std::uint32_t x, std::uint32_t y) {
-  std::uint64_t z = seed * 0x9E3779B97F4A7C15ull ^ (std::uint64_t(x) << 32 | y);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  z ^= z >> 31;
-  return 2.0 * std::numbers::pi * double(z >> 11) * 0x1p-53;
-}
 
 class Softtile final : public Algorithm {
  public:
@@ -113,65 +65,30 @@ class Softtile final : public Algorithm {
     const Gathered gathered = gather(c, samples);
     clock.lap(build_phase);
     const DiskBitmask empty_disk(variant);
-    const float inverse_scale =
-        float(1.0 / (variant.sine_normalization ? std::sin(gathered.sun.angular_radius)
-                                                : std::tan(gathered.sun.angular_radius)));
-    const glm::dvec3 eye(c.camera.position);
-
-    const std::uint32_t tiles_x = (samples.width + softtile_tile_size - 1) / softtile_tile_size;
-    const std::uint32_t tiles_y = (samples.height + softtile_tile_size - 1) / softtile_tile_size;
+    const float inverse_scale = disk_inverse_scale(gathered, variant);
+    const std::uint32_t tiles_x = tiles_across(samples.width);
+    const std::uint32_t tiles_y = tiles_across(samples.height);
     std::vector<TileCounters> tile_counters(std::size_t(tiles_x) * tiles_y);
 
     run_with_thread_limit(c.parameters.threads, [&] {
       tbb::parallel_for(
           tbb::blocked_range<std::size_t>(0, tile_counters.size()),
           [&](const tbb::blocked_range<std::size_t>& range) {
-            std::vector<std::size_t> pixels;
-            std::vector<glm::dvec3> positions;
-            std::vector<std::uint32_t> candidates;
+            Tile tile;
             std::vector<DiskBitmask> masks;
             std::vector<std::uint64_t> rasterized_per_pixel;
-            for (std::size_t tile = range.begin(); tile != range.end(); ++tile) {
-              TileCounters& counters = tile_counters[tile];
-              const std::uint32_t x0 = std::uint32_t(tile % tiles_x) * softtile_tile_size;
-              const std::uint32_t y0 = std::uint32_t(tile / tiles_x) * softtile_tile_size;
-              // Relevant pixels: regular samples (facing the light, not sky).
-              pixels.clear();
-              positions.clear();
-              for (std::uint32_t y = y0; y < std::min(y0 + softtile_tile_size, samples.height); ++y)
-                for (std::uint32_t x = x0; x < std::min(x0 + softtile_tile_size, samples.width);
-                     ++x) {
-                  const std::size_t i = std::size_t(y) * samples.width + x;
-                  if (samples.samples[i].sample_class != SampleClass::regular) continue;
-                  pixels.push_back(i);
-                  positions.emplace_back(samples.samples[i].position);
-                }
-              if (pixels.empty()) continue;  // early exit
+            for (std::size_t index = range.begin(); index != range.end(); ++index) {
+              TileCounters& counters = tile_counters[index];
+              if (!prepare_tile(c, samples, gathered, variant, inverse_scale, index, tile))
+                continue;
+              const std::vector<std::size_t>& pixels = tile.pixels;
+              const std::vector<std::uint32_t>& candidates = tile.candidates;
+              const std::vector<FragmentSetup>& fragments = tile.fragments;
               counters.relevant = 1;
-              const TileBound bound = tile_bound(eye, positions);
-              counters.capsule = bound.capsule ? 1 : 0;
-              // Cull cluster cones, then the cones of the surviving clusters' triangles.
-              candidates.clear();
-              for (const GatheredCluster& cluster : gathered.clusters) {
-                if (!may_shadow(gathered.sun, cluster.cone, bound)) continue;
-                for (std::uint32_t k = cluster.first; k < cluster.first + cluster.count; ++k)
-                  if (may_shadow(gathered.sun, gathered.triangles[k].cone, bound))
-                    candidates.push_back(k);
-              }
+              counters.capsule = tile.bound.capsule ? 1 : 0;
               counters.candidates = candidates.size();
               masks.assign(pixels.size(), empty_disk);
               rasterized_per_pixel.assign(pixels.size(), 0);
-              std::vector<FragmentSetup> fragments(pixels.size());
-              for (std::size_t j = 0; j < pixels.size(); ++j) {
-                const ViewSample& s = samples.samples[pixels[j]];
-                fragments[j].position = gathered.light_space.to_light(s.position);
-                fragments[j].inverse_scale = inverse_scale;
-                if (variant.rotate) {
-                  const double angle = rotation_angle(c.parameters.seed, s.pixel_x, s.pixel_y);
-                  fragments[j].cos_rotation = float(std::cos(angle));
-                  fragments[j].sin_rotation = float(std::sin(angle));
-                }
-              }
               // The shared-memory buffer holds softtile_tile_triangle_limit triangles: a longer
               // list is rasterized in several batches (the bitmasks persist), never truncated.
               for (std::size_t begin = 0; begin < candidates.size();

@@ -1,0 +1,167 @@
+#include "simd/softtile/softtile_algorithm.h"
+
+#include <algorithm>
+#include <array>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "oracles/hard_shadow_inputs.h"
+#include "oracles/thread_limit.h"
+#include "reference/softtile/fragment_occlusion.h"
+#include "reference/softtile/softtile_algorithm.h"
+#include "reference/softtile/softtile_variant.h"
+#include "shadowcts/phase_clock.h"
+
+namespace shadowcts::simd {
+namespace softtile {
+
+namespace ref = shadowcts::softtile;
+
+void rasterize_tile(const ViewSamples& samples, const ref::Gathered& gathered,
+                    const DiskRaster& raster, const ref::Tile& tile, TileScratch& scratch,
+                    TileRaster& out) {
+  out.masks.assign(tile.pixels.size(), raster.empty_disk());
+  out.tests = out.rasterized = out.rasterized_max = 0;
+  std::array<glm::vec3, 3> edges;
+  for (std::size_t j = 0; j < tile.pixels.size(); ++j) {
+    const std::uint32_t receiver = samples.samples[tile.pixels[j]].receiver;
+    // The reference's per-candidate setup (scalar, the same floats), then one dispatched call
+    // that rasterizes every triangle that touches the disk. The reference's batches of
+    // softtile_tile_triangle_limit candidates only split this loop: the masks persist.
+    scratch.edges.clear();
+    std::uint64_t rasterized = 0;
+    for (const std::uint32_t k : tile.candidates) {
+      const ref::GatheredTriangle& t = gathered.triangles[k];
+      if (t.triangle == receiver) continue;
+      ++out.tests;
+      if (!ref::triangle_edges(tile.fragments[j], t.light_space, edges)) continue;
+      scratch.edges.insert(scratch.edges.end(), edges.begin(), edges.end());
+      ++rasterized;
+    }
+    raster.clear_triangles(scratch.edges.data(), rasterized, out.masks[j]);
+    out.rasterized += rasterized;
+    out.rasterized_max = std::max(out.rasterized_max, rasterized);
+  }
+}
+
+}  // namespace softtile
+
+namespace {
+
+namespace ref = shadowcts::softtile;
+
+struct TileCounters {
+  std::uint64_t relevant = 0, capsule = 0, candidates = 0, overflow_batches = 0, tests = 0,
+                rasterized = 0, rasterized_max = 0;
+};
+
+class SimdSofttile final : public Algorithm {
+ public:
+  SimdSofttile() {
+    const auto reference = make_softtile();
+    info_ = reference->info();
+    info_.backend = "simd";
+    info_.summary =
+        "softtile over oneTBB tiles with the disk bitmask rasterized in Highway lanes (rows in "
+        "lanes, one triangle's edge functions per vector)";
+  }
+
+  const AlgorithmInfo& info() const override { return info_; }
+
+  std::vector<std::string> timed_phases(const std::string&) const override {
+    return build_and_query_phases();
+  }
+
+  SoftErrorBudget soft_error_budget(const std::string& variant) const override {
+    return softtile_error_budget(variant);
+  }
+
+  AlgorithmOutput run(const PreparedScene& scene, const std::string& variant_name) const override {
+    const Case& c = scene.source;
+    const ViewSamples& samples = scene.view_samples;
+    const ref::Variant variant = ref::parse_variant(variant_name);
+    check_receivers(c, samples);
+    PhaseClock clock;
+    AlgorithmOutput output;
+    output.visible_fraction.assign(samples.samples.size(), 1.0f);
+    const ref::Gathered gathered = ref::gather(c, samples);
+    clock.lap(build_phase);
+    const softtile::DiskRaster raster(variant);
+    const float inverse_scale = ref::disk_inverse_scale(gathered, variant);
+    const std::size_t tiles =
+        std::size_t(ref::tiles_across(samples.width)) * ref::tiles_across(samples.height);
+    std::vector<TileCounters> tile_counters(tiles);
+
+    run_with_thread_limit(c.parameters.threads, [&] {
+      tbb::parallel_for(
+          tbb::blocked_range<std::size_t>(0, tiles), [&](const tbb::blocked_range<std::size_t>& r) {
+            ref::Tile tile;
+            softtile::TileScratch scratch;
+            softtile::TileRaster result;
+            for (std::size_t index = r.begin(); index != r.end(); ++index) {
+              if (!ref::prepare_tile(c, samples, gathered, variant, inverse_scale, index, tile))
+                continue;
+              TileCounters& counters = tile_counters[index];
+              counters.relevant = 1;
+              counters.capsule = tile.bound.capsule ? 1 : 0;
+              counters.candidates = tile.candidates.size();
+              // The reference's batch count (its buffer of softtile_tile_triangle_limit).
+              counters.overflow_batches =
+                  tile.candidates.empty()
+                      ? 0
+                      : (tile.candidates.size() - 1) / softtile_tile_triangle_limit;
+              softtile::rasterize_tile(samples, gathered, raster, tile, scratch, result);
+              counters.tests = result.tests;
+              counters.rasterized = result.rasterized;
+              counters.rasterized_max = result.rasterized_max;
+              for (std::size_t j = 0; j < tile.pixels.size(); ++j)
+                output.visible_fraction[tile.pixels[j]] =
+                    float(result.masks[j].lit_cells()) / float(raster.disk_cells());
+            }
+          });
+    });
+    clock.lap(query_phase);
+    output.phase_ms = clock.times();
+
+    TileCounters total;
+    std::uint64_t candidates_max = 0, overflowing = 0;
+    for (const TileCounters& t : tile_counters) {
+      total.relevant += t.relevant;
+      total.capsule += t.capsule;
+      total.candidates += t.candidates;
+      total.overflow_batches += t.overflow_batches;
+      total.tests += t.tests;
+      total.rasterized += t.rasterized;
+      total.rasterized_max = std::max(total.rasterized_max, t.rasterized_max);
+      candidates_max = std::max(candidates_max, t.candidates);
+      overflowing += t.candidates > softtile_tile_triangle_limit ? 1 : 0;
+    }
+    output.counters = {{"gather_clusters", gathered.clusters_in},
+                       {"gather_clusters_culled", gathered.clusters_culled},
+                       {"gather_triangles", gathered.triangles.size()},
+                       {"gather_light_facing_dropped", gathered.light_facing_dropped},
+                       {"tiles", tiles},
+                       {"tiles_with_relevant_pixels", total.relevant},
+                       {"tile_capsule_bounds", total.capsule},
+                       {"tile_candidates_total", total.candidates},
+                       {"tile_candidates_max", candidates_max},
+                       {"overflowing_tiles", overflowing},
+                       {"overflow_batches", total.overflow_batches},
+                       {"pixel_triangle_tests", total.tests},
+                       {"triangles_rasterized", total.rasterized},
+                       {"triangles_rasterized_max_per_pixel", total.rasterized_max}};
+    return output;
+  }
+
+ private:
+  AlgorithmInfo info_;
+};
+
+}  // namespace
+
+std::unique_ptr<Algorithm> make_simd_softtile() {
+  return std::make_unique<SimdSofttile>();
+}
+
+}  // namespace shadowcts::simd

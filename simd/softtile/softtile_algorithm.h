@@ -1,0 +1,40 @@
+#pragma once
+// simd `softtile`: the reference's tiles (reference/softtile/softtile_tile.h: relevant pixels,
+// sphere/capsule bound, cone-culled caster list, fragment setups) over oneTBB, each pixel's
+// candidates set up with the reference's triangle_edges, and the disk bitmask rasterized with
+// Highway (rows in lanes, simd/softtile/disk_bitmask.h). Same masks, answers and counters as the
+// reference for every variant.
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "reference/softtile/softtile_gather.h"
+#include "reference/softtile/softtile_tile.h"
+#include "shadowcts/algorithm.h"
+#include "simd/softtile/disk_bitmask.h"
+
+namespace shadowcts::simd {
+
+// id "softtile", backend "simd", the reference's variants and budgets.
+std::unique_ptr<Algorithm> make_simd_softtile();
+
+namespace softtile {
+
+// One prepared tile rasterized: a mask per pixel (Tile::pixels order) and the reference's
+// per-tile work counters.
+struct TileRaster {
+  std::vector<DiskRows> masks;
+  std::uint64_t tests = 0, rasterized = 0, rasterized_max = 0;
+};
+
+// Scratch reused across the tiles of one thread.
+struct TileScratch {
+  std::vector<glm::vec3> edges;
+};
+
+void rasterize_tile(const ViewSamples& samples, const shadowcts::softtile::Gathered& gathered,
+                    const DiskRaster& raster, const shadowcts::softtile::Tile& tile,
+                    TileScratch& scratch, TileRaster& out);
+
+}  // namespace softtile
+}  // namespace shadowcts::simd
