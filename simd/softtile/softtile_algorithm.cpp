@@ -159,9 +159,12 @@ class SimdSofttile final : public Algorithm {
 };
 
 }  // namespace
+}  // namespace shadowcts::simd
+
+namespace shadowcts {
 
 std::unique_ptr<Algorithm> make_simd_softtile() {
-  return std::make_unique<SimdSofttile>();
+  return std::make_unique<simd::SimdSofttile>();
 }
 
-}  // namespace shadowcts::simd
+}  // namespace shadowcts

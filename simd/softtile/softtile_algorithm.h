@@ -13,12 +13,12 @@
 #include "shadowcts/algorithm.h"
 #include "simd/softtile/disk_bitmask.h"
 
-namespace shadowcts::simd {
+namespace shadowcts {
 
 // id "softtile", backend "simd", the reference's variants and budgets.
 std::unique_ptr<Algorithm> make_simd_softtile();
 
-namespace softtile {
+namespace simd::softtile {
 
 // One prepared tile rasterized: a mask per pixel (Tile::pixels order) and the reference's
 // per-tile work counters.
@@ -36,5 +36,5 @@ void rasterize_tile(const ViewSamples& samples, const shadowcts::softtile::Gathe
                     const DiskRaster& raster, const shadowcts::softtile::Tile& tile,
                     TileScratch& scratch, TileRaster& out);
 
-}  // namespace softtile
-}  // namespace shadowcts::simd
+}  // namespace simd::softtile
+}  // namespace shadowcts

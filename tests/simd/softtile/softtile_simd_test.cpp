@@ -171,7 +171,7 @@ std::string first_difference(const AlgorithmOutput& a, const AlgorithmOutput& b)
 
 TEST(SimdSofttile, AnswersAndCountersEqualTheReference) {
   const auto reference = make_softtile();
-  const auto ported = simd::make_simd_softtile();
+  const auto ported = make_simd_softtile();
   EXPECT_EQ(ported->info().id, "softtile");
   EXPECT_EQ(ported->info().backend, "simd");
   EXPECT_EQ(ported->info().variants, reference->info().variants);
@@ -194,7 +194,7 @@ TEST(SimdSofttile, ResultsDoNotDependOnTheThreadCountOrTheHighwayTarget) {
   const Case c = small_foliage();
   const ViewSamples samples = generate_view_samples(c);
   const PreparedScene scene = prepare_scene(c, samples);
-  const auto ported = simd::make_simd_softtile();
+  const auto ported = make_simd_softtile();
   for (const char* variant : {"grid16+rot", "rows31"}) {
     SCOPED_TRACE(variant);
     AlgorithmOutput one, two;
