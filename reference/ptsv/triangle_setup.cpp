@@ -134,36 +134,34 @@ std::vector<bool> front_face_culling_meshes(const Case& c, const ViewSamples& sa
   return culled;
 }
 
-std::vector<ShadowVolume> set_up_shadow_volumes(const Case& c,
-                                                const std::vector<bool>& culled_meshes,
-                                                const SetupOptions& options, double scene_bound,
-                                                SetupCounts& counts) {
+bool set_up_shadow_volume(const Case& c, std::size_t i, const std::vector<bool>& culled_meshes,
+                          const SetupOptions& options, double scene_bound, SetupCounts& counts,
+                          ShadowVolume& volume) {
   const LightGeometry light = light_geometry(c);
   const glm::dvec3 eye(c.camera.position);
   // Any two points within the scene bound are at most this far apart.
   const double diameter = 2.0 * std::sqrt(3.0) * scene_bound;
-  std::vector<ShadowVolume> volumes;
-  for (std::size_t i = 0; i < c.triangles.size(); ++i) {
+  {
     const Triangle& t = c.triangles[i];
     if (t.mesh >= c.meshes.size())
       throw InputError(c.source, "triangles[" + std::to_string(i) + "].mesh",
                        "mesh id " + std::to_string(t.mesh) + " out of range");
-    if (!c.meshes[t.mesh].caster) continue;
+    if (!c.meshes[t.mesh].caster) return false;
     ++counts.casters;
     if (triangle_has_zero_area(t.v0, t.v1, t.v2)) {
       ++counts.zero_area;
-      continue;
+      return false;
     }
     const int winding = light.directional
                             ? orientation_towards_direction(t.v0, t.v1, t.v2, light.direction)
                             : orientation_towards_point(t.v0, t.v1, t.v2, light.position);
     if (winding == 0) {
       ++counts.edge_on;
-      continue;
+      return false;
     }
     if (culled_meshes[t.mesh] && winding > 0) {
       ++counts.front_faces_culled;
-      continue;
+      return false;
     }
 
     // Canonical vertex order p < q < r; each swap flips the orientation.
@@ -177,7 +175,7 @@ std::vector<ShadowVolume> set_up_shadow_volumes(const Case& c,
         }
     const std::array<glm::dvec3, 3> d = {glm::dvec3(v[0]), glm::dvec3(v[1]), glm::dvec3(v[2])};
 
-    ShadowVolume volume;
+    volume = ShadowVolume{};
     volume.triangle = std::uint32_t(i);
     // Edges (p, q), (q, r), (p, r) with opposite vertices r, p, q. det[b - a, L - a, c - a] is
     // -orientation(a, b, c): -o for the even permutations (p, q, r) and (q, r, p), +o for the
@@ -207,7 +205,7 @@ std::vector<ShadowVolume> set_up_shadow_volumes(const Case& c,
     volume.exact.condition[3] = condition(d[1] - d[0], d[2] - d[0]);
     if (!usable) {
       ++counts.edge_on;  // a cross product underflowed: as good as edge-on
-      continue;
+      return false;
     }
 
     // Ray directions of the volume's edges, and how far along them a sample can lie.
@@ -268,9 +266,21 @@ std::vector<ShadowVolume> set_up_shadow_volumes(const Case& c,
       }
       counts.silhouette_planes += std::uint64_t(volume.silhouette_count);
     }
-    volumes.push_back(volume);
     ++counts.volumes;
   }
+  return true;
+}
+
+std::vector<ShadowVolume> set_up_shadow_volumes(const Case& c,
+                                                const std::vector<bool>& culled_meshes,
+                                                const SetupOptions& options, double scene_bound,
+                                                SetupCounts& counts) {
+  light_geometry(c);  // throws without a point or directional light, even without triangles
+  std::vector<ShadowVolume> volumes;
+  ShadowVolume volume;
+  for (std::size_t i = 0; i < c.triangles.size(); ++i)
+    if (set_up_shadow_volume(c, i, culled_meshes, options, scene_bound, counts, volume))
+      volumes.push_back(volume);
   return volumes;
 }
 

@@ -99,6 +99,12 @@ struct SetupCounts {
 std::vector<bool> front_face_culling_meshes(const Case& c, const ViewSamples& samples,
                                             const std::vector<double>& sample_reach);
 
+// The volume of triangle i, as set_up_shadow_volumes makes it (for ports that set triangles up in
+// parallel): false, with the reason counted, when the triangle casts none.
+bool set_up_shadow_volume(const Case& c, std::size_t i, const std::vector<bool>& culled_meshes,
+                          const SetupOptions& options, double scene_bound, SetupCounts& counts,
+                          ShadowVolume& volume);
+
 // The volumes of every caster triangle in index order. scene_bound: >= every |coordinate| of
 // every sample (it bounds how far the volume's edge rays need to be followed).
 std::vector<ShadowVolume> set_up_shadow_volumes(const Case& c,

@@ -1,0 +1,58 @@
+#include "simd/ptsv/cluster_keys.h"
+
+#include <atomic>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+namespace shadowcts::simd::ptsv {
+
+ClusterKeys assign_cluster_keys(const ref::ClusterKeyLayout& layout, const ref::ViewFrame& frame,
+                                const PreparedScene& scene, bool require_pixel_wedge) {
+  const ViewSamples& samples = scene.view_samples;
+  const std::vector<std::uint32_t>& index = scene.samples.index;
+  ClusterKeys keys;
+  keys.key.assign(index.size(), ref::no_key);
+  const std::uint64_t slice_limit = std::uint64_t(1) << layout.depth_bits;
+  std::atomic<bool> failed{false};
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, index.size(), 4096),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                        // The reference's per-sample steps, on the same ViewSample.
+                        const ViewSample& s = samples.samples[index[i]];
+                        const ref::ViewPoint v = ref::to_view(frame, glm::dvec3(s.position));
+                        ref::ClusterCoordinate c;
+                        c.x = s.pixel_x / ref::cluster_tile_size;
+                        c.y = s.pixel_y / ref::cluster_tile_size;
+                        bool ok = v.depth > 0.0 && c.x < layout.tiles_x && c.y < layout.tiles_y;
+                        if (ok) {
+                          c.slice = layout.slice_of_depth(v.depth);
+                          ok = c.slice < slice_limit;
+                        }
+                        if (ok && require_pixel_wedge)
+                          ok = ref::inside_pixel_wedge(frame, v, c.x * ref::cluster_tile_size,
+                                                       (c.x + 1) * ref::cluster_tile_size,
+                                                       c.y * ref::cluster_tile_size,
+                                                       (c.y + 1) * ref::cluster_tile_size);
+                        if (!ok) {
+                          failed.store(true, std::memory_order_relaxed);
+                          continue;
+                        }
+                        keys.key[i] = layout.interleave(c);
+                      }
+                    });
+  if (failed.load()) {
+    // Rare and not timed worth: the reference names the first sample, word for word.
+    keys.problem = ref::assign_cluster_keys(layout, frame, samples, require_pixel_wedge).problem;
+    if (keys.problem.empty()) keys.problem = "a view sample has no cluster key";
+    keys.key.clear();
+  }
+  return keys;
+}
+
+std::vector<std::uint32_t> keys_per_view_sample(const PreparedScene& scene,
+                                                const std::vector<std::uint32_t>& key) {
+  return scene.per_view_sample(key, ref::no_key);
+}
+
+}  // namespace shadowcts::simd::ptsv

@@ -1,0 +1,251 @@
+#include "simd/ptsv/ptsv_algorithm.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+#include "reference/light_on_caster.h"
+#include "reference/ptsv/hdb2011.h"
+#include "reference/ptsv/receiver_rule.h"
+#include "reference/ptsv/triangle_setup.h"
+#include "reference/ptsv/two_pass.h"
+#include "shadowcts/errors.h"
+#include "shadowcts/phase_clock.h"
+#include "simd/ptsv/cluster_keys.h"
+#include "simd/ptsv/traversal.h"
+#include "simd/ptsv/triangle_setup.h"
+
+namespace shadowcts {
+namespace {
+
+namespace ref = ::shadowcts::ptsv;
+namespace port = ::shadowcts::simd::ptsv;
+
+struct VariantConfig {
+  const char* name;
+  bool implicit_cells;
+  bool extra_planes;
+  bool two_pass;
+};
+
+// The reference's variant_table rows that this backend ports.
+constexpr VariantConfig variant_table[] = {
+    {"twopass", false, true, true},
+    {"explicit+planes", false, true, false},
+    {"implicit", true, false, false},
+};
+
+const VariantConfig& variant_config(const std::string& variant) {
+  for (const VariantConfig& v : variant_table)
+    if (variant == v.name) return v;
+  throw std::invalid_argument("ptsv simd: unknown variant '" + variant + "'");
+}
+
+double max_abs(const glm::dvec3& v) {
+  return std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+}
+
+// The reference's scene bound: the case's scale and every regular sample (max is exact in any
+// order).
+double scene_bound(const PreparedScene& scene) {
+  const RegularSamples& s = scene.samples;
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, s.size(), 8192), scene.source.scale(),
+      [&](const tbb::blocked_range<std::size_t>& r, double bound) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i)
+          bound = std::max(bound, max_abs(glm::dvec3(s.position(i))));
+        return bound;
+      },
+      [](double a, double b) { return std::max(a, b); });
+}
+
+// The reference's checks of run(): a point or directional light (hard_shadow_light's words),
+// receivers that name triangles, one sample per pixel.
+void check_inputs(const Case& c, const ViewSamples& samples) {
+  if (!c.light) throw InputError(c.source, "light", "a hard-shadow case needs a shadow light");
+  if (c.light->kind == ShadowLightKind::sun_disk)
+    throw InputError(c.source, "light",
+                     "hard shadows need a point or directional light, not a sun disk");
+  if (c.light->kind == ShadowLightKind::directional && c.light->direction == glm::vec3(0.0f))
+    throw InputError(c.source, "light.direction", "has zero length");
+  for (std::size_t i = 0; i < samples.samples.size(); ++i) {
+    const ViewSample& s = samples.samples[i];
+    if (s.sample_class == SampleClass::regular && s.receiver != no_receiver &&
+        s.receiver >= c.triangles.size())
+      throw InputError(c.source, "view sample " + std::to_string(i),
+                       "receiver " + std::to_string(s.receiver) + " is not a triangle index");
+  }
+  if (samples.width == 0 || samples.height == 0 ||
+      samples.samples.size() != std::size_t(samples.width) * samples.height)
+    throw InputError(c.source, "view samples", "not one sample per pixel");
+}
+
+struct Built {
+  ref::KeyLayoutResult layout;
+  port::ClusterKeys keys;
+  port::Hierarchy hierarchy;
+};
+
+Built build(const PreparedScene& scene, const ref::ViewFrame& frame, const ref::ReceiverRule& rule,
+            const VariantConfig& config) {
+  const Case& c = scene.source;
+  const ViewSamples& samples = scene.view_samples;
+  Built b;
+  b.layout = ref::make_cluster_key_layout(c.camera, samples.width, samples.height);
+  if (!b.layout.problem.empty()) throw InputError(c.source, "camera", b.layout.problem);
+  b.keys = port::assign_cluster_keys(b.layout.layout, frame, scene, config.implicit_cells);
+  if (!b.keys.problem.empty()) throw InputError(c.source, "view samples", b.keys.problem);
+  std::vector<double> reach(scene.samples.size());
+  const std::vector<double>& all = rule.reject_reach();
+  for (std::size_t i = 0; i < reach.size(); ++i) reach[i] = all[scene.samples.index[i]];
+  b.hierarchy = port::build_hierarchy(b.layout.layout, frame, scene, b.keys.key, reach,
+                                      config.implicit_cells);
+  return b;
+}
+
+// The reference's implicit_corner_bound: the root's children contain all deeper cells.
+double implicit_corner_bound(const port::Hierarchy& h, const ref::ViewFrame& frame) {
+  double bound = 0.0;
+  const int level = std::min(1, h.leaf_level());
+  for (std::uint32_t index : h.levels[std::size_t(level)].index)
+    for (const glm::dvec3& corner :
+         ref::cell_corners(frame, ref::implicit_node_cell(h.layout, level, index)))
+      bound = std::max(bound, max_abs(corner));
+  return bound;
+}
+
+class SimdPtsv final : public Algorithm {
+ public:
+  SimdPtsv() {
+    info_.id = "ptsv";
+    info_.backend = "simd";
+    for (const VariantConfig& v : variant_table) info_.variants.push_back(v.name);
+    info_.summary =
+        "per-triangle shadow volumes through the view-sample cluster hierarchy (Sintorn 2014), "
+        "Highway lanes over a node's children and a leaf's samples, oneTBB over nodes and "
+        "two-pass jobs; the reference's keys, nodes, counters and mask";
+    info_.capabilities.output = OutputKind::hard_shadow;
+    info_.capabilities.point_light = true;
+    info_.capabilities.directional_light = true;
+  }
+
+  const AlgorithmInfo& info() const override { return info_; }
+
+  std::vector<std::string> timed_phases(const std::string&) const override {
+    return build_and_query_phases();
+  }
+
+  std::optional<std::string> unsupported_reason(const Case& c, const ViewSamples& samples,
+                                                const std::string& variant) const override {
+    if (auto why = Algorithm::unsupported_reason(c, samples, variant)) return why;
+    const VariantConfig& config = variant_config(variant);
+    if (samples.width == 0 || samples.height == 0 ||
+        samples.samples.size() != std::size_t(samples.width) * samples.height)
+      return "the view samples are not one per pixel";
+    const ref::ViewFrame frame = ref::make_view_frame(c.camera, samples.width, samples.height);
+    const ref::KeyLayoutResult layout =
+        ref::make_cluster_key_layout(c.camera, samples.width, samples.height);
+    if (!layout.problem.empty()) return layout.problem;
+    const std::string problem =
+        ref::assign_cluster_keys(layout.layout, frame, samples, config.implicit_cells).problem;
+    if (!problem.empty()) return problem;
+    return std::nullopt;
+  }
+
+  AlgorithmOutput run(const PreparedScene& scene, const std::string& variant) const override {
+    const Case& c = scene.source;
+    const ViewSamples& samples = scene.view_samples;
+    const VariantConfig& config = variant_config(variant);
+    check_inputs(c, samples);
+    PhaseClock clock;
+    const ref::ViewFrame frame = ref::make_view_frame(c.camera, samples.width, samples.height);
+    const double bound = scene_bound(scene);
+    const ref::ReceiverRule rule(c, samples);
+    clock.lap(build_phase);
+
+    ref::SetupOptions setup;
+    setup.extra_planes = config.extra_planes;
+    const port::PackedVolumes volumes = port::set_up_shadow_volumes(
+        c, ref::front_face_culling_meshes(c, samples, rule.reject_reach()), setup, bound);
+    clock.lap(query_phase);
+
+    const Built built = build(scene, frame, rule, config);
+    const port::Hierarchy& h = built.hierarchy;
+    const double node_bound =
+        config.implicit_cells ? std::max(bound, implicit_corner_bound(h, frame)) : bound;
+    port::TraversalInputs inputs;
+    inputs.hierarchy = &h;
+    inputs.volumes = &volumes;
+    inputs.rule = &rule;
+    inputs.source = &c;
+    inputs.scene = &scene;
+    inputs.config.implicit_cells = config.implicit_cells;
+    inputs.config.extra_planes = config.extra_planes;
+    inputs.config.job_level = config.two_pass ? ref::default_job_level(h.leaf_level()) : -1;
+    inputs.tolerances = ref::NodeTolerances::for_bounds(node_bound, bound);
+    clock.lap(build_phase);
+
+    AlgorithmOutput output;
+    output.shadowed.assign(samples.samples.size(), 0);
+    ref::TraversalCounters counters;
+    port::traverse(inputs, output.shadowed, counters);
+    clock.lap(query_phase);
+    const std::uint64_t light_on_caster =
+        shadow_samples_by_light_on_caster(c, samples, output.shadowed);
+
+    const ref::SetupCounts& setup_counts = volumes.counts;
+    output.counters = {
+        {"test_and_set_operations", counters.test_and_set()},
+        {"node_tests", counters.node_tests},
+        {"sample_tests", counters.sample_tests},
+        {"nodes_visited", counters.nodes_visited},
+        {"trivial_accepts", counters.trivial_accepts},
+        {"trivial_rejects", counters.trivial_rejects},
+        {"culling_plane_rejects", counters.culling_plane_rejects},
+        {"first_pass_jobs", counters.first_pass_jobs},
+        {"second_pass_jobs", counters.second_pass_jobs},
+        {"shadow_volumes", setup_counts.volumes},
+        {"front_faces_culled", setup_counts.front_faces_culled},
+        {"edge_on_triangles", setup_counts.edge_on},
+        {"zero_area_triangles", setup_counts.zero_area},
+        {"culling_planes", setup_counts.extra_planes + setup_counts.silhouette_planes},
+        {"hierarchy_nodes", h.node_count()},
+        {"hierarchy_levels", std::uint64_t(h.leaf_level()) + 1},
+        {"key_bits", std::uint64_t(built.layout.layout.key_bits())},
+        {"light_on_caster_samples", light_on_caster},
+    };
+    output.phase_ms = clock.times();
+    return output;
+  }
+
+ private:
+  AlgorithmInfo info_;
+};
+
+}  // namespace
+
+std::unique_ptr<Algorithm> make_simd_ptsv() {
+  return std::make_unique<SimdPtsv>();
+}
+
+namespace simd::ptsv {
+
+Structures build_structures(const PreparedScene& scene, const std::string& variant) {
+  const VariantConfig& config = variant_config(variant);
+  check_inputs(scene.source, scene.view_samples);
+  const ref::ViewFrame frame = ref::make_view_frame(scene.source.camera, scene.view_samples.width,
+                                                    scene.view_samples.height);
+  const ref::ReceiverRule rule(scene.source, scene.view_samples);
+  Built b = build(scene, frame, rule, config);
+  Structures s;
+  s.key = keys_per_view_sample(scene, b.keys.key);
+  s.hierarchy = std::move(b.hierarchy);
+  return s;
+}
+
+}  // namespace simd::ptsv
+}  // namespace shadowcts

@@ -1,0 +1,363 @@
+// The one Highway TU of the simd ptsv: child-bound and sample tests in lanes, and the level-by-
+// level traversal around them (compiled once per target, dispatched once per run).
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "simd/ptsv/traversal.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+
+#include <hwy/highway.h>
+
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <cstdint>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "reference/ptsv/node_test.h"
+#include "shadowcts/geometry/receiver_half_space.h"
+#include "simd/ptsv/traversal.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace shadowcts::simd::ptsv::HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+using D = hn::ScalableTag<double>;
+using V = hn::Vec<D>;
+using M = hn::Mask<D>;
+
+// Child verdicts of one visit, bit r = the child of rank r (children in key order).
+struct Verdicts {
+  std::uint32_t accept, refine, reject, cull;
+};
+
+HWY_INLINE std::uint32_t bits_of(D d, M m) {
+  std::uint8_t bytes[8] = {};
+  hn::StoreMaskBits(d, m, bytes);
+  return std::uint32_t(bytes[0]) | (std::uint32_t(bytes[1]) << 8);
+}
+
+// plane.at(x) as the reference evaluates it: ((nx (x - ax) + ny (y - ay)) + nz (z - az)) + shift,
+// separate multiplies and adds (no FMA).
+HWY_INLINE V plane_at(const V& nx, const V& ny, const V& nz, const V& ax, const V& ay, const V& az,
+                      const V& shift, const V& x, const V& y, const V& z) {
+  return hn::Add(hn::Add(hn::Add(hn::Mul(nx, hn::Sub(x, ax)), hn::Mul(ny, hn::Sub(y, ay))),
+                         hn::Mul(nz, hn::Sub(z, az))),
+                 shift);
+}
+
+struct PlaneLanes {
+  V nx, ny, nz, ax, ay, az, shift;
+};
+
+HWY_INLINE PlaneLanes plane_lanes(D d, const PackedVolume& vol, int k) {
+  const PackedPlane& p = vol.plane[k];
+  return {hn::Set(d, p.normal[0]),      hn::Set(d, p.normal[1]),      hn::Set(d, p.normal[2]),
+          hn::Set(d, vol.anchor(k, 0)), hn::Set(d, vol.anchor(k, 1)), hn::Set(d, vol.anchor(k, 2)),
+          hn::Set(d, p.shift)};
+}
+
+class Engine {
+ public:
+  Engine(const TraversalInputs& in, std::uint8_t* shadowed)
+      : in_(in),
+        h_(*in.hierarchy),
+        vols_(*in.volumes),
+        shadowed_(shadowed),
+        culling_(in.config.extra_planes) {}
+
+  // ref::classify_node for the children [first, first + count) of level `level` that `live` names.
+  Verdicts test_children(const PackedVolume& vol, int level, std::uint32_t first,
+                         std::uint32_t count, std::uint32_t live) const {
+    const D d;
+    const std::uint32_t lanes = std::uint32_t(hn::Lanes(d));
+    const Level& L = h_.levels[std::size_t(level)];
+    const ref::NodeTolerances& tol = in_.tolerances;
+    const V rounding = hn::Set(d, tol.rounding);
+    const V edge_inside = hn::Set(d, -tol.rounding);
+    const V triangle_inside = hn::Set(d, -(tol.rounding + tol.accept_bias));
+    const int culling = culling_ ? int(vol.extra_count) : 0;
+    Verdicts out{0, 0, 0, 0};
+    for (std::uint32_t base = 0; base < count; base += lanes) {
+      const std::uint32_t lane_bits = lanes >= 32 ? ~0u : ((1u << lanes) - 1u);
+      const std::uint32_t wanted = (live >> base) & lane_bits;
+      if (wanted == 0) continue;
+      M reject = hn::FirstN(d, 0), accept = hn::FirstN(d, 0), cull = hn::FirstN(d, 0);
+      for (int k = 0; k < 4 + culling; ++k) {
+        const PlaneLanes p = plane_lanes(d, vol, k);
+        V low = hn::Zero(d), high = hn::Zero(d);
+        if (in_.config.implicit_cells) {
+          for (std::size_t c = 0; c < 8; ++c) {
+            const V value = plane_at(p.nx, p.ny, p.nz, p.ax, p.ay, p.az, p.shift,
+                                     hn::LoadU(d, L.corner[c * 3 + 0].data() + first + base),
+                                     hn::LoadU(d, L.corner[c * 3 + 1].data() + first + base),
+                                     hn::LoadU(d, L.corner[c * 3 + 2].data() + first + base));
+            low = c == 0 ? value : hn::Min(low, value);
+            high = c == 0 ? value : hn::Max(high, value);
+          }
+        } else {
+          // The trivial-reject point takes lo where the normal is >= 0, the accept point hi.
+          const double* r[3];
+          const double* a[3];
+          for (std::size_t axis = 0; axis < 3; ++axis) {
+            const bool positive = vol.plane[k].normal[axis] >= 0.0;
+            r[axis] = (positive ? L.lo[axis] : L.hi[axis]).data() + first + base;
+            a[axis] = (positive ? L.hi[axis] : L.lo[axis]).data() + first + base;
+          }
+          low = plane_at(p.nx, p.ny, p.nz, p.ax, p.ay, p.az, p.shift, hn::LoadU(d, r[0]),
+                         hn::LoadU(d, r[1]), hn::LoadU(d, r[2]));
+          if (k < 4)
+            high = plane_at(p.nx, p.ny, p.nz, p.ax, p.ay, p.az, p.shift, hn::LoadU(d, a[0]),
+                            hn::LoadU(d, a[1]), hn::LoadU(d, a[2]));
+        }
+        const M out_k = hn::Gt(low, rounding);
+        if (k == 0) {
+          reject = out_k;
+          accept = hn::Lt(high, edge_inside);
+        } else if (k < 3) {
+          reject = hn::Or(reject, out_k);
+          accept = hn::And(accept, hn::Lt(high, edge_inside));
+        } else if (k == 3) {
+          reject = hn::Or(reject, out_k);
+          // The reject reach: accepted only where the rule cannot reject the caster.
+          const V reach_inside =
+              hn::Neg(hn::Add(rounding, hn::LoadU(d, L.reach.data() + first + base)));
+          accept =
+              hn::And(accept, hn::And(hn::Lt(high, triangle_inside), hn::Lt(high, reach_inside)));
+        } else {
+          cull = k == 4 ? out_k : hn::Or(cull, out_k);
+        }
+      }
+      const std::uint32_t rej = bits_of(d, reject) & wanted;
+      const std::uint32_t acc = bits_of(d, accept) & wanted & ~rej;
+      const std::uint32_t cul = culling > 0 ? bits_of(d, cull) & wanted & ~rej & ~acc : 0u;
+      out.reject |= rej << base;
+      out.accept |= acc << base;
+      out.cull |= cul << base;
+      out.refine |= (wanted & ~rej & ~acc & ~cul) << base;
+    }
+    return out;
+  }
+
+  // TESTVIEWSAMPLES: every sample of the leaf's tile against the volume.
+  void test_samples(const PackedVolume& vol, std::uint32_t leaf) const {
+    const D d;
+    const std::uint32_t lanes = std::uint32_t(hn::Lanes(d));
+    const std::uint32_t tile = h_.leaf_tile[leaf];
+    const std::uint32_t begin = h_.tile_offsets[tile], end = h_.tile_offsets[tile + 1];
+    double factor[4];
+    for (int k = 0; k < 4; ++k) factor[k] = 0x1p-44 * (1.0 + vol.condition[k]);
+    bool have_exact = false;
+    ref::ShadowVolume exact;
+    for (std::uint32_t base = begin; base < end; base += lanes) {
+      const std::uint32_t n = std::min(lanes, end - base);
+      const V x = hn::LoadU(d, h_.tile_pos[0].data() + base);
+      const V y = hn::LoadU(d, h_.tile_pos[1].data() + base);
+      const V z = hn::LoadU(d, h_.tile_pos[2].data() + base);
+      std::uint32_t outside = 0, unsure[4];
+      for (int k = 0; k < 4; ++k) {
+        // ref::outside_plane: the value against its rounding bound.
+        const PlaneLanes p = plane_lanes(d, vol, k);
+        const V ox = hn::Sub(x, p.ax), oy = hn::Sub(y, p.ay), oz = hn::Sub(z, p.az);
+        const V value = hn::Add(
+            hn::Add(hn::Add(hn::Mul(p.nx, ox), hn::Mul(p.ny, oy)), hn::Mul(p.nz, oz)), p.shift);
+        const V bound =
+            hn::Mul(hn::Set(d, factor[k]), hn::Add(hn::Add(hn::Abs(ox), hn::Abs(oy)), hn::Abs(oz)));
+        const std::uint32_t out_k = bits_of(d, hn::Gt(value, bound));
+        const std::uint32_t in_k = bits_of(d, hn::Lt(value, hn::Neg(bound)));
+        outside |= out_k;
+        unsure[k] = ~(out_k | in_k);
+      }
+      std::uint32_t candidates = ~outside & ((n >= 32 ? 0u : (1u << n)) - 1u);
+      while (candidates != 0) {
+        const std::uint32_t j = std::uint32_t(std::countr_zero(candidates));
+        candidates &= candidates - 1;
+        const std::uint32_t s = h_.tile_sample[base + j];
+        const std::uint32_t receiver = in_.scene->samples.receiver[s];
+        if (receiver == vol.triangle) continue;  // its own receiver never shadows it
+        const glm::vec3 position(float(h_.tile_pos[0][base + j]), float(h_.tile_pos[1][base + j]),
+                                 float(h_.tile_pos[2][base + j]));
+        bool inside = true;
+        for (int k = 0; k < 4 && inside; ++k) {
+          if (((unsure[k] >> j) & 1u) == 0) continue;
+          if (!have_exact) {
+            vol.exact_volume(exact, vols_.directional, vols_.light);
+            have_exact = true;
+          }
+          inside = !ref::outside_plane_exactly(exact, k, position);
+        }
+        if (!inside) continue;
+        std::atomic_ref<std::uint8_t> bit(shadowed_[in_.scene->samples.index[s]]);
+        if (bit.load(std::memory_order_relaxed) != 0) continue;
+        // ref::ReceiverRule::caster_counts, on the same inputs.
+        const Triangle& t = in_.source->triangles[vol.triangle];
+        if (geometry::caster_counts(in_.rule->half_space(receiver), glm::dvec3(position),
+                                    glm::dvec3(t.v0), glm::dvec3(t.v1), glm::dvec3(t.v2)))
+          bit.fetch_or(1, std::memory_order_relaxed);
+      }
+    }
+  }
+
+  void run(ref::TraversalCounters& counters) {
+    const int leaves = h_.leaf_level();
+    std::vector<std::vector<std::uint32_t>> live(std::size_t(leaves) + 1);
+    for (int l = 0; l <= leaves; ++l) {
+      const Level& L = h_.levels[std::size_t(l)];
+      live[std::size_t(l)].resize(L.size());
+      for (std::size_t p = 0; p < L.size(); ++p) {
+        const int count = std::popcount(L.child_mask[p]);
+        live[std::size_t(l)][p] = count >= 32 ? ~0u : ((1u << count) - 1u);
+      }
+    }
+    // Visitors of level 0: every volume, in order.
+    std::vector<std::uint32_t> offsets = {0, std::uint32_t(vols_.order.size())};
+    std::vector<std::uint32_t> visitors = vols_.order;
+    std::atomic<std::uint64_t> node_tests{0}, sample_tests{0}, accepts{0}, rejects{0}, culls{0};
+    for (int l = 0; l <= leaves; ++l) {
+      const Level& L = h_.levels[std::size_t(l)];
+      const std::uint64_t visits = offsets.back();
+      counters.nodes_visited += visits;
+      if (l == in_.config.job_level) {
+        counters.first_pass_jobs += visits;
+        counters.second_pass_jobs += visits;
+      }
+      if (l == leaves) {
+        tbb::parallel_for(
+            tbb::blocked_range<std::size_t>(0, L.size(), 1),
+            [&](const tbb::blocked_range<std::size_t>& r) {
+              for (std::size_t p = r.begin(); p != r.end(); ++p) {
+                const std::uint32_t tile = h_.leaf_tile[p];
+                const std::uint64_t size = h_.tile_offsets[tile + 1] - h_.tile_offsets[tile];
+                const std::uint32_t b = offsets[p], e = offsets[p + 1];
+                if (b == e) continue;
+                sample_tests += size * (e - b);
+                tbb::parallel_for(tbb::blocked_range<std::uint32_t>(b, e, 64),
+                                  [&](const tbb::blocked_range<std::uint32_t>& v) {
+                                    for (std::uint32_t i = v.begin(); i != v.end(); ++i)
+                                      test_samples(vols_.slot[visitors[i]], std::uint32_t(p));
+                                  });
+              }
+            });
+        break;
+      }
+      const Level& below = h_.levels[std::size_t(l) + 1];
+      std::vector<Verdicts> verdicts(visits);
+      std::vector<std::uint32_t> remaining(visits);
+      std::vector<std::uint32_t> child_count(below.size() + 1, 0u);
+      std::vector<std::uint32_t>& level_live = live[std::size_t(l)];
+      tbb::parallel_for(
+          tbb::blocked_range<std::size_t>(0, L.size(), 1),
+          [&](const tbb::blocked_range<std::size_t>& r) {
+            for (std::size_t p = r.begin(); p != r.end(); ++p) {
+              const std::uint32_t b = offsets[p], e = offsets[p + 1];
+              if (b == e) continue;
+              const std::uint32_t first = L.first_child[p];
+              const std::uint32_t count = std::uint32_t(std::popcount(L.child_mask[p]));
+              const std::uint32_t start = level_live[p];
+              // Speculative: every visitor against the mask at the start of the level.
+              tbb::parallel_for(tbb::blocked_range<std::uint32_t>(b, e, 256),
+                                [&](const tbb::blocked_range<std::uint32_t>& v) {
+                                  for (std::uint32_t i = v.begin(); i != v.end(); ++i)
+                                    verdicts[i] = start == 0
+                                                      ? Verdicts{0, 0, 0, 0}
+                                                      : test_children(vols_.slot[visitors[i]],
+                                                                      l + 1, first, count, start);
+                                });
+              // In volume order: what each visitor tests is what its predecessors left.
+              std::uint32_t mask = start;
+              std::uint64_t tests = 0, acc = 0, rej = 0, cul = 0;
+              for (std::uint32_t i = b; i < e; ++i) {
+                const Verdicts& v = verdicts[i];
+                tests += std::uint64_t(std::popcount(mask));
+                acc += std::uint64_t(std::popcount(v.accept & mask));
+                rej += std::uint64_t(std::popcount(v.reject & mask));
+                cul += std::uint64_t(std::popcount(v.cull & mask));
+                const std::uint32_t rem = v.refine & mask;
+                mask &= ~v.accept;
+                remaining[i] = rem;
+                for (std::uint32_t bits = rem; bits != 0; bits &= bits - 1)
+                  ++child_count[first + std::uint32_t(std::countr_zero(bits))];
+              }
+              level_live[p] = mask;
+              node_tests += tests;
+              accepts += acc;
+              rejects += rej;
+              culls += cul;
+            }
+          });
+      // The next level's visitors, grouped by child, in volume order within each.
+      std::vector<std::uint32_t> next_offsets(below.size() + 1, 0u);
+      for (std::size_t c = 0; c < below.size(); ++c)
+        next_offsets[c + 1] = next_offsets[c] + child_count[c];
+      std::vector<std::uint32_t> next_visitors(next_offsets.back());
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, L.size(), 16),
+                        [&](const tbb::blocked_range<std::size_t>& r) {
+                          for (std::size_t p = r.begin(); p != r.end(); ++p) {
+                            const std::uint32_t first = L.first_child[p];
+                            std::uint32_t cursor[32] = {};
+                            for (std::uint32_t k = 0; k < 32 && first + k < below.size(); ++k)
+                              cursor[k] = next_offsets[first + k];
+                            for (std::uint32_t i = offsets[p]; i < offsets[p + 1]; ++i)
+                              for (std::uint32_t bits = remaining[i]; bits != 0; bits &= bits - 1)
+                                next_visitors[cursor[std::countr_zero(bits)]++] = visitors[i];
+                          }
+                        });
+      offsets.swap(next_offsets);
+      visitors.swap(next_visitors);
+    }
+    counters.node_tests += node_tests.load();
+    counters.sample_tests += sample_tests.load();
+    counters.trivial_accepts += accepts.load();
+    counters.trivial_rejects += rejects.load();
+    counters.culling_plane_rejects += culls.load();
+
+    // The final pass: samples below a cleared bit lie in a trivially accepted node.
+    std::vector<std::uint8_t> intact(1, 1);
+    for (int l = 1; l <= leaves; ++l) {
+      const Level& L = h_.levels[std::size_t(l)];
+      const Level& above = h_.levels[std::size_t(l) - 1];
+      std::vector<std::uint8_t> next(L.size());
+      for (std::size_t c = 0; c < L.size(); ++c) {
+        const std::uint32_t p = L.parent[c];
+        const std::uint32_t rank = std::uint32_t(c) - above.first_child[p];
+        next[c] = intact[p] && ((live[std::size_t(l) - 1][p] >> rank) & 1u);
+      }
+      intact.swap(next);
+    }
+    const RegularSamples& samples = in_.scene->samples;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size(), 8192),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t s = r.begin(); s != r.end(); ++s)
+                          if (!intact[h_.leaf_of_sample[s]]) shadowed_[samples.index[s]] = 1;
+                      });
+  }
+
+ private:
+  const TraversalInputs& in_;
+  const Hierarchy& h_;
+  const PackedVolumes& vols_;
+  std::uint8_t* shadowed_;
+  bool culling_;
+};
+
+void RunTraversal(const TraversalInputs& inputs, std::uint8_t* shadowed,
+                  ref::TraversalCounters* counters) {
+  Engine(inputs, shadowed).run(*counters);
+}
+
+}  // namespace shadowcts::simd::ptsv::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace shadowcts::simd::ptsv {
+
+HWY_EXPORT(RunTraversal);
+
+void traverse(const TraversalInputs& inputs, std::vector<std::uint8_t>& shadowed,
+              ref::TraversalCounters& counters) {
+  HWY_DYNAMIC_DISPATCH(RunTraversal)(inputs, shadowed.data(), &counters);
+}
+
+}  // namespace shadowcts::simd::ptsv
+#endif

@@ -1,0 +1,50 @@
+#pragma once
+// Triangle setup of the simd ptsv: the reference's volumes (ref::set_up_shadow_volume, one
+// triangle at a time, in parallel), packed for the lanes. Every plane's anchor is one of the
+// canonical vertices, so a packed plane keeps its normal and shift and names its vertex; the
+// lanes broadcast them. The exact definition (ref::ExactVolumePlanes) stays beside them for the
+// samples within rounding of a plane.
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "reference/ptsv/triangle_setup.h"
+#include "shadowcts/case.h"
+
+namespace shadowcts::simd::ptsv {
+
+namespace ref = ::shadowcts::ptsv;
+
+struct PackedPlane {
+  double normal[3];
+  double shift;
+  std::uint32_t anchor;  // canonical vertex index
+};
+
+// Trivially constructible: a slot per triangle is allocated without being written first.
+struct PackedVolume {
+  PackedPlane plane[7];  // edges (p,q), (q,r), (p,r), the triangle, then the extra planes
+  float vertex[3][3];    // canonical order
+  double condition[4];
+  std::int8_t edge_outside[3];
+  std::int8_t triangle_outside;
+  std::uint32_t extra_count;
+  std::uint32_t triangle;
+
+  double anchor(int k, int axis) const { return double(vertex[plane[k].anchor][axis]); }
+  // The reference volume's exact part (and triangle), for ref::outside_plane_exactly.
+  void exact_volume(ref::ShadowVolume& v, bool directional, const glm::vec3& light) const;
+};
+
+struct PackedVolumes {
+  std::unique_ptr<PackedVolume[]> slot;  // per triangle; valid where `order` names it
+  std::vector<std::uint32_t> order;      // triangles with a volume, in index order
+  ref::SetupCounts counts;
+  bool directional = false;
+  glm::vec3 light{0.0f};  // the point light, or the direction towards the light
+};
+
+PackedVolumes set_up_shadow_volumes(const Case& c, const std::vector<bool>& culled_meshes,
+                                    const ref::SetupOptions& options, double scene_bound);
+
+}  // namespace shadowcts::simd::ptsv

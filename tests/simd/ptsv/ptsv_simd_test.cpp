@@ -1,0 +1,164 @@
+// simd ptsv against the reference, structure by structure: every view sample's cluster key, every
+// node (index, child mask, explicit bounds bit for bit, reject reach), every counter and every
+// sample's answer, for each ported variant, on the default fixtures, the stiff suite and the
+// reference tests' big-shadow scenes; then the same outputs for 1 and 2 threads and for another
+// Highway target. Each diff names the first difference.
+#include <bit>
+#include <cstring>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <hwy/targets.h>
+#include <tbb/global_control.h>
+
+#include "reference/ptsv/cluster_keys.h"
+#include "reference/ptsv/hierarchy.h"
+#include "reference/ptsv/ptsv_algorithm.h"
+#include "reference/ptsv/receiver_rule.h"
+#include "reference/ptsv/view_frame.h"
+#include "shadowcts/fixtures.h"
+#include "shadowcts/prepared_scene.h"
+#include "simd/ptsv/ptsv_algorithm.h"
+#include "tests/reference/ptsv/big_shadow_case.h"
+#include "tests/reference/ptsv/ptsv_test_support.h"
+
+namespace shadowcts {
+namespace {
+
+namespace ref = ::shadowcts::ptsv;
+const char* const variants[] = {"twopass", "explicit+planes", "implicit"};
+
+bool same_bits(double a, double b) {
+  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+}
+
+// "" when the simd structures equal the reference's, else the first difference.
+std::string diff_structures(const Case& c, const ViewSamples& samples, const PreparedScene& scene,
+                            const std::string& variant) {
+  const bool implicit = variant == "implicit";
+  const ref::ViewFrame frame = ref::make_view_frame(c.camera, samples.width, samples.height);
+  const ref::ClusterKeyLayout layout =
+      ref::make_cluster_key_layout(c.camera, samples.width, samples.height).layout;
+  const ref::ClusterKeys keys = ref::assign_cluster_keys(layout, frame, samples, implicit);
+  if (!keys.problem.empty()) return "reference keys: " + keys.problem;
+  const simd::ptsv::Structures s = simd::ptsv::build_structures(scene, variant);
+  for (std::size_t i = 0; i < keys.key.size(); ++i)
+    if (s.key[i] != keys.key[i])
+      return "key of view sample " + std::to_string(i) + ": " + std::to_string(s.key[i]) +
+             " != reference " + std::to_string(keys.key[i]);
+  const ref::ReceiverRule rule(c, samples);
+  const ref::ClusterHierarchy h(layout, keys.key, samples, rule.reject_reach());
+  if (s.hierarchy.leaf_level() != h.leaf_level()) return "leaf level";
+  for (int l = 0; l <= h.leaf_level(); ++l) {
+    const ref::HierarchyLevel& r = h.level(l);
+    const simd::ptsv::Level& p = s.hierarchy.levels[std::size_t(l)];
+    if (p.size() != r.index.size())
+      return "level " + std::to_string(l) + ": " + std::to_string(p.size()) + " nodes, reference " +
+             std::to_string(r.index.size());
+    for (std::size_t n = 0; n < p.size(); ++n) {
+      const std::string node = "level " + std::to_string(l) + " node " + std::to_string(n) + " ";
+      if (p.index[n] != r.index[n]) return node + "index";
+      if (p.child_mask[n] != r.child_mask[n]) return node + "child mask";
+      for (int k = 0; k < 3; ++k)
+        if (!same_bits(p.lo[std::size_t(k)][n], r.bounds[n].lo[k]) ||
+            !same_bits(p.hi[std::size_t(k)][n], r.bounds[n].hi[k]))
+          return node + "bounds, axis " + std::to_string(k);
+      if (!same_bits(p.reach[n], r.reject_reach[n])) return node + "reject reach";
+    }
+  }
+  return "";
+}
+
+std::string diff_outputs(const AlgorithmOutput& a, const AlgorithmOutput& b) {
+  if (a.counters.size() != b.counters.size()) return "counter lists differ in length";
+  for (std::size_t i = 0; i < a.counters.size(); ++i)
+    if (a.counters[i] != b.counters[i])
+      return "counter " + a.counters[i].first + ": " + std::to_string(a.counters[i].second) +
+             " != " + b.counters[i].first + " " + std::to_string(b.counters[i].second);
+  if (a.shadowed.size() != b.shadowed.size()) return "mask sizes differ";
+  for (std::size_t i = 0; i < a.shadowed.size(); ++i)
+    if (a.shadowed[i] != b.shadowed[i])
+      return "view sample " + std::to_string(i) + ": " + std::to_string(a.shadowed[i]) +
+             " != " + std::to_string(b.shadowed[i]);
+  return "";
+}
+
+void expect_like_reference(const Case& c, const ViewSamples& samples) {
+  const auto reference = make_ptsv();
+  const auto port = make_simd_ptsv();
+  const PreparedScene scene = prepare_scene(c, samples);
+  for (const std::string variant : variants) {
+    const auto why = reference->unsupported_reason(c, samples, variant);
+    EXPECT_EQ(port->unsupported_reason(c, samples, variant), why) << variant;
+    if (why) continue;
+    EXPECT_EQ(diff_structures(c, samples, scene, variant), "") << c.name << " " << variant;
+    EXPECT_EQ(diff_outputs(port->run(scene, variant), reference->run(scene, variant)), "")
+        << c.name << " " << variant << " (simd != reference)";
+  }
+}
+
+class SimdPtsvOnFixture : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(SimdPtsvOnFixture, KeysNodesCountersAndMaskAreTheReferences) {
+  const ptsv_test::FixtureWithSamples f = ptsv_test::load_fixture(GetParam());
+  if (!f.c.light) GTEST_SKIP() << "no shadow light";
+  expect_like_reference(f.c, f.samples);
+}
+
+std::vector<std::string> fixtures_and_stiff_cases() {
+  std::vector<std::string> names = default_fixtures();
+  for (const std::string& s : stiff_fixtures()) names.push_back(s);
+  return names;
+}
+
+INSTANTIATE_TEST_SUITE_P(Fixtures, SimdPtsvOnFixture,
+                         ::testing::ValuesIn(fixtures_and_stiff_cases()),
+                         [](const ::testing::TestParamInfo<std::string>& param) {
+                           std::string name = param.param;
+                           for (char& ch : name)
+                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+                           return name;
+                         });
+
+// The reference tests' scene whose caster covers whole clusters: trivial accepts clear bits, so
+// the order of the volumes matters to the counters.
+TEST(SimdPtsv, BigShadowWithTrivialAcceptsIsTheReferences) {
+  for (const bool directional : {false, true}) {
+    const Case c = ptsv_test::big_shadow_case(directional);
+    const ViewSamples samples = generate_view_samples(c);
+    const AlgorithmOutput out = make_simd_ptsv()->run(c, samples, "twopass");
+    EXPECT_GT(ptsv_test::counter(out, "trivial_accepts"), 0u);
+    expect_like_reference(c, samples);
+  }
+}
+
+TEST(SimdPtsv, SameOutputsForOneAndTwoThreadsAndAnotherTarget) {
+  const ptsv_test::FixtureWithSamples f = ptsv_test::load_fixture("gate_house.20k");
+  const auto port = make_simd_ptsv();
+  const PreparedScene scene = prepare_scene(f.c, f.samples);
+  for (const std::string variant : variants) {
+    AlgorithmOutput one, two;
+    {
+      tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 1);
+      one = port->run(scene, variant);
+    }
+    {
+      tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 2);
+      two = port->run(scene, variant);
+    }
+    EXPECT_EQ(diff_outputs(one, two), "") << variant;
+    // The best target but one (AVX2 lanes are half as wide as AVX3's).
+    const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
+    if (targets.size() >= 2) {
+      hwy::SetSupportedTargetsForTest(targets[1]);
+      const AlgorithmOutput other = port->run(scene, variant);
+      hwy::SetSupportedTargetsForTest(0);
+      EXPECT_EQ(diff_outputs(one, other), "") << variant << " on " << hwy::TargetName(targets[1]);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace shadowcts
