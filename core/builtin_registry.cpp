@@ -13,6 +13,7 @@
 #include "shadowcts/registry.h"
 #include "simd/lightassign/lightassign_algorithm.h"
 #include "simd/metric/metric_algorithm.h"
+#include "simd/ptsv/ptsv_algorithm.h"
 #include "simd/softtile/softtile_algorithm.h"
 #if SHADOWCTS_HAVE_CUDA
 #include "gpu/bruteforce/hard_shadow_bruteforce_cuda.h"
@@ -35,6 +36,7 @@ const Registry& builtin_registry() {
     r.add(make_lightassign());
     // The device kernels run by the emulator: on every machine, in their own records.
     r.add(make_bruteforce_hard_shadow_cuda_emu());
+    r.add(make_simd_ptsv());
     r.add(make_simd_softtile());
     r.add(make_simd_metric());
     r.add(make_simd_lightassign());
