@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <ctime>
 #include <stdexcept>
 
 #include <tbb/blocked_range.h>
@@ -20,6 +21,12 @@ namespace ref = shadowcts::metric;
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+double process_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
 }
 
 // The reference's seed stream of the tree build (metric_shadows.cpp: tree_stream).
@@ -125,6 +132,7 @@ SimdMetricRun run_metric(const PreparedScene& scene, const SimdMetricOptions& op
   run.clustering_seconds = seconds_since(start);
 
   start = std::chrono::steady_clock::now();
+  double cpu_start = process_cpu_seconds();
   const ref::LightStructure structure = build_light_structure(scene, clustered, options.metric);
   ref::TraversalScene traversal_scene;
   traversal_scene.c = &c;
@@ -137,8 +145,10 @@ SimdMetricRun run_metric(const PreparedScene& scene, const SimdMetricOptions& op
   traversal_scene.ray_length = 4.0 * structure.frame.scale;  // as the reference
   const std::vector<PacketNode> nodes = packet_nodes(traversal_scene);
   run.build_seconds = seconds_since(start);
+  run.build_cpu_seconds = process_cpu_seconds() - cpu_start;
 
   start = std::chrono::steady_clock::now();
+  cpu_start = process_cpu_seconds();
   const SampleTiles tiles =
       sample_tiles(scene.samples, scene.view_samples.width, options.packet <= 8 ? 8 : 16);
   PacketTraversal traversal;
@@ -160,6 +170,7 @@ SimdMetricRun run_metric(const PreparedScene& scene, const SimdMetricOptions& op
                     });
   run.output.shadowed = scene.per_view_sample(shadowed, std::uint8_t(0));
   run.traversal_seconds = seconds_since(start);
+  run.traversal_cpu_seconds = process_cpu_seconds() - cpu_start;
 
   ref::MetricCounters& counters = run.counters;
   counters.clusters = clustered.clustering.cluster_count();

@@ -31,6 +31,10 @@ struct SimdMetricRun {
   double clustering_seconds = 0.0;  // clustering, bounding volumes, triangles in cluster order
   double build_seconds = 0.0;       // elements, tree, node records
   double traversal_seconds = 0.0;
+  // CPU time of all the process's threads during the traversal: on a shared machine a steadier
+  // measure of the work than the wall clock (benchmarks only).
+  double traversal_cpu_seconds = 0.0;
+  double build_cpu_seconds = 0.0;
 };
 
 // On the threads of the caller's oneTBB arena; deterministic for the case's seed and any thread

@@ -58,8 +58,7 @@ struct NodeDecisions {
 
 template <class D, class V>
 HWY_INLINE void angle_thresholds(D d, const PacketNode& n, V s, V c, int k, V& f) {
-  f = hn::Add(hn::Sub(hn::Mul(s, hn::Set(d, n.cos_t[k])), hn::Mul(c, hn::Set(d, n.sin_t[k]))),
-              hn::Set(d, n.bias[k]));
+  f = hn::Sub(hn::Mul(s, hn::Set(d, n.cos_t[k])), hn::Mul(c, hn::Set(d, n.sin_t[k])));
 }
 
 // Angle between u and a unit direction as (|u x a|, u . a), in glm's order of operations.
@@ -408,19 +407,35 @@ ClusterTriangles cluster_triangles_soa(const CasterArrays& casters,
 
 std::vector<PacketNode> packet_nodes(const shadowcts::metric::TraversalScene& scene) {
   using shadowcts::metric::CentreKind;
+  using shadowcts::metric::no_node;
+  using shadowcts::metric::TreeChild;
   const shadowcts::metric::LightFrame& frame = scene.frame;
   const auto& tree_nodes = scene.tree->nodes;
-  std::vector<PacketNode> nodes(tree_nodes.size());
-  for (std::size_t i = 0; i < tree_nodes.size(); ++i) {
-    const shadowcts::metric::MetricTreeNode& t = tree_nodes[i];
+  // Near-first depth-first order, the order a walk pops the nodes in.
+  std::vector<std::uint32_t> order, packed(tree_nodes.size(), 0);
+  order.reserve(tree_nodes.size());
+  if (!tree_nodes.empty()) {
+    std::vector<std::uint32_t> stack{0};
+    while (!stack.empty()) {
+      const std::uint32_t node = stack.back();
+      stack.pop_back();
+      packed[node] = std::uint32_t(order.size());
+      order.push_back(node);
+      for (int c : {int(TreeChild::overlap), int(TreeChild::far), int(TreeChild::near)})
+        if (tree_nodes[node].child[c] != no_node) stack.push_back(tree_nodes[node].child[c]);
+    }
+  }
+  std::vector<PacketNode> nodes(order.size());
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const shadowcts::metric::MetricTreeNode& t = tree_nodes[order[i]];
     const shadowcts::metric::LightSpaceElement& e = (*scene.elements)[t.pivot];
     PacketNode& n = nodes[i];
     n.light_distance = t.light_distance;
     n.pivot_light_distance = e.light_distance;
     n.pivot = t.pivot;
     for (int c = 0; c < 3; ++c) {
-      n.has_child[c] = t.child[c] != shadowcts::metric::no_node;
-      n.child[c] = n.has_child[c] ? t.child[c] : 0;
+      n.has_child[c] = t.child[c] != no_node;
+      n.child[c] = n.has_child[c] ? packed[t.child[c]] : 0;
     }
     n.radius = e.radius;
     // The reference's comparisons: distance <= 0, >= overlap_min - slack, <= overlap_max +
@@ -454,11 +469,11 @@ std::vector<PacketNode> packet_nodes(const shadowcts::metric::TraversalScene& sc
       for (int k = 0; k < thresholds; ++k) {
         const double shifted = n.threshold[k] + e.radius;
         if (std::isnan(shifted)) {
-          n.cos_t[k] = n.sin_t[k] = n.bias[k] = 0.0;  // always near: decided by the reference
+          n.cos_t[k] = n.sin_t[k] = 0.0;  // always near: decided by the reference
         } else if (shifted < -0x1p-30) {
-          n.bias[k] = 1.0;  // every angle is above
+          n.cos_t[k] = 2.0;  // every angle is above
         } else if (shifted > std::numbers::pi + 0x1p-30) {
-          n.bias[k] = -1.0;  // every angle is below
+          n.cos_t[k] = -2.0;  // every angle is below
         } else {
           n.cos_t[k] = std::cos(shifted);
           n.sin_t[k] = std::sin(shifted);

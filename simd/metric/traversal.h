@@ -44,23 +44,27 @@ enum class NodeKind : std::uint8_t {
   covers_everything,  // decided per lane by the reference
 };
 
-// One tree node with what the lanes compare against, precomputed per frame.
+// One tree node with what the lanes compare against, precomputed per frame. The hot fields of a
+// point-light node fill its first three cache lines; nodes are stored in the order of a
+// near-first depth-first walk, so that a walk mostly reads forward.
 struct alignas(64) PacketNode {
   double light_distance = 0.0;
   double pivot_light_distance = 0.0;
-  std::uint32_t child[3] = {0, 0, 0};
+  std::uint32_t child[3] = {0, 0, 0};  // indices into the packet nodes
   std::uint32_t pivot = 0;
   NodeKind kind = NodeKind::point_cone;
   std::uint8_t has_child[3] = {0, 0, 0};
-  double a[3] = {0, 0, 0}, b[3] = {0, 0, 0}, normal[3] = {0, 0, 0};
+  double a[3] = {0, 0, 0};
+  // Point light: theta <= threshold + radius iff s cos - c sin <= 0 for theta = atan2(s, c);
+  // (cos, sin) = (+-2, 0) where the shifted threshold lies outside [0, pi] (every angle is then
+  // above, or below, unless s = 0, which the reference decides).
+  double cos_t[thresholds] = {}, sin_t[thresholds] = {};
   double radius = 0.0;
   double segment_length_squared = 0.0;  // capsule_2d: |b - a|^2
+  double b[3] = {0, 0, 0}, normal[3] = {0, 0, 0};
   // The reference's thresholds of the pivot distance: 0, overlap_min - slack,
   // overlap_max + slack, delta - slack, delta + slack.
   double threshold[thresholds] = {};
-  // Point light: theta <= threshold + radius iff (s cos - c sin) + bias <= 0, bias = +-1 where
-  // the shifted threshold lies outside [0, pi] (the answer is then the same for every angle).
-  double cos_t[thresholds] = {}, sin_t[thresholds] = {}, bias[thresholds] = {};
 };
 
 std::vector<PacketNode> packet_nodes(const shadowcts::metric::TraversalScene& scene);

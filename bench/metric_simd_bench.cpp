@@ -1,0 +1,139 @@
+// The simd metric against the reference and Embree (build + query) at 1920 x 1080 on
+// gate_house, ground_blockers and closed_shapes at 1 M triangles, and ground_blockers at 10 M
+// (simd and Embree only: the reference takes minutes there), in one run. Each simd output is
+// checked to be the reference's (answers and counters) where the reference runs: a port that
+// differs is an error, not a time. Times are the phases the algorithms time themselves.
+//   build/bench/metric_simd_bench [--benchmark_filter=gate_house/1000000]
+#include <benchmark/benchmark.h>
+
+#include <map>
+#include <memory>
+#include <string>
+
+#include "reference/embree/hard_shadow_embree.h"
+#include "reference/metric/metric_algorithm.h"
+#include "shadowcts/fixtures.h"
+#include "shadowcts/prepared_scene.h"
+#include "simd/metric/metric_algorithm.h"
+#include "simd/metric/metric_shadows.h"
+#include "simd/simd_target.h"
+
+namespace shadowcts {
+namespace {
+
+struct FullHdCase {
+  Case c;
+  ViewSamples samples;
+  std::unique_ptr<PreparedScene> scene;
+};
+
+FullHdCase& full_hd_case(const std::string& generator, std::uint64_t triangles) {
+  static std::pair<std::string, std::uint64_t> key;
+  static std::unique_ptr<FullHdCase> entry;
+  if (!entry || key != std::pair(generator, triangles)) {
+    entry.reset();  // one case in memory at a time
+    key = {generator, triangles};
+    entry = std::make_unique<FullHdCase>();
+    entry->c = make_fixture(generator, triangles);
+    entry->c.camera.width = 1920;
+    entry->c.camera.height = 1080;
+    entry->samples = generate_view_samples(entry->c);
+    entry->scene = std::make_unique<PreparedScene>(prepare_scene(entry->c, entry->samples));
+  }
+  return *entry;
+}
+
+double phase(const AlgorithmOutput& output, const std::string& name) {
+  for (const auto& [phase_name, ms] : output.phase_ms)
+    if (phase_name == name) return ms;
+  return 0.0;
+}
+
+void BM_MetricSimd(benchmark::State& state, const std::string& generator,
+                   const std::string& variant, std::uint32_t packet, bool with_reference) {
+  FullHdCase& f = full_hd_case(generator, std::uint64_t(state.range(0)));
+  simd::metric::SimdMetricOptions options = simd::metric::parse_simd_metric_variant(variant);
+  options.packet = packet;
+  simd::metric::SimdMetricRun run;
+  double clustering = 0, build = 0, query = 0, build_cpu = 0, query_cpu = 0;
+  for (auto _ : state) {
+    run = simd::metric::run_metric(*f.scene, options);
+    clustering += run.clustering_seconds;
+    build += run.build_seconds;
+    query += run.traversal_seconds;
+    build_cpu += run.build_cpu_seconds;
+    query_cpu += run.traversal_cpu_seconds;
+  }
+  const double n = double(state.iterations());
+  state.counters["simd_clustering_ms"] = 1e3 * clustering / n;
+  state.counters["simd_build_ms"] = 1e3 * build / n;
+  state.counters["simd_query_ms"] = 1e3 * query / n;
+  state.counters["simd_build_cpu_ms"] = 1e3 * build_cpu / n;
+  state.counters["simd_query_cpu_ms"] = 1e3 * query_cpu / n;
+  const AlgorithmOutput embree = make_embree_hard_shadow()->run(*f.scene, "robust");
+  state.counters["embree_build_ms"] = phase(embree, "build");
+  state.counters["embree_query_ms"] = phase(embree, "query");
+  state.counters["simd_vs_embree_build_query"] =
+      (phase(embree, "build") + phase(embree, "query")) / (1e3 * (build + query) / n);
+  if (with_reference) {
+    const metric::MetricRun reference =
+        metric::run_metric(f.c, f.samples, metric::parse_metric_variant(variant));
+    if (reference.output.shadowed != run.output.shadowed ||
+        reference.output.counters != run.output.counters)
+      state.SkipWithError("the simd answers or counters differ from the reference's");
+    state.counters["reference_clustering_ms"] = 1e3 * reference.clustering_seconds;
+    state.counters["reference_build_ms"] = 1e3 * reference.build_seconds;
+    state.counters["reference_query_ms"] = 1e3 * reference.traversal_seconds;
+    state.counters["query_speedup"] = reference.traversal_seconds / (query / n);
+    state.counters["build_speedup"] = reference.build_seconds / (build / n);
+  }
+  state.SetLabel(simd::dispatched_target_name() + ", packet " + std::to_string(packet));
+}
+
+void register_benchmarks() {
+  for (const char* generator : {"gate_house", "ground_blockers", "closed_shapes"})
+    for (const char* variant : {"capsules16", "capsules"})
+      for (std::uint32_t packet : {16u, 8u})
+        benchmark::RegisterBenchmark((std::string("metric_simd/") + generator + "/" + variant +
+                                      "/packet" + std::to_string(packet))
+                                         .c_str(),
+                                     [=](benchmark::State& state) {
+                                       BM_MetricSimd(state, generator, variant, packet, true);
+                                     })
+            ->Arg(1'000'000)
+            ->Unit(benchmark::kMillisecond)
+            ->UseRealTime()
+            ->Iterations(3);
+  // The simd port alone (and Embree), for profiles and packet-size comparisons.
+  for (const char* generator : {"gate_house", "ground_blockers", "closed_shapes"})
+    for (std::uint32_t packet : {16u, 8u})
+      benchmark::RegisterBenchmark((std::string("metric_simd_only/") + generator +
+                                    "/capsules16/packet" + std::to_string(packet))
+                                       .c_str(),
+                                   [=](benchmark::State& state) {
+                                     BM_MetricSimd(state, generator, "capsules16", packet, false);
+                                   })
+          ->Arg(1'000'000)
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime()
+          ->Iterations(5);
+  benchmark::RegisterBenchmark("metric_simd_only/ground_blockers/capsules16/packet16",
+                               [](benchmark::State& state) {
+                                 BM_MetricSimd(state, "ground_blockers", "capsules16", 16, false);
+                               })
+      ->Arg(10'000'000)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime()
+      ->Iterations(1);
+}
+
+}  // namespace
+}  // namespace shadowcts
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  shadowcts::register_benchmarks();
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
