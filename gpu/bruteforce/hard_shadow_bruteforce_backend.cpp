@@ -8,13 +8,10 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "oracles/exact_segment_triangle.h"
 #include "oracles/hard_shadow_inputs.h"
-#include "oracles/shadow_segment.h"
 #include "oracles/thread_limit.h"
+#include "reference/bruteforce/hard_shadow_bruteforce.h"
 #include "reference/light_on_caster.h"
-#include "reference/sample_half_space.h"
-#include "shadowcts/geometry/receiver_half_space.h"
 
 namespace shadowcts {
 
@@ -49,72 +46,28 @@ BruteforceShadowInput bruteforce_kernel_input(const Case& c, const ViewSamples& 
 
 namespace {
 
-// The light as the exact predicate reads it, a sun disk as its centre direction (as the kernel).
-HardShadowLight exact_light(const Case& c) {
-  HardShadowLight light;
-  light.directional = c.light->kind != ShadowLightKind::point;
-  light.position = glm::dvec3(c.light->position);
-  light.direction = glm::dvec3(c.light->direction);
-  return light;
-}
-
 struct ExactFallback {
   std::uint64_t samples = 0, predicate_calls = 0;
 };
 
-// Decides the given samples with the exact predicate and the receiver half-space rule over every
-// caster, as the reference brute force does (a conservative box test first).
-ExactFallback decide_exactly(const Case& c, const ViewSamples& samples,
-                             const std::vector<std::size_t>& unsure,
+// Decides the given regular samples as the reference brute force does, in parallel: beside-edge
+// samples are common on finely tessellated models (most samples of model.spider).
+ExactFallback decide_exactly(const PreparedScene& scene, const std::vector<std::size_t>& unsure,
                              std::vector<std::uint8_t>& shadowed) {
   ExactFallback fallback;
   if (unsure.empty()) return fallback;
-  const HardShadowLight light = exact_light(c);
-  const double scale = c.scale();
-  const ExactShadowPredicate predicate(light, scale);
-  std::vector<std::size_t> casters;
-  for (std::size_t t = 0; t < c.triangles.size(); ++t) {
-    if (casts_shadow(c, t)) casters.push_back(t);
-  }
+  const ExactBruteforce exact(scene);
   fallback.samples = unsure.size();
   std::atomic<std::uint64_t> predicate_calls{0};
-  // Beside-edge samples are common on finely tessellated models (most samples of model.spider),
-  // so they are decided in parallel; each writes only its own sample.
-  tbb::parallel_for(
-      tbb::blocked_range<std::size_t>(0, unsure.size(), 16),
-      [&](const tbb::blocked_range<std::size_t>& range) {
-        std::uint64_t calls = 0;
-        for (std::size_t u = range.begin(); u != range.end(); ++u) {
-          const std::size_t i = unsure[u];
-          const ViewSample& sample = samples.samples[i];
-          const glm::dvec3 p(sample.position);
-          const ShadowSegment segment = make_shadow_segment(p, light, scale);
-          const double padding = box_padding(segment, 0.0);
-          const geometry::ReceiverHalfSpace half_space = sample_half_space(c, light, sample);
-          shadowed[i] = 0;
-          for (const std::size_t t : casters) {
-            if (t == sample.receiver) continue;
-            const Triangle& triangle = c.triangles[t];
-            float lo[3], hi[3];
-            for (int k = 0; k < 3; ++k) {
-              lo[k] = std::min({triangle.v0[k], triangle.v1[k], triangle.v2[k]});
-              hi[k] = std::max({triangle.v0[k], triangle.v1[k], triangle.v2[k]});
-            }
-            if (!box_may_meet(segment, lo, hi, padding)) continue;
-            const glm::dvec3 v0(triangle.v0), v1(triangle.v1), v2(triangle.v2);
-            const geometry::CasterReach reach = geometry::caster_reach(half_space, v0, v1, v2);
-            if (reach == geometry::CasterReach::no_hit) continue;
-            ++calls;
-            if (!predicate.blocks(triangle, MovedPoint{p, 0.0, {0, 0, 0}})) continue;
-            if (reach == geometry::CasterReach::every_hit ||
-                geometry::hit_on_light_side(half_space, p, v0, v1, v2)) {
-              shadowed[i] = 1;
-              break;
-            }
-          }
-        }
-        predicate_calls += calls;  // an integer sum: independent of the split
-      });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, unsure.size(), 16),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      std::uint64_t pairs = 0, calls = 0;
+                      for (std::size_t u = range.begin(); u != range.end(); ++u) {
+                        const std::size_t i = unsure[u];
+                        shadowed[scene.samples.index[i]] = exact.shadowed(i, pairs, calls) ? 1 : 0;
+                      }
+                      predicate_calls += calls;  // an integer sum: independent of the split
+                    });
   fallback.predicate_calls = predicate_calls.load();
   return fallback;
 }
@@ -171,9 +124,9 @@ class BruteforceKernelAlgorithm final : public Algorithm {
       for (std::size_t i = 0; i < regular_samples.size(); ++i) {
         const std::uint8_t state = result.shadowed[i];
         output.shadowed[regular_samples[i]] = state == bruteforce_sample_shadowed ? 1 : 0;
-        if (state == bruteforce_sample_unsure) unsure.push_back(regular_samples[i]);
+        if (state == bruteforce_sample_unsure) unsure.push_back(i);
       }
-      fallback = decide_exactly(c, samples, unsure, output.shadowed);
+      fallback = decide_exactly(scene, unsure, output.shadowed);
     });
 
     // The definition's closed segment ends at L: a caster containing L shadows every sample it

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <optional>
 #include <stdexcept>
 #include <vector>
@@ -9,20 +10,81 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "oracles/exact_segment_triangle.h"
 #include "oracles/hard_shadow_inputs.h"
-#include "oracles/shadow_segment.h"
 #include "oracles/thread_limit.h"
 #include "reference/sample_half_space.h"
+#include "shadowcts/geometry/exact_segment_triangle.h"
 #include "shadowcts/geometry/receiver_half_space.h"
 
 namespace shadowcts {
-namespace {
 
-struct CasterBox {
+ExactBruteforce::ExactBruteforce(const PreparedScene& scene)
+    : scene_(scene), light_(hard_shadow_light(scene.source)) {
+  check_receivers(scene.source, scene.view_samples);
+  const CasterArrays& tris = scene.casters;
+  for (std::uint32_t t = 0; t < tris.size(); ++t) {
+    if (tris.casts[t] == 0) continue;
+    CasterBox box;
+    const std::vector<float>* axes[3][3] = {{&tris.x[0], &tris.x[1], &tris.x[2]},
+                                            {&tris.y[0], &tris.y[1], &tris.y[2]},
+                                            {&tris.z[0], &tris.z[1], &tris.z[2]}};
+    for (int k = 0; k < 3; ++k) {
+      box.lo[k] = std::min({(*axes[k][0])[t], (*axes[k][1])[t], (*axes[k][2])[t]});
+      box.hi[k] = std::max({(*axes[k][0])[t], (*axes[k][1])[t], (*axes[k][2])[t]});
+    }
+    box.triangle = t;
+    casters_.push_back(box);
+  }
+}
+
+bool ExactBruteforce::shadowed(std::size_t i, std::uint64_t& pairs, std::uint64_t& calls) const {
+  const RegularSamples& samples = scene_.samples;
+  const CasterArrays& tris = scene_.casters;
+  const glm::dvec3 p(samples.position(i));
+  const std::uint32_t receiver = samples.receiver[i];
+  // The box of the segment (of the ray, unbounded away from p): float bounds, so the box test is
+  // exact and only drops casters that cannot meet the segment.
   float lo[3], hi[3];
-  std::uint32_t triangle;
-};
+  for (int k = 0; k < 3; ++k) {
+    const float pk = float(p[k]);
+    if (light_.directional) {
+      lo[k] = light_.direction[k] < 0.0 ? -INFINITY : pk;
+      hi[k] = light_.direction[k] > 0.0 ? INFINITY : pk;
+    } else {
+      lo[k] = std::min(pk, float(light_.position[k]));
+      hi[k] = std::max(pk, float(light_.position[k]));
+    }
+  }
+  std::optional<geometry::ReceiverHalfSpace> half_space;  // built at the first box hit
+  for (const CasterBox& box : casters_) {
+    ++pairs;
+    if (box.triangle == receiver) continue;
+    if (box.hi[0] < lo[0] || box.lo[0] > hi[0] || box.hi[1] < lo[1] || box.lo[1] > hi[1] ||
+        box.hi[2] < lo[2] || box.lo[2] > hi[2])
+      continue;
+    if (!half_space)
+      half_space =
+          sample_half_space(scene_.source, light_, scene_.view_samples.samples[samples.index[i]]);
+    const glm::dvec3 v0(tris.corner(box.triangle, 0)), v1(tris.corner(box.triangle, 1)),
+        v2(tris.corner(box.triangle, 2));
+    // The rule's three orientations first: a caster with no vertex strictly on the light's side
+    // of the receiver's plane (a coplanar neighbour, the next face of a convex mesh) never
+    // shadows this sample, so the exact predicate is not asked.
+    const geometry::CasterReach reach = geometry::caster_reach(*half_space, v0, v1, v2);
+    if (reach == geometry::CasterReach::no_hit) continue;
+    ++calls;
+    const bool meets = light_.directional
+                           ? geometry::ray_meets_triangle(p, light_.direction, v0, v1, v2)
+                           : geometry::segment_meets_triangle(p, light_.position, v0, v1, v2);
+    if (!meets) continue;
+    if (reach == geometry::CasterReach::every_hit ||
+        geometry::hit_on_light_side(*half_space, p, v0, v1, v2))
+      return true;
+  }
+  return false;
+}
+
+namespace {
 
 class BruteforceHardShadow final : public Algorithm {
  public:
@@ -31,8 +93,9 @@ class BruteforceHardShadow final : public Algorithm {
     info_.backend = "reference";
     info_.variants = {"exact"};
     info_.summary =
-        "every sample against every caster: conservative float box test, then the exact CGAL "
-        "segment/ray-triangle predicate and the exact receiver half-space rule";
+        "every sample against every caster: exact box test, then the exact segment/ray-triangle "
+        "predicate of the shared geometry (orientations by expansions) and the exact receiver "
+        "half-space rule";
     info_.capabilities.output = OutputKind::hard_shadow;
     info_.capabilities.point_light = true;
     info_.capabilities.directional_light = true;
@@ -45,69 +108,25 @@ class BruteforceHardShadow final : public Algorithm {
   const AlgorithmInfo& info() const override { return info_; }
 
   AlgorithmOutput run(const PreparedScene& scene, const std::string& variant) const override {
-    const Case& c = scene.source;
-    const ViewSamples& samples = scene.view_samples;
     if (variant != "exact")
       throw std::invalid_argument("bruteforce: unknown variant '" + variant + "'");
-    const HardShadowLight light = hard_shadow_light(c);
-    check_receivers(c, samples);
-    const double scale = c.scale();
-
-    std::vector<CasterBox> casters;
-    for (std::size_t i = 0; i < c.triangles.size(); ++i) {
-      if (!casts_shadow(c, i)) continue;
-      const Triangle& t = c.triangles[i];
-      CasterBox box;
-      for (int k = 0; k < 3; ++k) {
-        box.lo[k] = std::min({t.v0[k], t.v1[k], t.v2[k]});
-        box.hi[k] = std::max({t.v0[k], t.v1[k], t.v2[k]});
-      }
-      box.triangle = std::uint32_t(i);
-      casters.push_back(box);
-    }
-    const ExactShadowPredicate predicate(light, scale);
-
-    AlgorithmOutput output;
-    output.shadowed.assign(samples.samples.size(), 0);
+    const ExactBruteforce exact(scene);
+    const RegularSamples& samples = scene.samples;
+    std::vector<std::uint8_t> shadowed(samples.size(), 0);
     std::atomic<std::uint64_t> pair_tests{0}, exact_predicate_calls{0};
-    run_with_thread_limit(c.parameters.threads, [&] {
-      tbb::parallel_for(
-          tbb::blocked_range<std::size_t>(0, samples.samples.size(), 64),
-          [&](const tbb::blocked_range<std::size_t>& range) {
-            std::uint64_t pairs = 0, calls = 0;
-            for (std::size_t i = range.begin(); i != range.end(); ++i) {
-              const ViewSample& sample = samples.samples[i];
-              if (sample.sample_class != SampleClass::regular) continue;
-              const glm::dvec3 p(sample.position);
-              const ShadowSegment segment = make_shadow_segment(p, light, scale);
-              const double padding = box_padding(segment, 0.0);
-              std::optional<geometry::ReceiverHalfSpace> half_space;  // built at the first box hit
-              for (const CasterBox& box : casters) {
-                ++pairs;
-                if (box.triangle == sample.receiver) continue;
-                if (!box_may_meet(segment, box.lo, box.hi, padding)) continue;
-                if (!half_space) half_space = sample_half_space(c, light, sample);
-                const Triangle& t = c.triangles[box.triangle];
-                const glm::dvec3 v0(t.v0), v1(t.v1), v2(t.v2);
-                // The rule's three orientations first: a caster with no vertex strictly on the
-                // light's side of the receiver's plane (a coplanar neighbour, the next face of a
-                // convex mesh) never shadows this sample, so the exact predicate is not asked.
-                const geometry::CasterReach reach = geometry::caster_reach(*half_space, v0, v1, v2);
-                if (reach == geometry::CasterReach::no_hit) continue;
-                ++calls;
-                if (!predicate.blocks(t, MovedPoint{p, 0.0, {0, 0, 0}})) continue;
-                if (reach == geometry::CasterReach::every_hit ||
-                    geometry::hit_on_light_side(*half_space, p, v0, v1, v2)) {
-                  output.shadowed[i] = 1;
-                  break;
-                }
-              }
-            }
-            // Sums of integers: the totals do not depend on the partitioning.
-            pair_tests += pairs;
-            exact_predicate_calls += calls;
-          });
+    run_with_thread_limit(scene.source.parameters.threads, [&] {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size(), 64),
+                        [&](const tbb::blocked_range<std::size_t>& range) {
+                          std::uint64_t pairs = 0, calls = 0;
+                          for (std::size_t i = range.begin(); i != range.end(); ++i)
+                            shadowed[i] = exact.shadowed(i, pairs, calls) ? 1 : 0;
+                          // Sums of integers: the totals do not depend on the partitioning.
+                          pair_tests += pairs;
+                          exact_predicate_calls += calls;
+                        });
     });
+    AlgorithmOutput output;
+    output.shadowed = scene.per_view_sample(shadowed, std::uint8_t(0));
     output.counters = {{"pair_tests", pair_tests.load()},
                        {"exact_predicate_calls", exact_predicate_calls.load()}};
     return output;
