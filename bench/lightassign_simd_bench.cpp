@@ -80,8 +80,8 @@ void register_all() {
     for (const std::int64_t lights : {32, 1024, 32768, 1048576})
       for (const std::string variant : {"tiled", "clustered", "clustered+eb", "clustered+en"})
         for (const bool simd : {false, true}) {
-          const std::string name = std::string(simd ? "simd/" : "reference/") + variant + "/" +
-                                   generator + "/" + std::to_string(lights);
+          const std::string name =
+              std::string(simd ? "simd/" : "reference/") + variant + "/" + generator;
           benchmark::RegisterBenchmark(name.c_str(), BM_LightAssign, generator, variant, simd)
               ->Arg(lights)
               ->Unit(benchmark::kMillisecond)

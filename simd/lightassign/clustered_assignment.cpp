@@ -23,6 +23,11 @@ namespace shadowcts::simd {
 AlgorithmOutput assign_lights_clustered(const PreparedScene& scene,
                                         const ClusteredSettings& settings) {
   PhaseClock clock;
+  auto mark = [&](const char* what) {
+    double t = cpu();
+    std::fprintf(stderr, "%s %.1f\n", what, t - T0);
+    T0 = t;
+  };
   const Case& c = scene.source;
   const ViewSamples& samples = scene.view_samples;
   const RegularSamples& regular = scene.samples;
@@ -44,7 +49,11 @@ AlgorithmOutput assign_lights_clustered(const PreparedScene& scene,
   const ClusterGrid grid(c.camera, settings.tile_size, settings.normal_divisions, deepest);
   if (auto why = grid.overflow_reason()) throw std::invalid_argument("lightassign: " + *why);
 
-  // Cluster keys (Section 3.1), per pixel.
+  // Cluster keys (Section 3.1), per pixel; the slices in lanes, per block of samples.
+  std::vector<std::uint32_t> slice(regular.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, regular.size(), 4096), [&](const auto& r) {
+    slices_of(grid, depth.data() + r.begin(), r.size(), slice.data() + r.begin());
+  });
   std::vector<std::uint32_t> pixel_key(n, 0);
   std::vector<std::uint8_t> clustered(n, 0);
   const std::uint32_t width = samples.width;
@@ -54,7 +63,7 @@ AlgorithmOutput assign_lights_clustered(const PreparedScene& scene,
       ClusterCoordinates key;
       key.i = (s % width) / settings.tile_size;
       key.j = (s / width) / settings.tile_size;
-      key.k = grid.slice_of(depth[i]);
+      key.k = slice[i];
       if (settings.normal_divisions > 0)
         key.normal = quantize_normal(regular.normal(i), settings.normal_divisions);
       pixel_key[s] = grid.pack(key);
@@ -82,8 +91,8 @@ AlgorithmOutput assign_lights_clustered(const PreparedScene& scene,
           grow_to_contain(box, samples.samples[clusters.members[m]].position);
       } else {
         box = frustum.bounding_box(grid.sub_frustum(key));
-        for (std::uint32_t m = first; m < last; ++m)
-          grown[k] += grow_to_contain(box, samples.samples[clusters.members[m]].position);
+        grown[k] = grow_to_contain_all(box, samples, clusters.members.data() + first,
+                                       clusters.members.data() + last);
       }
       if (settings.explicit_normal_cones) {
         ExplicitNormalCone accumulate;

@@ -34,32 +34,15 @@ BoxArrays box_arrays(std::size_t count, auto&& box_of) {
 
 }  // namespace
 
-LightBvhLanes::LightBvhLanes(const LightBvh& bvh, const std::vector<RangedLight>& lights) {
+LightBvhLanes::LightBvhLanes(const LightBvh& bvh, const std::vector<RangedLight>& light_list) {
+  static_assert(sizeof(Aabb) == 6 * sizeof(float), "Aabb: min xyz, max xyz, no padding");
   for (const std::vector<Aabb>& level : bvh.levels())
     levels.push_back(
         box_arrays(level.size(), [&](std::size_t i) -> const Aabb& { return level[i]; }));
-  const std::size_t n = bvh.light_order().size();
-  leaves =
-      box_arrays(n, [&](std::size_t i) -> const Aabb& { return bvh.leaf_box(std::uint32_t(i)); });
-  order = bvh.light_order();
-  const std::size_t size = padded(n);
-  for (int k = 0; k < 3; ++k) {
-    centre[k].assign(size, 0.0f);
-    centre_d[k].assign(size, 0.0);
-  }
-  range.assign(size, 0.0f);
-  range_squared.assign(size, 0.0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& r) {
-    for (std::size_t leaf = r.begin(); leaf != r.end(); ++leaf) {
-      const RangedLight& l = lights[order[leaf]];
-      for (int k = 0; k < 3; ++k) {
-        centre[k][leaf] = l.centre[k];
-        centre_d[k][leaf] = double(l.centre[k]);
-      }
-      range[leaf] = l.range;
-      range_squared[leaf] = double(l.range) * double(l.range);  // exact: 48 bits
-    }
-  });
+  leaf_count = bvh.light_order().size();
+  if (leaf_count > 0) leaf_boxes = &bvh.leaf_box(0).min.x;
+  order = bvh.light_order().data();
+  lights = light_list.data();
 }
 
 }  // namespace shadowcts::simd

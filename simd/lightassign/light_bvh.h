@@ -1,8 +1,7 @@
 #pragma once
 // The reference's light BVH (reference/lightassign/light_bvh.h: its definition, built by it) laid
-// out for Highway loads: every level's boxes as structure of arrays, padded to whole nodes of 32
-// with boxes that overlap nothing, and the leaves' spheres in Morton order as doubles for the
-// sphere/box filter.
+// out for Highway loads: every level's node boxes as structure of arrays, padded to whole nodes of
+// 32 with boxes that overlap nothing; the leaves stay in the reference's arrays.
 #include <cstdint>
 #include <vector>
 
@@ -21,15 +20,17 @@ struct BoxArrays {
 struct LightBvhLanes {
   static constexpr std::uint32_t branching = LightBvh::branching;
 
+  // Refers to `bvh` and `lights`: they must outlive it.
   LightBvhLanes(const LightBvh& bvh, const std::vector<RangedLight>& lights);
 
-  std::vector<BoxArrays> levels;     // as LightBvh::levels(): [0] over the leaves, last: the root
-  BoxArrays leaves;                  // LightBvh::leaf_box per leaf
-  std::vector<std::uint32_t> order;  // LightBvh::light_order
-  // Per leaf (padded like the boxes): the light's centre and range as floats (for the exact
-  // test) and as doubles, with the exact range squared (for the filter).
-  std::vector<float> centre[3], range;
-  std::vector<double> centre_d[3], range_squared;
+  std::vector<BoxArrays> levels;  // as LightBvh::levels(): [0] over the leaves, last: the root
+  // The leaves are read where the reference keeps them (a leaf node's 32 boxes are gathered from
+  // its box array, 6 floats per leaf: min xyz, max xyz), not copied: at a million lights the copy
+  // would cost as much as the traversal.
+  const float* leaf_boxes = nullptr;
+  std::size_t leaf_count = 0;
+  const std::uint32_t* order = nullptr;  // LightBvh::light_order
+  const RangedLight* lights = nullptr;
 };
 
 }  // namespace shadowcts::simd

@@ -3,9 +3,12 @@
 #define HWY_TARGET_INCLUDE "simd/lightassign/lightassign_kernels.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
+// The logarithm of the slice keys.
+#include <hwy/contrib/math/math-inl.h>
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstring>
 
 #include "simd/lightassign/lightassign_kernels.h"
@@ -45,6 +48,28 @@ HWY_INLINE std::uint32_t overlap_bits(const BoxArrays& boxes, std::size_t first,
                            hn::Le(qmin_y, hn::LoadU(d, boxes.max[1].data() + at))));
     m = hn::And(m, hn::And(hn::Le(hn::LoadU(d, boxes.min[2].data() + at), qmax_z),
                            hn::Le(qmin_z, hn::LoadU(d, boxes.max[2].data() + at))));
+    bits |= mask_bits(d, m) << i;
+  }
+  return std::uint32_t(bits);
+}
+
+// LightBvh::overlap(leaf box j, box) for the `count` (<= 32) leaf boxes at `boxes` (6 floats
+// each), gathered in lanes, as bits.
+HWY_INLINE std::uint32_t leaf_overlap_bits(const float* boxes, std::size_t count, const Aabb& box) {
+  const hn::CappedTag<float, node_width> d;
+  const hn::RebindToSigned<decltype(d)> di;
+  const std::size_t lanes = hn::Lanes(d);
+  // Offsets of leaf j's box, lanes past `count` reading the last leaf (and masked off).
+  HWY_ALIGN std::int32_t offset[node_width];
+  for (std::size_t j = 0; j < node_width; ++j) offset[j] = std::int32_t(6 * std::min(j, count - 1));
+  std::uint64_t bits = 0;
+  for (std::size_t i = 0; i < count; i += lanes) {
+    const auto at = hn::Load(di, offset + i);
+    auto m = hn::FirstN(d, count - i);
+    for (int k = 0; k < 3; ++k)
+      m = hn::And(m,
+                  hn::And(hn::Le(hn::GatherIndex(d, boxes + k, at), hn::Set(d, box.max[k])),
+                          hn::Le(hn::Set(d, box.min[k]), hn::GatherIndex(d, boxes + 3 + k, at))));
     bits |= mask_bits(d, m) << i;
   }
   return std::uint32_t(bits);
@@ -92,33 +117,36 @@ ListWork QueryLightBvh(const LightBvhLanes& bvh, const Aabb& box,
     const Entry e = stack[--size];
     const std::size_t first = std::size_t(e.node) * node_width;
     if (e.level == 0) {
-      const std::size_t last = std::min(first + node_width, bvh.leaves.count);
-      w.nodes_tested += last - first;
-      const std::uint32_t overlapping = overlap_bits(bvh.leaves, first, box);
+      const std::size_t count = std::min(first + node_width, bvh.leaf_count) - first;
+      w.nodes_tested += count;
+      const std::uint32_t overlapping = leaf_overlap_bits(bvh.leaf_boxes + 6 * first, count, box);
       if (overlapping == 0) continue;
       w.light_tests += std::uint64_t(std::popcount(overlapping));
-      // The filter on the lanes that hold an overlapping leaf.
+      // The filter on the lanes of overlapping leaves (their spheres gathered, the rest zero).
+      HWY_ALIGN double centre[3][node_width] = {}, range2[node_width] = {};
+      for (std::uint32_t bits = overlapping; bits != 0; bits &= bits - 1) {
+        const int i = std::countr_zero(bits);
+        const RangedLight& light = bvh.lights[bvh.order[first + std::size_t(i)]];
+        for (int k = 0; k < 3; ++k) centre[k][i] = double(light.centre[k]);
+        range2[i] = double(light.range) * double(light.range);  // exact: 48 bits
+      }
       std::uint64_t inside = 0, outside = 0;
-      for (std::size_t i = 0; i < node_width; i += dlanes) {
+      for (std::size_t i = 0; i < count; i += dlanes) {
         if (((overlapping >> i) & dlane_mask) == 0) continue;
-        const std::size_t at = first + i;
         std::uint64_t in_bits = 0, out_bits = 0;
-        sphere_box_filter(dd, hn::LoadU(dd, bvh.centre_d[0].data() + at),
-                          hn::LoadU(dd, bvh.centre_d[1].data() + at),
-                          hn::LoadU(dd, bvh.centre_d[2].data() + at),
-                          hn::LoadU(dd, bvh.range_squared.data() + at), box, in_bits, out_bits);
+        sphere_box_filter(dd, hn::Load(dd, centre[0] + i), hn::Load(dd, centre[1] + i),
+                          hn::Load(dd, centre[2] + i), hn::Load(dd, range2 + i), box, in_bits,
+                          out_bits);
         inside |= (in_bits & dlane_mask) << i;
         outside |= (out_bits & dlane_mask) << i;
       }
       for (std::uint32_t bits = overlapping; bits != 0; bits &= bits - 1) {
         const int i = std::countr_zero(bits);
-        const std::size_t leaf = first + std::size_t(i);
+        const std::uint32_t index = bvh.order[first + std::size_t(i)];
         bool meets = (inside >> i) & 1u;
         if (!meets && !((outside >> i) & 1u))
-          meets = sphere_meets_box_exact(
-              {bvh.centre[0][leaf], bvh.centre[1][leaf], bvh.centre[2][leaf]}, bvh.range[leaf],
-              box);
-        if (meets) list.push_back(bvh.order[leaf]);
+          meets = sphere_meets_box_exact(bvh.lights[index].centre, bvh.lights[index].range, box);
+        if (meets) list.push_back(index);
       }
       continue;
     }
@@ -164,17 +192,20 @@ ListWork CullTileCandidates(const LightViewArrays& lights, const TileVolume& til
                 hn::Add(hn::Add(hn::Add(centre_length, origin_length), radius), far_depth));
     const V reach = hn::Add(radius, margin);
     const V minus_reach = hn::Neg(reach);
-    auto rejected =
-        hn::Or(hn::Lt(vz, hn::Sub(near_depth, reach)), hn::Gt(vz, hn::Add(far_depth, reach)));
+    // Lanes past the candidates count as rejected; a block stops at the first test that leaves
+    // none of its lanes.
+    auto rejected = hn::Or(
+        hn::Not(hn::FirstN(d, n)),
+        hn::Or(hn::Lt(vz, hn::Sub(near_depth, reach)), hn::Gt(vz, hn::Add(far_depth, reach))));
     const V along[4] = {vx, hn::Neg(vx), hn::Neg(vy), vy};
-    for (int p = 0; p < 4; ++p) {
+    for (int p = 0; p < 4 && !hn::AllTrue(d, rejected); ++p) {
       const V distance = hn::Div(hn::Sub(along[p], hn::Mul(hn::Set(d, tile.slope[p]), vz)),
                                  hn::Set(d, tile.norm[p]));
       rejected = hn::Or(rejected, hn::Lt(distance, minus_reach));
     }
+    if (hn::AllTrue(d, rejected)) continue;
     const std::uint64_t lane_mask = n >= 64 ? ~0ull : (1ull << n) - 1;
     std::uint64_t passing = ~mask_bits(d, rejected) & lane_mask;
-    if (passing == 0) continue;
     std::uint64_t inside = 0, outside = 0;
     sphere_box_filter(d, hn::GatherIndex(d, lights.centre[0].data(), idx),
                       hn::GatherIndex(d, lights.centre[1].data(), idx),
@@ -195,6 +226,41 @@ ListWork CullTileCandidates(const LightViewArrays& lights, const TileVolume& til
   return w;
 }
 
+void SlicesOf(const ClusterGrid& grid, const double* depth, std::size_t count,
+              std::uint32_t* slice) {
+  const hn::ScalableTag<double> d;
+  const std::size_t lanes = hn::Lanes(d);
+  // slice_of: k = floor(log(depth / near) / log(base)); near_0 = near exactly (base^0 = 1).
+  const double near = grid.slice_near(0);
+  const auto near_v = hn::Set(d, near);
+  const auto log_base = hn::Set(d, std::log(grid.slice_base()));
+  const auto margin = hn::Set(d, 1e-10);
+  const auto one = hn::Set(d, 1.0);
+  const double last = double(grid.slices() - 1);
+  HWY_ALIGN double floors[HWY_MAX_BYTES / sizeof(double)];
+  std::size_t i = 0;
+  for (; i + lanes <= count; i += lanes) {
+    const auto depth_v = hn::LoadU(d, depth + i);
+    const auto t = hn::Div(hn::Log(d, hn::Div(depth_v, near_v)), log_base);
+    const auto nearest = hn::Round(t);
+    // Sure: the quotient is away from every integer, or the depth is before the near plane.
+    const auto sure =
+        hn::Or(hn::Not(hn::Gt(depth_v, near_v)),
+               hn::Gt(hn::Abs(hn::Sub(t, nearest)), hn::Mul(margin, hn::Add(hn::Abs(t), one))));
+    hn::Store(hn::Floor(t), d, floors);
+    const std::uint64_t sure_bits = mask_bits(d, sure);
+    for (std::size_t j = 0; j < lanes; ++j) {
+      if (!((sure_bits >> j) & 1u))
+        slice[i + j] = grid.slice_of(depth[i + j]);
+      else if (!(depth[i + j] > near))
+        slice[i + j] = 0;
+      else
+        slice[i + j] = std::uint32_t(std::min(floors[j], last));
+    }
+  }
+  for (; i < count; ++i) slice[i] = grid.slice_of(depth[i]);
+}
+
 // NOLINTNEXTLINE(google-readability-namespace-comments)
 }  // namespace HWY_NAMESPACE
 }  // namespace shadowcts::simd
@@ -205,6 +271,12 @@ namespace shadowcts::simd {
 
 HWY_EXPORT(QueryLightBvh);
 HWY_EXPORT(CullTileCandidates);
+HWY_EXPORT(SlicesOf);
+
+void slices_of(const ClusterGrid& grid, const double* depth, std::size_t count,
+               std::uint32_t* slice) {
+  HWY_DYNAMIC_DISPATCH(SlicesOf)(grid, depth, count, slice);
+}
 
 ListWork query_light_bvh(const LightBvhLanes& bvh, const Aabb& box,
                          std::vector<std::uint32_t>& list) {

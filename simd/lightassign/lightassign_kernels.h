@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "reference/lightassign/cluster_key.h"
 #include "reference/lightassign/light_list_builder.h"
 #include "shadowcts/algorithm.h"
 #include "simd/lightassign/light_bvh.h"
@@ -45,5 +46,11 @@ struct TileVolume {
 ListWork cull_tile_candidates(const LightViewArrays& lights, const TileVolume& tile,
                               const std::uint32_t* candidates, std::size_t count,
                               std::vector<std::uint32_t>& list);
+
+// ClusterGrid::slice_of(depth[i]) for i < count into slice[i]: eq. 2 in lanes (Highway's
+// logarithm), the reference's own slice_of where the lanes' quotient lies within 1e-10 (relative)
+// of a slice boundary, far above the few ulps by which the two logarithms can differ.
+void slices_of(const ClusterGrid& grid, const double* depth, std::size_t count,
+               std::uint32_t* slice);
 
 }  // namespace shadowcts::simd

@@ -69,8 +69,9 @@ AlgorithmOutput assign_lights_tiled(const PreparedScene& scene, std::uint32_t ti
         f.far_depth = std::max(f.far_depth, depth[tiles.members[m]]);
       }
       out.bounds[t] = frustum.bounding_box(f);
-      for (std::uint32_t m = tiles.member_offsets[t]; m < tiles.member_offsets[t + 1]; ++m)
-        grown[t] += grow_to_contain(out.bounds[t], samples.samples[tiles.members[m]].position);
+      grown[t] = grow_to_contain_all(out.bounds[t], samples,
+                                     tiles.members.data() + tiles.member_offsets[t],
+                                     tiles.members.data() + tiles.member_offsets[t + 1]);
       // ViewFrustum::sphere_may_meet's planes: along - slope * depth >= 0 with along = x, -x,
       // -y, y.
       TileVolume& v = volumes[t];

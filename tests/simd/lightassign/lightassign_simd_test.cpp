@@ -16,11 +16,13 @@
 #include <vector>
 
 #include "oracles/light_assignment/light_volume_predicates.h"
+#include "reference/lightassign/cluster_key.h"
 #include "reference/lightassign/lightassign_algorithm.h"
 #include "shadowcts/fixtures.h"
 #include "shadowcts/prepared_scene.h"
 #include "shadowcts/view_samples.h"
 #include "simd/lightassign/lightassign_algorithm.h"
+#include "simd/lightassign/lightassign_kernels.h"
 #include "simd/lightassign/sphere_box.h"
 
 namespace shadowcts {
@@ -237,6 +239,33 @@ TEST(SimdLightAssign, ExactSphereBoxEqualsTheReferencePredicate) {
     centre[axis] = box.max[axis] + 0.375f;
     EXPECT_TRUE(simd::sphere_meets_box_exact(centre, 0.375f, box));
     EXPECT_FALSE(simd::sphere_meets_box_exact(centre, std::nextafter(0.375f, 0.0f), box));
+  }
+}
+
+// Depths on, beside and between the slice boundaries (where eq. 2's floor is decided by the
+// rounding of the reference's logarithm), before the near plane and past the last slice.
+TEST(SimdLightAssign, SlicesInLanesAreTheReferenceSlices) {
+  for (const float near : {0.1f, 1e-5f, 3.0f}) {
+    Camera camera;
+    camera.width = 1920;
+    camera.height = 1080;
+    camera.near_plane = near;
+    camera.far_plane = 1000.0f;
+    const ClusterGrid grid(camera, 32, 0, 1000.0);
+    std::vector<double> depth = {0.0, -1.0, double(near), 1e9, std::nextafter(double(near), 0.0)};
+    std::mt19937_64 random(11);
+    for (std::uint64_t k = 0; k <= grid.slices(); ++k) {
+      double boundary = grid.slice_near(k);
+      for (int step = 0; step < 3; ++step) boundary = std::nextafter(boundary, 0.0);
+      for (int step = 0; step < 7; ++step, boundary = std::nextafter(boundary, 1e300))
+        depth.push_back(boundary);
+      depth.push_back(grid.slice_near(k) *
+                      (1.0 + 0.5 * std::uniform_real_distribution<>()(random)));
+    }
+    std::vector<std::uint32_t> slices(depth.size());
+    simd::slices_of(grid, depth.data(), depth.size(), slices.data());
+    for (std::size_t i = 0; i < depth.size(); ++i)
+      ASSERT_EQ(slices[i], grid.slice_of(depth[i])) << "depth " << depth[i] << " near " << near;
   }
 }
 
