@@ -23,11 +23,6 @@ namespace shadowcts::simd {
 AlgorithmOutput assign_lights_clustered(const PreparedScene& scene,
                                         const ClusteredSettings& settings) {
   PhaseClock clock;
-  auto mark = [&](const char* what) {
-    double t = cpu();
-    std::fprintf(stderr, "%s %.1f\n", what, t - T0);
-    T0 = t;
-  };
   const Case& c = scene.source;
   const ViewSamples& samples = scene.view_samples;
   const RegularSamples& regular = scene.samples;
