@@ -157,6 +157,7 @@ SimdMetricRun run_metric(const PreparedScene& scene, const SimdMetricOptions& op
   traversal.triangles = &triangles;
   traversal.prepared = &scene;
   traversal.tiles = &tiles;
+  traversal.decision_window = options.decision_window;
   std::vector<std::uint8_t> shadowed(scene.samples.size(), 0);
   std::atomic<std::uint64_t> nodes_visited{0}, clusters_without_hit{0}, triangle_tests{0};
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tiles.size(), 16),

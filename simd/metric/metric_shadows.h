@@ -13,6 +13,7 @@ namespace shadowcts::simd::metric {
 struct SimdMetricOptions {
   shadowcts::metric::MetricOptions metric;  // insertion build only
   std::uint32_t packet = 16;                // samples per packet: 8 (4 x 2 pixels) or 16 (4 x 4)
+  double decision_window = 0x1p-40;         // PacketTraversal::decision_window
 };
 
 // The variants the port implements: "capsules", "spheres" and "capsules16" (and the reference's

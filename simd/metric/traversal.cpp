@@ -25,11 +25,6 @@ using shadowcts::metric::TraversalCounters;
 using shadowcts::metric::TraversalScene;
 using shadowcts::metric::TreeChild;
 
-// Half-width of the band around a threshold where the lanes hand a decision to the reference:
-// far above the error of s cos T - c sin T (a few 2^-53) and of the reference's atan2, subtraction
-// and threshold sums (a few ulp of numbers below 8), and, in the plane, of any evaluation order.
-constexpr double angle_window = 0x1p-40;
-
 template <std::size_t P>
 struct Packet {
   alignas(64) double ux[P], uy[P], uz[P], qld[P];
@@ -80,7 +75,8 @@ NodeDecisions evaluate_node(const PacketTraversal& traversal, const PacketNode& 
   const std::size_t N = std::min(hn::Lanes(d), max_lanes);
   const std::uint32_t chunk = (1u << N) - 1;
   const LightFrame& frame = traversal.scene->frame;
-  const double window = frame.directional ? angle_window * frame.scale : angle_window;
+  const double window =
+      frame.directional ? traversal.decision_window * frame.scale : traversal.decision_window;
   const V lo = hn::Set(d, -window), hi = hn::Set(d, window);
   bool needed[thresholds];
   needed[inside] = true;

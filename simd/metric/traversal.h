@@ -79,12 +79,20 @@ struct SampleTiles {
 
 SampleTiles sample_tiles(const RegularSamples& samples, std::uint32_t width, std::uint32_t packet);
 
+inline constexpr double default_decision_window = 0x1p-40;
+
 struct PacketTraversal {
   const shadowcts::metric::TraversalScene* scene = nullptr;  // the reference's, for its decisions
   const std::vector<PacketNode>* nodes = nullptr;
   const ClusterTriangles* triangles = nullptr;
   const PreparedScene* prepared = nullptr;
   const SampleTiles* tiles = nullptr;
+  // Half-width of the band around a threshold where a lane hands its decision to the reference:
+  // an angle, or a multiple of S in the plane. 2^-40 lies far above the error of s cos T - c sin T
+  // (a few 2^-53) and of the reference's atan2, subtraction and threshold sums (a few ulp of
+  // numbers below 8), and, in the plane, of any order of evaluation. Tests widen it to send many
+  // lanes to the reference.
+  double decision_window = default_decision_window;
 };
 
 // Answers the samples of tiles [tile_begin, tile_end): shadowed[i] for regular sample i, and adds

@@ -73,12 +73,14 @@ std::string first_sample_difference(const std::vector<std::uint8_t>& expected,
 
 // The simd run against the reference's on one case: answers and counters identical.
 void expect_same_as_reference(const Case& c, const ViewSamples& samples, const std::string& variant,
-                              std::uint32_t packet = 16) {
-  SCOPED_TRACE(variant + ", packet " + std::to_string(packet));
+                              std::uint32_t packet = 16, double decision_window = 0x1p-40) {
+  SCOPED_TRACE(variant + ", packet " + std::to_string(packet) + ", window " +
+               std::to_string(decision_window));
   const ref::MetricRun expected = ref::run_metric(c, samples, ref::parse_metric_variant(variant));
   const PreparedScene scene = prepare_scene(c, samples);
   SimdMetricOptions options = parse_simd_metric_variant(variant);
   options.packet = packet;
+  options.decision_window = decision_window;
   const SimdMetricRun actual = run_metric(scene, options);
   EXPECT_EQ(first_sample_difference(expected.output.shadowed, actual.output.shadowed), "");
   EXPECT_EQ(actual.output.counters, expected.output.counters);
@@ -108,9 +110,41 @@ TEST_P(SimdMetricOnFixtures, SameAnswersAndCountersAsTheReference) {
   for (const char* variant : variants) expect_same_as_reference(f.c, f.samples, variant);
 }
 
+// With a band of 2^-5 (radians, or S in the plane) around every threshold, a large share of the
+// lanes is decided by the reference's pivot_distance: the hand-back path and the certain
+// decisions around it must still give the reference's walk.
+TEST_P(SimdMetricOnFixtures, SameWalkWhenManyLanesAreHandedBack) {
+  const ref::testing::FixtureCase f = ref::testing::load_fixture(GetParam(), 48);
+  expect_same_as_reference(f.c, f.samples, "capsules", 16, 0x1p-5);
+}
+
 INSTANTIATE_TEST_SUITE_P(DefaultFixtures, SimdMetricOnFixtures,
                          ::testing::ValuesIn(ref::testing::hard_shadow_fixtures()),
                          ref::testing::fixture_test_name);
+
+// The stiff cases metric's own traps live in (the light a float ulp off a caster's face or 1e-6
+// from it, a light inside a cluster, zero-length capsules, coplanar and crease receivers), at
+// their own resolution: identical answers, including the reference's expected failures.
+class SimdMetricOnStiffCases : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(SimdMetricOnStiffCases, SameAnswersAndCountersAsTheReference) {
+  ref::testing::FixtureCase f;
+  f.c = make_fixture(GetParam());
+  if (f.c.light && f.c.light->kind == ShadowLightKind::sun_disk) {
+    f.c.light->kind = ShadowLightKind::directional;
+    f.c.light->angular_radius = 0.0f;
+  }
+  f.samples = generate_view_samples(f.c);
+  for (const char* variant : variants) expect_same_as_reference(f.c, f.samples, variant);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Stiff, SimdMetricOnStiffCases,
+    ::testing::Values("stiff.light_1ulp_off_caster_face", "stiff.light_1e-6_from_caster",
+                      "stiff.light_inside_cluster", "stiff.capsule_zero_length",
+                      "stiff.tessellated_convex_sphere", "stiff.walls_on_a_floor",
+                      "stiff.light_in_receiver_plane", "stiff.sun_radius_45_degrees"),
+    ref::testing::fixture_test_name);
 
 // The reference tests' random blockers with samples on shadow-boundary images, the light outside
 // and inside the blocker field, point and directional; both packet sizes.
