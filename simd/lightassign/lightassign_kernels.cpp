@@ -11,6 +11,8 @@
 #include <cmath>
 #include <cstring>
 
+#include <glm/geometric.hpp>
+
 #include "simd/lightassign/lightassign_kernels.h"
 #include "simd/lightassign/sphere_box.h"
 
@@ -163,29 +165,46 @@ ListWork QueryLightBvh(const LightBvhLanes& bvh, const Aabb& box,
   return w;
 }
 
-ListWork CullTileCandidates(const LightViewArrays& lights, const TileVolume& tile,
-                            const std::uint32_t* candidates, std::size_t count,
-                            std::vector<std::uint32_t>& list) {
+// glm::dot of two dvec3: (x + y) + z of the products.
+template <class V>
+HWY_INLINE V dot3(const V x, const V y, const V z, const double* axis) {
+  const hn::DFromV<V> d;
+  return hn::Add(hn::Add(hn::Mul(x, hn::Set(d, axis[0])), hn::Mul(y, hn::Set(d, axis[1]))),
+                 hn::Mul(z, hn::Set(d, axis[2])));
+}
+
+ListWork CullTileCandidates(const std::vector<RangedLight>& lights, const ViewFrame& frame,
+                            const TileVolume& tile, const std::uint32_t* candidates,
+                            std::size_t count, std::vector<std::uint32_t>& list) {
   ListWork w;
   w.light_tests = count;
   const hn::ScalableTag<double> d;
-  const hn::RebindToSigned<decltype(d)> di;
   using V = hn::Vec<decltype(d)>;
   const std::size_t lanes = hn::Lanes(d);
   const V near_depth = hn::Set(d, tile.near_depth), far_depth = hn::Set(d, tile.far_depth);
   const V origin_length = hn::Set(d, tile.origin_length);
   const V rounding_margin = hn::Set(d, 0x1p-40);
-  HWY_ALIGN std::int64_t index[HWY_MAX_BYTES / sizeof(std::int64_t)];
+  constexpr std::size_t max_lanes = HWY_MAX_BYTES / sizeof(double);
+  HWY_ALIGN double centre[3][max_lanes], range[max_lanes];
   for (std::size_t start = 0; start < count; start += lanes) {
     const std::size_t n = std::min(lanes, count - start);
-    for (std::size_t i = 0; i < lanes; ++i)
-      index[i] = i < n ? std::int64_t(candidates[start + i]) : 0;
-    const auto idx = hn::Load(di, index);
-    const V vx = hn::GatherIndex(d, lights.view[0].data(), idx);
-    const V vy = hn::GatherIndex(d, lights.view[1].data(), idx);
-    const V vz = hn::GatherIndex(d, lights.view[2].data(), idx);
-    const V radius = hn::GatherIndex(d, lights.range.data(), idx);
-    const V centre_length = hn::GatherIndex(d, lights.centre_length.data(), idx);
+    // The candidates' spheres (one cache line of the light each); lanes past them repeat the last.
+    for (std::size_t i = 0; i < lanes; ++i) {
+      const RangedLight& light = lights[candidates[start + std::min(i, n - 1)]];
+      for (int k = 0; k < 3; ++k) centre[k][i] = double(light.centre[k]);
+      range[i] = double(light.range);
+    }
+    const V cx = hn::Load(d, centre[0]), cy = hn::Load(d, centre[1]), cz = hn::Load(d, centre[2]);
+    const V radius = hn::Load(d, range);
+    // ViewFrustum::to_view and glm::length(centre).
+    const V dx = hn::Sub(cx, hn::Set(d, frame.origin[0]));
+    const V dy = hn::Sub(cy, hn::Set(d, frame.origin[1]));
+    const V dz = hn::Sub(cz, hn::Set(d, frame.origin[2]));
+    const V vx = dot3(dx, dy, dz, frame.right);
+    const V vy = dot3(dx, dy, dz, frame.up);
+    const V vz = dot3(dx, dy, dz, frame.forward);
+    const V centre_length =
+        hn::Sqrt(hn::Add(hn::Add(hn::Mul(cx, cx), hn::Mul(cy, cy)), hn::Mul(cz, cz)));
     // ViewFrustum::sphere_may_meet, operation by operation.
     const V margin =
         hn::Mul(rounding_margin,
@@ -207,19 +226,13 @@ ListWork CullTileCandidates(const LightViewArrays& lights, const TileVolume& til
     const std::uint64_t lane_mask = n >= 64 ? ~0ull : (1ull << n) - 1;
     std::uint64_t passing = ~mask_bits(d, rejected) & lane_mask;
     std::uint64_t inside = 0, outside = 0;
-    sphere_box_filter(d, hn::GatherIndex(d, lights.centre[0].data(), idx),
-                      hn::GatherIndex(d, lights.centre[1].data(), idx),
-                      hn::GatherIndex(d, lights.centre[2].data(), idx),
-                      hn::GatherIndex(d, lights.range_squared.data(), idx), tile.box, inside,
-                      outside);
+    sphere_box_filter(d, cx, cy, cz, hn::Mul(radius, radius), tile.box, inside, outside);
     for (; passing != 0; passing &= passing - 1) {
       const int i = std::countr_zero(passing);
       const std::uint32_t light = candidates[start + std::size_t(i)];
       bool meets = (inside >> i) & 1u;
       if (!meets && !((outside >> i) & 1u))
-        meets = sphere_meets_box_exact(
-            {lights.centre_f[0][light], lights.centre_f[1][light], lights.centre_f[2][light]},
-            lights.range_f[light], tile.box);
+        meets = sphere_meets_box_exact(lights[light].centre, lights[light].range, tile.box);
       if (meets) list.push_back(light);
     }
   }
@@ -283,10 +296,24 @@ ListWork query_light_bvh(const LightBvhLanes& bvh, const Aabb& box,
   return HWY_DYNAMIC_DISPATCH(QueryLightBvh)(bvh, box, list);
 }
 
-ListWork cull_tile_candidates(const LightViewArrays& lights, const TileVolume& tile,
-                              const std::uint32_t* candidates, std::size_t count,
-                              std::vector<std::uint32_t>& list) {
-  return HWY_DYNAMIC_DISPATCH(CullTileCandidates)(lights, tile, candidates, count, list);
+ListWork cull_tile_candidates(const std::vector<RangedLight>& lights, const ViewFrame& frame,
+                              const TileVolume& tile, const std::uint32_t* candidates,
+                              std::size_t count, std::vector<std::uint32_t>& list) {
+  return HWY_DYNAMIC_DISPATCH(CullTileCandidates)(lights, frame, tile, candidates, count, list);
+}
+
+ViewFrame::ViewFrame(const Camera& camera) {
+  // As ViewFrustum's constructor (reference/lightassign/view_frustum.cpp).
+  const glm::dvec3 o(camera.position);
+  const glm::dvec3 f = glm::normalize(glm::dvec3(camera.target) - o);
+  const glm::dvec3 r = glm::normalize(glm::cross(f, glm::dvec3(camera.up)));
+  const glm::dvec3 u = glm::cross(r, f);
+  for (int k = 0; k < 3; ++k) {
+    origin[k] = o[k];
+    right[k] = r[k];
+    up[k] = u[k];
+    forward[k] = f[k];
+  }
 }
 
 }  // namespace shadowcts::simd

@@ -21,13 +21,11 @@ namespace shadowcts::simd {
 ListWork query_light_bvh(const LightBvhLanes& bvh, const Aabb& box,
                          std::vector<std::uint32_t>& list);
 
-// Per light, in light order: what the tile test reads (ViewFrustum::to_view of the centre, the
-// length of the centre, the range; the centre and range squared for the sphere/box filter).
-struct LightViewArrays {
-  std::vector<double> view[3];
-  std::vector<double> centre_length, range;
-  std::vector<double> centre[3], range_squared;
-  std::vector<float> centre_f[3], range_f;
+// The camera frame of ViewFrustum (the same glm operations on the same inputs give the same
+// doubles): to_view(p) = (dot(p - origin, right), dot(p - origin, up), dot(p - origin, forward)).
+struct ViewFrame {
+  double origin[3], right[3], up[3], forward[3];
+  explicit ViewFrame(const Camera& camera);
 };
 
 // Per tile: ViewFrustum::sphere_may_meet's quantities for the tile's sub-frustum, and its box.
@@ -41,11 +39,13 @@ struct TileVolume {
 };
 
 // Tiled: each candidate (light indices, in order) against the tile's sub-frustum planes
-// (ViewFrustum::sphere_may_meet) and, exactly, the tile's box; appends those that pass, in order.
+// (ViewFrustum::sphere_may_meet, its view coordinates and lengths computed in lanes with
+// ViewFrustum's operations in their order) and, exactly, the tile's box; appends those that
+// pass, in order.
 // light_tests counts the candidates.
-ListWork cull_tile_candidates(const LightViewArrays& lights, const TileVolume& tile,
-                              const std::uint32_t* candidates, std::size_t count,
-                              std::vector<std::uint32_t>& list);
+ListWork cull_tile_candidates(const std::vector<RangedLight>& lights, const ViewFrame& frame,
+                              const TileVolume& tile, const std::uint32_t* candidates,
+                              std::size_t count, std::vector<std::uint32_t>& list);
 
 // ClusterGrid::slice_of(depth[i]) for i < count into slice[i]: eq. 2 in lanes (Highway's
 // logarithm), the reference's own slice_of where the lanes' quotient lies within 1e-10 (relative)

@@ -89,35 +89,12 @@ AlgorithmOutput assign_lights_tiled(const PreparedScene& scene, std::uint32_t ti
 
   clock.lap(build_phase);
 
-  // Per light: its covered tiles and what the plane and box tests read.
+  // Per light: the tiles it covers.
   const std::size_t light_count = c.ranged_lights.size();
   std::vector<TileRect> rects(light_count);
-  LightViewArrays view;
-  for (int k = 0; k < 3; ++k) {
-    view.view[k].resize(light_count);
-    view.centre[k].resize(light_count);
-    view.centre_f[k].resize(light_count);
-  }
-  view.centre_length.resize(light_count);
-  view.range.resize(light_count);
-  view.range_squared.resize(light_count);
-  view.range_f.resize(light_count);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, light_count, 4096), [&](const auto& r) {
-    for (std::size_t l = r.begin(); l != r.end(); ++l) {
-      const RangedLight& light = c.ranged_lights[l];
-      rects[l] = covered_tiles(frustum, light, tile_size, tiles_x, tiles_y);
-      const glm::dvec3 centre(light.centre);
-      const glm::dvec3 v = frustum.to_view(centre);
-      for (int k = 0; k < 3; ++k) {
-        view.view[k][l] = v[k];
-        view.centre[k][l] = centre[k];
-        view.centre_f[k][l] = light.centre[k];
-      }
-      view.centre_length[l] = glm::length(centre);
-      view.range[l] = double(light.range);
-      view.range_squared[l] = double(light.range) * double(light.range);
-      view.range_f[l] = light.range;
-    }
+    for (std::size_t l = r.begin(); l != r.end(); ++l)
+      rects[l] = covered_tiles(frustum, c.ranged_lights[l], tile_size, tiles_x, tiles_y);
   });
 
   // Candidate lists in light order, as the reference's, built over chunks of lights in parallel:
@@ -161,8 +138,10 @@ AlgorithmOutput assign_lights_tiled(const PreparedScene& scene, std::uint32_t ti
   });
 
   // Per tile: the sub-frustum planes, then the exact sphere/box test against the declared box.
+  const ViewFrame frame(c.camera);
   const ListWork work = build_light_lists(lists, out, [&](std::size_t t, auto& list) {
-    return cull_tile_candidates(view, volumes[t], candidates.data() + candidate_offsets[t],
+    return cull_tile_candidates(c.ranged_lights, frame, volumes[t],
+                                candidates.data() + candidate_offsets[t],
                                 std::size_t(candidate_offsets[t + 1] - candidate_offsets[t]), list);
   });
   out.list_of_sample = tiles.cluster_of_sample;
