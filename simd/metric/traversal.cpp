@@ -371,6 +371,10 @@ void TraverseTiles(const PacketTraversal& traversal, std::size_t tile_begin, std
     traverse_tiles_of<16>(traversal, tile_begin, tile_end, shadowed, counters);
 }
 
+std::int64_t TraversalTarget() {
+  return HWY_TARGET;
+}
+
 }  // namespace shadowcts::simd::metric::HWY_NAMESPACE
 HWY_AFTER_NAMESPACE();
 
@@ -378,6 +382,11 @@ HWY_AFTER_NAMESPACE();
 namespace shadowcts::simd::metric {
 
 HWY_EXPORT(TraverseTiles);
+HWY_EXPORT(TraversalTarget);
+
+std::int64_t traversal_target() {
+  return HWY_DYNAMIC_DISPATCH(TraversalTarget)();
+}
 
 void traverse_tiles(const PacketTraversal& traversal, std::size_t tile_begin, std::size_t tile_end,
                     std::uint8_t* shadowed, shadowcts::metric::TraversalCounters& counters) {

@@ -100,4 +100,7 @@ struct PacketTraversal {
 void traverse_tiles(const PacketTraversal& traversal, std::size_t tile_begin, std::size_t tile_end,
                     std::uint8_t* shadowed, shadowcts::metric::TraversalCounters& counters);
 
+// The Highway target traverse_tiles dispatches to now (tests force others).
+std::int64_t traversal_target();
+
 }  // namespace shadowcts::simd::metric

@@ -15,6 +15,7 @@
 #include "simd/metric/metric_algorithm.h"
 #include "simd/metric/metric_shadows.h"
 #include "simd/metric/metric_tree.h"
+#include "simd/metric/traversal.h"
 
 namespace shadowcts::simd::metric {
 namespace {
@@ -243,6 +244,7 @@ TEST(SimdMetric, DeterministicForAnyThreadCountAndHighwayTarget) {
   for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
     SCOPED_TRACE(hwy::TargetName(target));
     hwy::SetSupportedTargetsForTest(target);
+    ASSERT_EQ(traversal_target(), target);
     const AlgorithmOutput other = algorithm->run(f.c, f.samples, "capsules");
     EXPECT_EQ(other.shadowed, single.shadowed);
     EXPECT_EQ(other.counters, single.counters);
