@@ -10,12 +10,12 @@
 
 #include "reference/light_on_caster.h"
 #include "reference/ptsv/hdb2011.h"
-#include "reference/ptsv/receiver_rule.h"
 #include "reference/ptsv/triangle_setup.h"
 #include "reference/ptsv/two_pass.h"
 #include "shadowcts/errors.h"
 #include "shadowcts/phase_clock.h"
 #include "simd/ptsv/cluster_keys.h"
+#include "simd/ptsv/receiver_rule.h"
 #include "simd/ptsv/traversal.h"
 #include "simd/ptsv/triangle_setup.h"
 
@@ -90,7 +90,7 @@ struct Built {
   port::Hierarchy hierarchy;
 };
 
-Built build(const PreparedScene& scene, const ref::ViewFrame& frame, const ref::ReceiverRule& rule,
+Built build(const PreparedScene& scene, const ref::ViewFrame& frame, const port::ReceiverRule& rule,
             const VariantConfig& config) {
   const Case& c = scene.source;
   const ViewSamples& samples = scene.view_samples;
@@ -164,16 +164,16 @@ class SimdPtsv final : public Algorithm {
     PhaseClock clock;
     const ref::ViewFrame frame = ref::make_view_frame(c.camera, samples.width, samples.height);
     const double bound = scene_bound(scene);
-    const ref::ReceiverRule rule(c, samples);
+    const port::ReceiverRule rule(scene);
+    const Built built = build(scene, frame, rule, config);
     clock.lap(build_phase);
 
+    // The hierarchy answers which meshes' boxes hold samples (front-face culling).
     ref::SetupOptions setup;
     setup.extra_planes = config.extra_planes;
-    const port::PackedVolumes volumes = port::set_up_shadow_volumes(
-        c, ref::front_face_culling_meshes(c, samples, rule.reject_reach()), setup, bound);
-    clock.lap(query_phase);
-
-    const Built built = build(scene, frame, rule, config);
+    const auto culled =
+        port::front_face_culling_meshes(scene, built.hierarchy, rule.reject_reach());
+    const port::PackedVolumes volumes = port::set_up_shadow_volumes(c, culled, setup, bound);
     const port::Hierarchy& h = built.hierarchy;
     const double node_bound =
         config.implicit_cells ? std::max(bound, implicit_corner_bound(h, frame)) : bound;
@@ -187,7 +187,7 @@ class SimdPtsv final : public Algorithm {
     inputs.config.extra_planes = config.extra_planes;
     inputs.config.job_level = config.two_pass ? ref::default_job_level(h.leaf_level()) : -1;
     inputs.tolerances = ref::NodeTolerances::for_bounds(node_bound, bound);
-    clock.lap(build_phase);
+    clock.lap(query_phase);
 
     AlgorithmOutput output;
     output.shadowed.assign(samples.samples.size(), 0);
@@ -239,7 +239,7 @@ Structures build_structures(const PreparedScene& scene, const std::string& varia
   check_inputs(scene.source, scene.view_samples);
   const ref::ViewFrame frame = ref::make_view_frame(scene.source.camera, scene.view_samples.width,
                                                     scene.view_samples.height);
-  const ref::ReceiverRule rule(scene.source, scene.view_samples);
+  const port::ReceiverRule rule(scene);
   Built b = build(scene, frame, rule, config);
   Structures s;
   s.key = keys_per_view_sample(scene, b.keys.key);

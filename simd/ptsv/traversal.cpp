@@ -58,6 +58,12 @@ HWY_INLINE PlaneLanes plane_lanes(D d, const PackedVolume& vol, int k) {
           hn::Set(d, p.shift)};
 }
 
+// The cache lines the lane tests read from a volume.
+HWY_INLINE void prefetch(const PackedVolume& vol) {
+  const char* p = reinterpret_cast<const char*>(&vol);
+  for (std::size_t line = 0; line < 320; line += 64) __builtin_prefetch(p + line);
+}
+
 class Engine {
  public:
   Engine(const TraversalInputs& in, std::uint8_t* shadowed)
@@ -68,74 +74,87 @@ class Engine {
         culling_(in.config.extra_planes) {}
 
   // ref::classify_node for the children [first, first + count) of level `level` that `live` names.
+  // Its verdict is the same whichever plane is tested first, so the lanes stop at the first plane
+  // that rejects all of them and compute the accept point's values only for the lanes left.
   Verdicts test_children(const PackedVolume& vol, int level, std::uint32_t first,
                          std::uint32_t count, std::uint32_t live) const {
     const D d;
     const std::uint32_t lanes = std::uint32_t(hn::Lanes(d));
     const Level& L = h_.levels[std::size_t(level)];
     const ref::NodeTolerances& tol = in_.tolerances;
+    const bool implicit = in_.config.implicit_cells;
     const V rounding = hn::Set(d, tol.rounding);
-    const V edge_inside = hn::Set(d, -tol.rounding);
-    const V triangle_inside = hn::Set(d, -(tol.rounding + tol.accept_bias));
     const int culling = culling_ ? int(vol.extra_count) : 0;
     Verdicts out{0, 0, 0, 0};
     for (std::uint32_t base = 0; base < count; base += lanes) {
       const std::uint32_t lane_bits = lanes >= 32 ? ~0u : ((1u << lanes) - 1u);
       const std::uint32_t wanted = (live >> base) & lane_bits;
       if (wanted == 0) continue;
-      M reject = hn::FirstN(d, 0), accept = hn::FirstN(d, 0), cull = hn::FirstN(d, 0);
-      for (int k = 0; k < 4 + culling; ++k) {
+      const std::size_t at = first + base;
+      V high[4];  // implicit cells: the largest corner value, kept from the reject pass
+      // The lowest value over the bounds (and, for cells, the highest) of plane k.
+      const auto range = [&](int k, bool want_high, V& low, V& hi) {
         const PlaneLanes p = plane_lanes(d, vol, k);
-        V low = hn::Zero(d), high = hn::Zero(d);
-        if (in_.config.implicit_cells) {
+        if (implicit) {
           for (std::size_t c = 0; c < 8; ++c) {
             const V value = plane_at(p.nx, p.ny, p.nz, p.ax, p.ay, p.az, p.shift,
-                                     hn::LoadU(d, L.corner[c * 3 + 0].data() + first + base),
-                                     hn::LoadU(d, L.corner[c * 3 + 1].data() + first + base),
-                                     hn::LoadU(d, L.corner[c * 3 + 2].data() + first + base));
+                                     hn::LoadU(d, L.corner[c * 3 + 0].data() + at),
+                                     hn::LoadU(d, L.corner[c * 3 + 1].data() + at),
+                                     hn::LoadU(d, L.corner[c * 3 + 2].data() + at));
             low = c == 0 ? value : hn::Min(low, value);
-            high = c == 0 ? value : hn::Max(high, value);
+            hi = c == 0 ? value : hn::Max(hi, value);
           }
-        } else {
-          // The trivial-reject point takes lo where the normal is >= 0, the accept point hi.
-          const double* r[3];
-          const double* a[3];
-          for (std::size_t axis = 0; axis < 3; ++axis) {
-            const bool positive = vol.plane[k].normal[axis] >= 0.0;
-            r[axis] = (positive ? L.lo[axis] : L.hi[axis]).data() + first + base;
-            a[axis] = (positive ? L.hi[axis] : L.lo[axis]).data() + first + base;
-          }
+          return;
+        }
+        // The trivial-reject point takes lo where the normal is >= 0, the accept point hi.
+        const double* r[3];
+        const double* a[3];
+        for (std::size_t axis = 0; axis < 3; ++axis) {
+          const bool positive = vol.plane[k].normal[axis] >= 0.0;
+          r[axis] = (positive ? L.lo[axis] : L.hi[axis]).data() + at;
+          a[axis] = (positive ? L.hi[axis] : L.lo[axis]).data() + at;
+        }
+        if (!want_high) {
           low = plane_at(p.nx, p.ny, p.nz, p.ax, p.ay, p.az, p.shift, hn::LoadU(d, r[0]),
                          hn::LoadU(d, r[1]), hn::LoadU(d, r[2]));
-          if (k < 4)
-            high = plane_at(p.nx, p.ny, p.nz, p.ax, p.ay, p.az, p.shift, hn::LoadU(d, a[0]),
-                            hn::LoadU(d, a[1]), hn::LoadU(d, a[2]));
-        }
-        const M out_k = hn::Gt(low, rounding);
-        if (k == 0) {
-          reject = out_k;
-          accept = hn::Lt(high, edge_inside);
-        } else if (k < 3) {
-          reject = hn::Or(reject, out_k);
-          accept = hn::And(accept, hn::Lt(high, edge_inside));
-        } else if (k == 3) {
-          reject = hn::Or(reject, out_k);
-          // The reject reach: accepted only where the rule cannot reject the caster.
-          const V reach_inside =
-              hn::Neg(hn::Add(rounding, hn::LoadU(d, L.reach.data() + first + base)));
-          accept =
-              hn::And(accept, hn::And(hn::Lt(high, triangle_inside), hn::Lt(high, reach_inside)));
         } else {
-          cull = k == 4 ? out_k : hn::Or(cull, out_k);
+          hi = plane_at(p.nx, p.ny, p.nz, p.ax, p.ay, p.az, p.shift, hn::LoadU(d, a[0]),
+                        hn::LoadU(d, a[1]), hn::LoadU(d, a[2]));
+        }
+      };
+      std::uint32_t rej = 0;
+      for (int k = 0; k < 4 && rej != wanted; ++k) {
+        V low = hn::Zero(d);
+        high[k] = hn::Zero(d);
+        range(k, false, low, high[k]);
+        rej |= bits_of(d, hn::Gt(low, rounding)) & wanted;
+      }
+      out.reject |= rej << base;
+      if (rej == wanted) continue;
+      // Accepted: the accept point inside all four planes, by the rounding (the triangle plane
+      // also by the accept bias and by the reject reach of the node's samples).
+      std::uint32_t acc = wanted & ~rej;
+      for (int k = 0; k < 4 && acc != 0; ++k) {
+        V unused = hn::Zero(d);
+        if (!implicit) range(k, true, unused, high[k]);
+        if (k < 3) {
+          acc &= bits_of(d, hn::Lt(high[k], hn::Set(d, -tol.rounding)));
+        } else {
+          const V reach_inside = hn::Neg(hn::Add(rounding, hn::LoadU(d, L.reach.data() + at)));
+          acc &= bits_of(d, hn::And(hn::Lt(high[k], hn::Set(d, -(tol.rounding + tol.accept_bias))),
+                                    hn::Lt(high[k], reach_inside)));
         }
       }
-      const std::uint32_t rej = bits_of(d, reject) & wanted;
-      const std::uint32_t acc = bits_of(d, accept) & wanted & ~rej;
-      const std::uint32_t cul = culling > 0 ? bits_of(d, cull) & wanted & ~rej & ~acc : 0u;
-      out.reject |= rej << base;
       out.accept |= acc << base;
+      const std::uint32_t rest = wanted & ~rej & ~acc;
+      std::uint32_t cul = 0;
+      for (int m = 0; m < culling && cul != rest; ++m) {
+        V low = hn::Zero(d), unused = hn::Zero(d);
+        range(4 + m, false, low, unused);
+        cul |= bits_of(d, hn::Gt(low, rounding)) & rest;
+      }
       out.cull |= cul << base;
-      out.refine |= (wanted & ~rej & ~acc & ~cul) << base;
+      out.refine |= (rest & ~cul) << base;
     }
     return out;
   }
@@ -155,8 +174,9 @@ class Engine {
       const V x = hn::LoadU(d, h_.tile_pos[0].data() + base);
       const V y = hn::LoadU(d, h_.tile_pos[1].data() + base);
       const V z = hn::LoadU(d, h_.tile_pos[2].data() + base);
-      std::uint32_t outside = 0, unsure[4];
-      for (int k = 0; k < 4; ++k) {
+      const std::uint32_t all = (n >= 32 ? 0u : (1u << n)) - 1u;
+      std::uint32_t outside = 0, unsure[4] = {0, 0, 0, 0};
+      for (int k = 0; k < 4 && (outside & all) != all; ++k) {
         // ref::outside_plane: the value against its rounding bound.
         const PlaneLanes p = plane_lanes(d, vol, k);
         const V ox = hn::Sub(x, p.ax), oy = hn::Sub(y, p.ay), oz = hn::Sub(z, p.az);
@@ -169,7 +189,7 @@ class Engine {
         outside |= out_k;
         unsure[k] = ~(out_k | in_k);
       }
-      std::uint32_t candidates = ~outside & ((n >= 32 ? 0u : (1u << n)) - 1u);
+      std::uint32_t candidates = ~outside & all;
       while (candidates != 0) {
         const std::uint32_t j = std::uint32_t(std::countr_zero(candidates));
         candidates &= candidates - 1;
@@ -234,8 +254,10 @@ class Engine {
                 sample_tests += size * (e - b);
                 tbb::parallel_for(tbb::blocked_range<std::uint32_t>(b, e, 64),
                                   [&](const tbb::blocked_range<std::uint32_t>& v) {
-                                    for (std::uint32_t i = v.begin(); i != v.end(); ++i)
+                                    for (std::uint32_t i = v.begin(); i != v.end(); ++i) {
+                                      if (i + 4 < v.end()) prefetch(vols_.slot[visitors[i + 4]]);
                                       test_samples(vols_.slot[visitors[i]], std::uint32_t(p));
+                                    }
                                   });
               }
             });
@@ -258,11 +280,14 @@ class Engine {
               // Speculative: every visitor against the mask at the start of the level.
               tbb::parallel_for(tbb::blocked_range<std::uint32_t>(b, e, 256),
                                 [&](const tbb::blocked_range<std::uint32_t>& v) {
-                                  for (std::uint32_t i = v.begin(); i != v.end(); ++i)
+                                  for (std::uint32_t i = v.begin(); i != v.end(); ++i) {
+                                    // The next volumes' planes, ahead of their tests.
+                                    if (i + 8 < v.end()) prefetch(vols_.slot[visitors[i + 8]]);
                                     verdicts[i] = start == 0
                                                       ? Verdicts{0, 0, 0, 0}
                                                       : test_children(vols_.slot[visitors[i]],
                                                                       l + 1, first, count, start);
+                                  }
                                 });
               // In volume order: what each visitor tests is what its predecessors left.
               std::uint32_t mask = start;

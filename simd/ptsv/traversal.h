@@ -17,8 +17,8 @@
 
 #include "reference/ptsv/counters.h"
 #include "reference/ptsv/node_test.h"
-#include "reference/ptsv/receiver_rule.h"
 #include "simd/ptsv/hierarchy.h"
+#include "simd/ptsv/receiver_rule.h"
 #include "simd/ptsv/triangle_setup.h"
 
 namespace shadowcts::simd::ptsv {
@@ -32,7 +32,7 @@ struct TraversalConfig {
 struct TraversalInputs {
   const Hierarchy* hierarchy = nullptr;
   const PackedVolumes* volumes = nullptr;
-  const ref::ReceiverRule* rule = nullptr;
+  const ReceiverRule* rule = nullptr;
   const Case* source = nullptr;
   const PreparedScene* scene = nullptr;
   TraversalConfig config;

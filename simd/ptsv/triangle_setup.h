@@ -10,6 +10,8 @@
 
 #include "reference/ptsv/triangle_setup.h"
 #include "shadowcts/case.h"
+#include "shadowcts/prepared_scene.h"
+#include "simd/ptsv/hierarchy.h"
 
 namespace shadowcts::simd::ptsv {
 
@@ -18,20 +20,21 @@ namespace ref = ::shadowcts::ptsv;
 struct PackedPlane {
   double normal[3];
   double shift;
-  std::uint32_t anchor;  // canonical vertex index
 };
 
-// Trivially constructible: a slot per triangle is allocated without being written first.
-struct PackedVolume {
-  PackedPlane plane[7];  // edges (p,q), (q,r), (p,r), the triangle, then the extra planes
-  float vertex[3][3];    // canonical order
+// Trivially constructible: a slot per triangle is allocated without being written first. What
+// the node tests load comes first (about four cache lines), the exact definition after it.
+struct alignas(64) PackedVolume {
+  PackedPlane plane[7];       // edges (p,q), (q,r), (p,r), the triangle, then the extra planes
+  float vertex[3][3];         // canonical order
+  std::uint8_t anchor_of[7];  // each plane's anchor: a canonical vertex
+  std::uint8_t extra_count;
+  std::uint32_t triangle;
   double condition[4];
   std::int8_t edge_outside[3];
   std::int8_t triangle_outside;
-  std::uint32_t extra_count;
-  std::uint32_t triangle;
 
-  double anchor(int k, int axis) const { return double(vertex[plane[k].anchor][axis]); }
+  double anchor(int k, int axis) const { return double(vertex[anchor_of[k]][axis]); }
   // The reference volume's exact part (and triangle), for ref::outside_plane_exactly.
   void exact_volume(ref::ShadowVolume& v, bool directional, const glm::vec3& light) const;
 };
@@ -43,6 +46,12 @@ struct PackedVolumes {
   bool directional = false;
   glm::vec3 light{0.0f};  // the point light, or the direction towards the light
 };
+
+// ref::front_face_culling_meshes, the same meshes: whether a mesh's box holds a regular sample
+// (meshes_safe_for_face_culling) is asked of the hierarchy's explicit boxes instead of every
+// sample, one mesh per task. sample_reach: per view sample (ReceiverRule::reject_reach).
+std::vector<bool> front_face_culling_meshes(const PreparedScene& scene, const Hierarchy& h,
+                                            const std::vector<double>& sample_reach);
 
 PackedVolumes set_up_shadow_volumes(const Case& c, const std::vector<bool>& culled_meshes,
                                     const ref::SetupOptions& options, double scene_bound);
