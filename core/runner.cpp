@@ -31,7 +31,7 @@
 #include "junit_xml.h"
 #include "light_assignment_evaluation.h"
 #include "machine_info.h"
-#include "oracles/hard_shadow_inputs.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "report/html_report.h"
 #include "results_json.h"
 #include "run_record.h"

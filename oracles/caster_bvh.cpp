@@ -6,7 +6,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
-#include "oracles/hard_shadow_inputs.h"
+#include "oracles/exact_segment_triangle.h"
+#include "shadowcts/hard_shadow_inputs.h"
 
 namespace shadowcts {
 namespace {
@@ -40,7 +41,7 @@ struct CasterBvh::BuildItem {
 CasterBvh::CasterBvh(const Case& c) {
   std::vector<std::uint8_t> casts(c.triangles.size(), 0);
   tbb::parallel_for(std::size_t(0), c.triangles.size(),
-                    [&](std::size_t i) { casts[i] = casts_shadow(c, i) ? 1 : 0; });
+                    [&](std::size_t i) { casts[i] = oracle_casts_shadow(c, i) ? 1 : 0; });
   std::vector<BuildItem> items;
   for (std::size_t i = 0; i < c.triangles.size(); ++i) {
     if (!casts[i]) continue;

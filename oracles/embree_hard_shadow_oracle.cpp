@@ -9,8 +9,8 @@
 #include "oracles/band_moves.h"
 #include "oracles/embree_shadow_rays.h"
 #include "oracles/exact_segment_triangle.h"
-#include "oracles/hard_shadow_inputs.h"
-#include "oracles/thread_limit.h"
+#include "shadowcts/hard_shadow_inputs.h"
+#include "shadowcts/thread_limit.h"
 #include "shadowcts/phase_progress.h"
 
 namespace shadowcts {

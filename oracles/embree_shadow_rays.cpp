@@ -5,7 +5,8 @@
 
 #include <embree3/rtcore.h>
 
-#include "oracles/hard_shadow_inputs.h"
+#include "oracles/exact_segment_triangle.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/embree_scene.h"
 
 namespace shadowcts {
@@ -42,7 +43,7 @@ std::vector<std::uint32_t> shadow_casters(const Case& c) {
   // of being filtered ray by ray.
   std::vector<std::uint32_t> casters;
   for (std::size_t i = 0; i < c.triangles.size(); ++i)
-    if (casts_shadow(c, i)) casters.push_back(std::uint32_t(i));
+    if (oracle_casts_shadow(c, i)) casters.push_back(std::uint32_t(i));
   return casters;
 }
 

@@ -10,8 +10,8 @@
 #include "oracles/ambiguity_band.h"
 #include "oracles/caster_bvh.h"
 #include "oracles/exact_segment_triangle.h"
-#include "oracles/hard_shadow_inputs.h"
-#include "oracles/thread_limit.h"
+#include "shadowcts/hard_shadow_inputs.h"
+#include "shadowcts/thread_limit.h"
 #include "shadowcts/phase_progress.h"
 
 namespace shadowcts {

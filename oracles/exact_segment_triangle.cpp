@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <string>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -15,6 +16,8 @@
 #include <CGAL/Iso_cuboid_3.h>
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/intersections.h>
+
+#include "shadowcts/errors.h"
 
 namespace shadowcts {
 namespace {
@@ -83,6 +86,14 @@ std::pair<RationalKernel::Point_3, RationalKernel::Point_3> rational_query(
 }
 
 }  // namespace
+
+bool oracle_casts_shadow(const Case& c, std::size_t i) {
+  const Triangle& t = c.triangles[i];
+  if (t.mesh >= c.meshes.size())
+    throw InputError(c.source, "triangles[" + std::to_string(i) + "].mesh",
+                     "mesh id " + std::to_string(t.mesh) + " out of range");
+  return c.meshes[t.mesh].caster && !is_zero_area(t);
+}
 
 bool is_zero_area(const Triangle& t) {
   using P = Epick::Point_3;

@@ -9,7 +9,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "oracles/hard_shadow_inputs.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/case.h"
 
 namespace shadowcts {
@@ -26,6 +26,11 @@ struct MovedPoint {
 // Whether the three vertices are exactly collinear (the triangle has zero area and casts no
 // shadow).
 bool is_zero_area(const Triangle& t);
+
+// Whether triangle i of the case casts a shadow by the oracles' own tests: its mesh is a caster
+// and is_zero_area() says no (the algorithms ask shadowcts/hard_shadow_inputs.h instead). Throws
+// InputError when its mesh id is out of range.
+bool oracle_casts_shadow(const Case& c, std::size_t i);
 
 // The receiver half-space rule (DESIGN.md, "Cases and ground truth"): a caster shadows a sample
 // only where it meets the sample's segment (ray) strictly on the light's side of the receiver's

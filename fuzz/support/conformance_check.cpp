@@ -11,7 +11,7 @@
 #include <optional>
 #include <sstream>
 
-#include "oracles/hard_shadow_inputs.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "reproducer.h"
 #include "shadowcts/case_manifest.h"
 #include "shadowcts/gbuffer_exr.h"

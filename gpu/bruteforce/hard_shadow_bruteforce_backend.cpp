@@ -8,8 +8,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "oracles/hard_shadow_inputs.h"
-#include "oracles/thread_limit.h"
+#include "shadowcts/hard_shadow_inputs.h"
+#include "shadowcts/thread_limit.h"
 #include "reference/bruteforce/hard_shadow_bruteforce.h"
 #include "reference/light_on_caster.h"
 

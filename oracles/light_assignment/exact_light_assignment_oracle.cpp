@@ -15,7 +15,7 @@
 #include "oracles/light_assignment/light_band.h"
 #include "oracles/light_assignment/light_candidate_grid.h"
 #include "oracles/light_assignment/light_volume_predicates.h"
-#include "oracles/thread_limit.h"
+#include "shadowcts/thread_limit.h"
 #include "shadowcts/errors.h"
 #include "shadowcts/light_assignment_oracle.h"
 

@@ -5,7 +5,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "oracles/hard_shadow_inputs.h"
+#include "oracles/exact_segment_triangle.h"
+#include "shadowcts/hard_shadow_inputs.h"
 
 namespace shadowcts {
 namespace {
@@ -41,7 +42,7 @@ bool LightConeBvh::may_meet(const LightCone& cone, const glm::dvec3& centre, dou
 LightConeBvh::LightConeBvh(const Case& c) {
   std::vector<BuildItem> items;
   for (std::size_t i = 0; i < c.triangles.size(); ++i) {
-    if (!casts_shadow(c, i)) continue;
+    if (!oracle_casts_shadow(c, i)) continue;
     const Triangle& t = c.triangles[i];
     BuildItem item;
     item.lo = glm::min(glm::dvec3(t.v0), glm::min(glm::dvec3(t.v1), glm::dvec3(t.v2)));

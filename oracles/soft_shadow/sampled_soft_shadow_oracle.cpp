@@ -9,9 +9,10 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "oracles/hard_shadow_inputs.h"
+#include "oracles/exact_segment_triangle.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "oracles/soft_shadow/sun_disk_projection.h"
-#include "oracles/thread_limit.h"
+#include "shadowcts/thread_limit.h"
 #include "shadowcts/embree_scene.h"
 #include "shadowcts/errors.h"
 #include "shadowcts/soft_shadow_oracle.h"
@@ -37,7 +38,7 @@ void ignore_receiver(const RTCFilterFunctionNArguments* args) {
 std::vector<std::uint32_t> casters_of(const Case& c) {
   std::vector<std::uint32_t> casters;
   for (std::size_t i = 0; i < c.triangles.size(); ++i)
-    if (casts_shadow(c, i)) casters.push_back(std::uint32_t(i));
+    if (oracle_casts_shadow(c, i)) casters.push_back(std::uint32_t(i));
   return casters;
 }
 

@@ -10,8 +10,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "oracles/hard_shadow_inputs.h"
-#include "oracles/thread_limit.h"
+#include "shadowcts/hard_shadow_inputs.h"
+#include "shadowcts/thread_limit.h"
 #include "reference/sample_half_space.h"
 #include "shadowcts/geometry/exact_segment_triangle.h"
 #include "shadowcts/geometry/receiver_half_space.h"

@@ -11,7 +11,7 @@
 #include <memory>
 #include <vector>
 
-#include "oracles/hard_shadow_inputs.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/algorithm.h"
 #include "shadowcts/prepared_scene.h"
 

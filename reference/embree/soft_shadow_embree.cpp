@@ -14,8 +14,8 @@
 #include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 
-#include "oracles/hard_shadow_inputs.h"
-#include "oracles/thread_limit.h"
+#include "shadowcts/hard_shadow_inputs.h"
+#include "shadowcts/thread_limit.h"
 #include "reference/embree/hard_shadow_embree.h"
 #include "reference/sample_half_space.h"
 #include "shadowcts/embree_scene.h"

@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "oracles/thread_limit.h"
+#include "shadowcts/thread_limit.h"
 #include "reference/lightassign/brute_assignment.h"
 #include "reference/lightassign/cluster_key.h"
 #include "reference/lightassign/clustered_assignment.h"

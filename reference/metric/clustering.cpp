@@ -11,7 +11,7 @@
 #include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 
-#include "oracles/hard_shadow_inputs.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "reference/metric/seeded_random.h"
 
 namespace shadowcts::metric {

@@ -10,8 +10,8 @@
 #include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 
-#include "oracles/hard_shadow_inputs.h"
-#include "oracles/thread_limit.h"
+#include "shadowcts/hard_shadow_inputs.h"
+#include "shadowcts/thread_limit.h"
 #include "reference/metric/seeded_random.h"
 #include "reference/metric/traversal.h"
 

@@ -14,7 +14,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "oracles/hard_shadow_inputs.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "reference/psv/top_tree.h"
 #include "shadowcts/case.h"
 

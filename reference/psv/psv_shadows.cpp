@@ -10,8 +10,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "oracles/hard_shadow_inputs.h"
-#include "oracles/thread_limit.h"
+#include "shadowcts/hard_shadow_inputs.h"
+#include "shadowcts/thread_limit.h"
 #include "reference/psv/plane_side.h"
 #include "reference/psv/query_context.h"
 #include "reference/psv/query_hybrid.h"

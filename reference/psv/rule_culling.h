@@ -8,7 +8,7 @@
 // and leaves it only through the faces turned towards the light, the culled ones.
 #include <vector>
 
-#include "oracles/hard_shadow_inputs.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/case.h"
 #include "shadowcts/view_samples.h"
 

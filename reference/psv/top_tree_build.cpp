@@ -5,7 +5,7 @@
 #include <random>
 #include <utility>
 
-#include "oracles/hard_shadow_inputs.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "reference/psv/top_tree_depth.h"
 
 namespace shadowcts::psv {

@@ -9,7 +9,7 @@
 // distance is -d . x up to a constant, and a volume point y - t d (t >= 0) only gets farther.
 #include <glm/vec3.hpp>
 
-#include "oracles/hard_shadow_inputs.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/case.h"
 
 namespace shadowcts::psv {

@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "oracles/hard_shadow_inputs.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "reference/light_on_caster.h"
 #include "reference/ptsv/cluster_keys.h"
 #include "reference/ptsv/counters.h"

@@ -6,7 +6,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "oracles/hard_shadow_inputs.h"
+#include "shadowcts/hard_shadow_inputs.h"
 
 namespace shadowcts::ptsv {
 namespace {

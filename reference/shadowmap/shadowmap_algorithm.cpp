@@ -9,8 +9,8 @@
 #include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 
-#include "oracles/hard_shadow_inputs.h"
-#include "oracles/thread_limit.h"
+#include "shadowcts/hard_shadow_inputs.h"
+#include "shadowcts/thread_limit.h"
 #include "reference/shadowmap/bias.h"
 #include "reference/shadowmap/cube_map.h"
 #include "reference/shadowmap/depth_map.h"

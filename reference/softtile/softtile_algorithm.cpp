@@ -8,8 +8,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "oracles/hard_shadow_inputs.h"
-#include "oracles/thread_limit.h"
+#include "shadowcts/hard_shadow_inputs.h"
+#include "shadowcts/thread_limit.h"
 #include "reference/softtile/disk_bitmask.h"
 #include "reference/softtile/fragment_occlusion.h"
 #include "reference/softtile/softtile_gather.h"

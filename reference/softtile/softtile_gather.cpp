@@ -6,7 +6,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "oracles/hard_shadow_inputs.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "oracles/soft_shadow/sun_disk_projection.h"
 #include "reference/closed_mesh_culling.h"
 

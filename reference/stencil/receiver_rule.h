@@ -28,7 +28,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "oracles/hard_shadow_inputs.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "reference/stencil/cap_tree.h"
 #include "reference/stencil/shadow_volume.h"
 #include "reference/stencil/silhouette.h"

@@ -16,7 +16,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "oracles/hard_shadow_inputs.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "reference/stencil/silhouette.h"
 #include "shadowcts/view_samples.h"
 

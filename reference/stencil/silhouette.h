@@ -22,7 +22,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "oracles/hard_shadow_inputs.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/case.h"
 
 namespace shadowcts::stencil {

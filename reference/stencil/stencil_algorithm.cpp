@@ -6,8 +6,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "oracles/hard_shadow_inputs.h"
-#include "oracles/thread_limit.h"
+#include "shadowcts/hard_shadow_inputs.h"
+#include "shadowcts/thread_limit.h"
 #include "reference/light_on_caster.h"
 #include "reference/stencil/receiver_rule.h"
 #include "reference/stencil/shadow_volume.h"

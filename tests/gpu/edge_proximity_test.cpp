@@ -14,7 +14,7 @@
 #include <glm/vec3.hpp>
 
 #include "oracles/exact_segment_triangle.h"
-#include "oracles/hard_shadow_inputs.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/geometry/segment_triangle.h"
 
 namespace shadowcts {

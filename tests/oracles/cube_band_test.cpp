@@ -14,7 +14,7 @@
 #include "oracles/caster_bvh.h"
 #include "oracles/caster_closure.h"
 #include "oracles/exact_segment_triangle.h"
-#include "oracles/hard_shadow_inputs.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/hard_shadow_oracle.h"
 
 namespace shadowcts {

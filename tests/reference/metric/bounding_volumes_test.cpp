@@ -11,7 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "metric_test_cases.h"
-#include "oracles/hard_shadow_inputs.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "reference/metric/angular_distance.h"
 #include "reference/metric/clustering.h"
 #include "reference/metric/metric_shadows.h"

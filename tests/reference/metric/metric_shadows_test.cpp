@@ -7,7 +7,7 @@
 #include "hand_built_case.h"
 #include "metric_test_cases.h"
 #include "oracles/exact_segment_triangle.h"
-#include "oracles/hard_shadow_inputs.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "reference/metric/metric_algorithm.h"
 #include "reference/metric/metric_shadows.h"
 #include "reference/metric/traversal.h"

@@ -17,7 +17,7 @@
 
 #include "hand_built_case.h"
 #include "oracles/exact_segment_triangle.h"
-#include "oracles/hard_shadow_inputs.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/registry.h"
 
 namespace shadowcts {

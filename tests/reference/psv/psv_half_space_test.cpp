@@ -15,7 +15,7 @@
 #include <gtest/gtest.h>
 
 #include "hand_built_case.h"
-#include "oracles/hard_shadow_inputs.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "reference/psv/psv_algorithm.h"
 #include "reference/psv/psv_shadows.h"
 #include "shadowcts/geometry/exact_orientation.h"

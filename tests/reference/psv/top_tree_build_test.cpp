@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "hand_built_case.h"
-#include "oracles/hard_shadow_inputs.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "reference/psv/plane_side.h"
 #include "reference/psv/top_tree.h"
 #include "reference/psv/top_tree_build.h"

@@ -1,9 +1,9 @@
-#include "oracles/hard_shadow_inputs.h"
+#include "shadowcts/hard_shadow_inputs.h"
 
 #include <string>
 
-#include "oracles/exact_segment_triangle.h"
 #include "shadowcts/errors.h"
+#include "shadowcts/geometry/triangle_area.h"
 
 namespace shadowcts {
 
@@ -41,7 +41,7 @@ bool casts_shadow(const Case& c, std::size_t i) {
   if (t.mesh >= c.meshes.size())
     throw InputError(c.source, "triangles[" + std::to_string(i) + "].mesh",
                      "mesh id " + std::to_string(t.mesh) + " out of range");
-  return c.meshes[t.mesh].caster && !is_zero_area(t);
+  return c.meshes[t.mesh].caster && !triangle_has_zero_area(t.v0, t.v1, t.v2);
 }
 
 void check_receivers(const Case& c, const ViewSamples& samples) {
