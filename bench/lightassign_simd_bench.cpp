@@ -35,7 +35,9 @@ FullHdCase& full_hd_case(const std::string& generator, std::uint64_t lights) {
     auto& fresh = cache[{generator, lights}];
     fresh = std::make_unique<FullHdCase>();
     // depth_gaps starts at 1k triangles (250 lights).
-    fresh->c = make_fixture(generator, std::max<std::uint64_t>(4 * lights, 1024));
+    fresh->c = make_fixture(generator, generator == "depth_gaps"
+                                           ? std::max<std::uint64_t>(4 * lights, 1024)
+                                           : 4 * lights);
     fresh->c.camera.width = 1920;
     fresh->c.camera.height = 1080;
     fresh->samples = generate_view_samples(fresh->c);
