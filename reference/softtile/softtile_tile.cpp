@@ -65,6 +65,14 @@ double rotation_angle(std::uint64_t seed, std::uint32_t x, std::uint32_t y) {
 
 bool prepare_tile(const Case& c, const ViewSamples& samples, const Gathered& gathered,
                   const Variant& variant, float inverse_scale, std::size_t index, Tile& tile) {
+  if (!prepare_tile_pixels(c, samples, gathered, variant, inverse_scale, index, tile)) return false;
+  cull_candidates(gathered, tile);
+  return true;
+}
+
+bool prepare_tile_pixels(const Case& c, const ViewSamples& samples, const Gathered& gathered,
+                         const Variant& variant, float inverse_scale, std::size_t index,
+                         Tile& tile) {
   const std::uint32_t tiles_x = tiles_across(samples.width);
   const std::uint32_t x0 = std::uint32_t(index % tiles_x) * tile_size;
   const std::uint32_t y0 = std::uint32_t(index / tiles_x) * tile_size;
@@ -82,13 +90,6 @@ bool prepare_tile(const Case& c, const ViewSamples& samples, const Gathered& gat
     }
   if (tile.pixels.empty()) return false;  // early exit
   tile.bound = tile_bound(glm::dvec3(c.camera.position), positions);
-  // Cull cluster cones, then the cones of the surviving clusters' triangles.
-  for (const GatheredCluster& cluster : gathered.clusters) {
-    if (!may_shadow(gathered.sun, cluster.cone, tile.bound)) continue;
-    for (std::uint32_t k = cluster.first; k < cluster.first + cluster.count; ++k)
-      if (may_shadow(gathered.sun, gathered.triangles[k].cone, tile.bound))
-        tile.candidates.push_back(k);
-  }
   tile.fragments.resize(tile.pixels.size());
   for (std::size_t j = 0; j < tile.pixels.size(); ++j) {
     const ViewSample& s = samples.samples[tile.pixels[j]];
@@ -101,6 +102,17 @@ bool prepare_tile(const Case& c, const ViewSamples& samples, const Gathered& gat
     }
   }
   return true;
+}
+
+void cull_candidates(const Gathered& gathered, Tile& tile) {
+  tile.candidates.clear();
+  // Cull cluster cones, then the cones of the surviving clusters' triangles.
+  for (const GatheredCluster& cluster : gathered.clusters) {
+    if (!may_shadow(gathered.sun, cluster.cone, tile.bound)) continue;
+    for (std::uint32_t k = cluster.first; k < cluster.first + cluster.count; ++k)
+      if (may_shadow(gathered.sun, gathered.triangles[k].cone, tile.bound))
+        tile.candidates.push_back(k);
+  }
 }
 
 }  // namespace shadowcts::softtile

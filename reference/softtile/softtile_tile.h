@@ -37,7 +37,17 @@ float disk_inverse_scale(const Gathered& gathered, const Variant& variant);
 double rotation_angle(std::uint64_t seed, std::uint32_t x, std::uint32_t y);
 
 // Fills `tile` for tile number `index`; false (and no candidates) when it has no relevant pixel.
+// prepare_tile_pixels() and then cull_candidates().
 bool prepare_tile(const Case& c, const ViewSamples& samples, const Gathered& gathered,
                   const Variant& variant, float inverse_scale, std::size_t index, Tile& tile);
+
+// The tile's pixels, bound and fragment setups; clears its candidates. False without pixels.
+bool prepare_tile_pixels(const Case& c, const ViewSamples& samples, const Gathered& gathered,
+                         const Variant& variant, float inverse_scale, std::size_t index,
+                         Tile& tile);
+
+// The tile's candidate list against its bound: every cluster whose cone may_shadow() it, then
+// those of its triangles whose cones do, in gathered order.
+void cull_candidates(const Gathered& gathered, Tile& tile);
 
 }  // namespace shadowcts::softtile

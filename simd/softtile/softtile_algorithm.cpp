@@ -6,12 +6,13 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "shadowcts/hard_shadow_inputs.h"
-#include "shadowcts/thread_limit.h"
 #include "reference/softtile/fragment_occlusion.h"
 #include "reference/softtile/softtile_algorithm.h"
 #include "reference/softtile/softtile_variant.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/phase_clock.h"
+#include "shadowcts/thread_limit.h"
+#include "simd/softtile/shadow_cone.h"
 
 namespace shadowcts::simd {
 namespace softtile {
@@ -89,6 +90,7 @@ class SimdSofttile final : public Algorithm {
     AlgorithmOutput output;
     output.visible_fraction.assign(samples.samples.size(), 1.0f);
     const ref::Gathered gathered = ref::gather(c, samples);
+    const softtile::GatheredCones cones = softtile::gathered_cones(gathered);
     clock.lap(build_phase);
     const softtile::DiskRaster raster(variant);
     const float inverse_scale = ref::disk_inverse_scale(gathered, variant);
@@ -103,8 +105,10 @@ class SimdSofttile final : public Algorithm {
             softtile::TileScratch scratch;
             softtile::TileRaster result;
             for (std::size_t index = r.begin(); index != r.end(); ++index) {
-              if (!ref::prepare_tile(c, samples, gathered, variant, inverse_scale, index, tile))
+              if (!ref::prepare_tile_pixels(c, samples, gathered, variant, inverse_scale, index,
+                                            tile))
                 continue;
+              softtile::cull_candidates(cones, tile.bound, tile.candidates);
               TileCounters& counters = tile_counters[index];
               counters.relevant = 1;
               counters.capsule = tile.bound.capsule ? 1 : 0;

@@ -20,6 +20,7 @@
 #include "reference/softtile/softtile_variant.h"
 #include "shadowcts/fixtures.h"
 #include "shadowcts/prepared_scene.h"
+#include "simd/softtile/shadow_cone.h"
 #include "simd/softtile/softtile_algorithm.h"
 
 namespace shadowcts {
@@ -104,7 +105,21 @@ Case small_foliage() {
   return c;
 }
 
-// Per tile: the reference's masks (its candidate list rasterized pixel by pixel with
+// Where two candidate lists first differ, or "".
+std::string first_list_difference(const std::vector<std::uint32_t>& want,
+                                  const std::vector<std::uint32_t>& got) {
+  for (std::size_t i = 0; i < std::min(want.size(), got.size()); ++i)
+    if (want[i] != got[i])
+      return "entry " + std::to_string(i) + ": reference triangle " + std::to_string(want[i]) +
+             ", simd " + std::to_string(got[i]);
+  if (want.size() != got.size())
+    return "lengths: reference " + std::to_string(want.size()) + ", simd " +
+           std::to_string(got.size());
+  return "";
+}
+
+// Per tile: the caster list (the reference's cone culling against the port's lanes) and the
+// reference's masks (its candidate list rasterized pixel by pixel with
 // DiskBitmask) against the port's, for the same grid and rotation.
 void expect_tiles_match(const Case& c, const ViewSamples& samples, const std::string& name) {
   SCOPED_TRACE(c.name + " " + name);
@@ -117,9 +132,17 @@ void expect_tiles_match(const Case& c, const ViewSamples& samples, const std::st
   ref::Tile tile;
   port::TileScratch scratch;
   port::TileRaster result;
-  std::size_t compared = 0;
+  const port::GatheredCones cones = port::gathered_cones(gathered);
+  std::vector<std::uint32_t> list;
+  std::size_t compared = 0, capsules = 0;
   for (std::size_t index = 0; index < tiles; ++index) {
     if (!ref::prepare_tile(c, samples, gathered, variant, inverse_scale, index, tile)) continue;
+    for_each_target([&] {
+      port::cull_candidates(cones, tile.bound, list);
+      ASSERT_EQ(first_list_difference(tile.candidates, list), "")
+          << "tile " << index << (tile.bound.capsule ? " (capsule)" : " (sphere)");
+    });
+    capsules += tile.bound.capsule ? 1 : 0;
     port::rasterize_tile(samples, gathered, raster, tile, scratch, result);
     ASSERT_EQ(result.masks.size(), tile.pixels.size());
     std::uint64_t tests = 0, rasterized = 0;
@@ -144,6 +167,7 @@ void expect_tiles_match(const Case& c, const ViewSamples& samples, const std::st
     EXPECT_EQ(result.rasterized, rasterized) << "tile " << index;
   }
   EXPECT_GT(compared, 500u);
+  EXPECT_GT(capsules, 0u);
 }
 
 TEST(SimdSofttile, PerPixelBitmasksEqualTheReferenceOnEveryTile) {

@@ -1,0 +1,275 @@
+// Highway translation unit of the simd softtile's cone culling (see shadow_cone.h).
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "simd/softtile/shadow_cone.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include <glm/geometric.hpp>
+
+#include "simd/softtile/shadow_cone.h"
+
+#ifndef SHADOWCTS_SIMD_SOFTTILE_BOUND_TERMS
+#define SHADOWCTS_SIMD_SOFTTILE_BOUND_TERMS
+namespace shadowcts::simd::softtile::detail {
+
+// The reference's relative margin (reference/softtile/shadow_cone.cpp).
+inline constexpr double relative_margin = 1e-9;
+
+// What may_shadow computes from the bound alone, once per tile, in the reference's expressions.
+struct BoundTerms {
+  bool capsule = false;
+  double a[3], b[3], ra, rb;
+  double length_a, length_b;    // terms of the height slack
+  double middle[3], enclosing;  // the capsule's enclosing sphere
+  double ab[3], dr, lipschitz;  // b - a, rb - ra, |b - a| + |rb - ra|
+};
+
+inline BoundTerms bound_terms(const shadowcts::softtile::TileBound& bound) {
+  BoundTerms t;
+  t.capsule = bound.capsule;
+  const glm::dvec3 middle = 0.5 * (bound.a + bound.b);
+  const glm::dvec3 ab = bound.b - bound.a;
+  for (int k = 0; k < 3; ++k) {
+    t.a[k] = bound.a[k];
+    t.b[k] = bound.b[k];
+    t.middle[k] = middle[k];
+    t.ab[k] = ab[k];
+  }
+  t.ra = bound.radius_a;
+  t.rb = bound.radius_b;
+  t.length_a = glm::length(bound.a);
+  t.length_b = glm::length(bound.b);
+  t.enclosing = 0.5 * glm::length(bound.b - bound.a) + std::max(bound.radius_a, bound.radius_b);
+  t.dr = bound.radius_b - bound.radius_a;
+  t.lipschitz = glm::length(bound.b - bound.a) + std::fabs(bound.radius_b - bound.radius_a);
+  return t;
+}
+
+}  // namespace shadowcts::simd::softtile::detail
+#endif
+
+HWY_BEFORE_NAMESPACE();
+namespace shadowcts::simd::softtile {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+using detail::BoundTerms;
+using detail::relative_margin;
+using D = hn::ScalableTag<double>;
+using V = hn::Vec<D>;
+using M = hn::Mask<D>;
+
+struct ConeLanes {
+  V tip[3], start, tip_length;
+};
+
+struct SunLanes {
+  V d[3], axis[3], c, s;
+};
+
+// std::max(x, y) = x < y ? y : x (its NaN and tie behaviour included).
+HWY_INLINE V max_of(V x, V y) {
+  return hn::IfThenElse(hn::Lt(x, y), y, x);
+}
+
+// glm::length: sqrt((x x + y y) + z z).
+HWY_INLINE V length3(V x, V y, V z) {
+  return hn::Sqrt(hn::Add(hn::Add(hn::Mul(x, x), hn::Mul(y, y)), hn::Mul(z, z)));
+}
+
+// height(x) = dot(tip - x, d).
+HWY_INLINE V height(const ConeLanes& l, const SunLanes& sun, const V x[3]) {
+  return hn::Add(hn::Add(hn::Mul(hn::Sub(l.tip[0], x[0]), sun.d[0]),
+                         hn::Mul(hn::Sub(l.tip[1], x[1]), sun.d[1])),
+                 hn::Mul(hn::Sub(l.tip[2], x[2]), sun.d[2]));
+}
+
+// gap(cone, x, radius) = distance_to_cone(cone, x) - radius - slack, the cone (tip, -d, a).
+HWY_INLINE V gap(D d, const ConeLanes& l, const SunLanes& sun, const V x[3], V radius) {
+  const V v0 = hn::Sub(x[0], l.tip[0]), v1 = hn::Sub(x[1], l.tip[1]), v2 = hn::Sub(x[2], l.tip[2]);
+  const V length_v = length3(v0, v1, v2);
+  const V slack = hn::Mul(hn::Set(d, relative_margin), hn::Add(length_v, radius));
+  const V h = hn::Add(hn::Add(hn::Mul(v0, sun.axis[0]), hn::Mul(v1, sun.axis[1])),
+                      hn::Mul(v2, sun.axis[2]));
+  const V lateral =
+      length3(hn::Sub(v0, hn::Mul(h, sun.axis[0])), hn::Sub(v1, hn::Mul(h, sun.axis[1])),
+              hn::Sub(v2, hn::Mul(h, sun.axis[2])));
+  const V zero = hn::Zero(d);
+  // In the (height, lateral) half-plane the cone is the wedge below the ray (cos a, sin a).
+  const M apex = hn::Le(hn::Add(hn::Mul(h, sun.c), hn::Mul(lateral, sun.s)), zero);
+  const V side = hn::Sub(hn::Mul(lateral, sun.c), hn::Mul(h, sun.s));
+  const V distance = hn::IfThenElse(apex, length_v, max_of(zero, side));
+  return hn::Sub(hn::Sub(distance, radius), slack);
+}
+
+// g(s) of the capsule: the gap at a + s (b - a) with radius ra + s (rb - ra).
+HWY_INLINE V capsule_gap(D d, const ConeLanes& l, const SunLanes& sun, const BoundTerms& t, V s) {
+  V x[3];
+  for (int k = 0; k < 3; ++k) x[k] = hn::Add(hn::Set(d, t.a[k]), hn::Mul(s, hn::Set(d, t.ab[k])));
+  return gap(d, l, sun, x, hn::Add(hn::Set(d, t.ra), hn::Mul(s, hn::Set(d, t.dr))));
+}
+
+// may_shadow for the cones [begin, begin + count) of `a`, count <= lanes: bit i for begin + i.
+HWY_INLINE std::uint64_t may_shadow_lanes(D d, const ConeArrays& a, std::size_t begin,
+                                          std::size_t count, const SunLanes& sun,
+                                          const BoundTerms& t) {
+  const std::size_t lanes = hn::Lanes(d);
+  ConeLanes l;
+  if (count == lanes) {
+    for (int k = 0; k < 3; ++k) l.tip[k] = hn::LoadU(d, a.tip[k].data() + begin);
+    l.start = hn::LoadU(d, a.start_height.data() + begin);
+    l.tip_length = hn::LoadU(d, a.tip_length.data() + begin);
+  } else {
+    // A partial vector: the missing lanes repeat the first cone and are masked off at the end.
+    HWY_ALIGN double buffer[5][HWY_MAX_BYTES / sizeof(double)];
+    for (std::size_t i = 0; i < lanes; ++i) {
+      const std::size_t j = begin + (i < count ? i : 0);
+      for (int k = 0; k < 3; ++k) buffer[k][i] = a.tip[k][j];
+      buffer[3][i] = a.start_height[j];
+      buffer[4][i] = a.tip_length[j];
+    }
+    for (int k = 0; k < 3; ++k) l.tip[k] = hn::Load(d, buffer[k]);
+    l.start = hn::Load(d, buffer[3]);
+    l.tip_length = hn::Load(d, buffer[4]);
+  }
+  const V zero = hn::Zero(d);
+  V bound_a[3], bound_b[3], middle[3];
+  for (int k = 0; k < 3; ++k) {
+    bound_a[k] = hn::Set(d, t.a[k]);
+    bound_b[k] = hn::Set(d, t.b[k]);
+    middle[k] = hn::Set(d, t.middle[k]);
+  }
+  const V ra = hn::Set(d, t.ra), rb = hn::Set(d, t.rb);
+  // relative_margin * (length(tip) + length(a) + length(b) + ra + rb), left to right.
+  const V height_slack = hn::Mul(
+      hn::Set(d, relative_margin),
+      hn::Add(
+          hn::Add(hn::Add(hn::Add(l.tip_length, hn::Set(d, t.length_a)), hn::Set(d, t.length_b)),
+                  ra),
+          rb));
+  const V floor = hn::Sub(l.start, height_slack);
+  M result;
+  if (!t.capsule) {
+    const M below = hn::Lt(hn::Add(height(l, sun, bound_a), ra), floor);
+    result = hn::AndNot(below, hn::Le(gap(d, l, sun, bound_a, ra), zero));
+  } else {
+    // Truncation, then the enclosing sphere: decided false where either rejects.
+    const M below = hn::Lt(
+        max_of(hn::Add(height(l, sun, bound_a), ra), hn::Add(height(l, sun, bound_b), rb)), floor);
+    const M enclosing_out = hn::Gt(gap(d, l, sun, middle, hn::Set(d, t.enclosing)), zero);
+    M alive = hn::Not(hn::Or(below, enclosing_out));
+    const V g0 = capsule_gap(d, l, sun, t, zero), g1 = capsule_gap(d, l, sun, t, hn::Set(d, 1.0));
+    const M end_hit = hn::And(alive, hn::Or(hn::Le(g0, zero), hn::Le(g1, zero)));
+    result = end_hit;
+    alive = hn::AndNot(end_hit, alive);
+    V lo = zero, hi = hn::Set(d, 1.0);
+    const V three = hn::Set(d, 3.0);
+    for (int i = 0; i < 40 && !hn::AllFalse(d, alive); ++i) {
+      const V third = hn::Div(hn::Sub(hi, lo), three);
+      const V m1 = hn::Add(lo, third), m2 = hn::Sub(hi, third);
+      const V gm1 = capsule_gap(d, l, sun, t, m1), gm2 = capsule_gap(d, l, sun, t, m2);
+      const M hit = hn::And(alive, hn::Or(hn::Le(gm1, zero), hn::Le(gm2, zero)));
+      result = hn::Or(result, hit);
+      alive = hn::AndNot(hit, alive);
+      const M left = hn::Le(gm1, gm2);
+      hi = hn::IfThenElse(hn::And(alive, left), m2, hi);
+      lo = hn::IfThenElse(hn::AndNot(left, alive), m1, lo);
+    }
+    if (!hn::AllFalse(d, alive)) {
+      // best = std::min({g(lo), g(hi), g(mid), g(0), g(1)}): the first smallest.
+      V best = capsule_gap(d, l, sun, t, lo);
+      const V candidates[4] = {capsule_gap(d, l, sun, t, hi),
+                               capsule_gap(d, l, sun, t, hn::Mul(hn::Set(d, 0.5), hn::Add(lo, hi))),
+                               g0, g1};
+      for (const V& g : candidates) best = hn::IfThenElse(hn::Lt(g, best), g, best);
+      const M last = hn::Le(hn::Sub(best, hn::Mul(hn::Set(d, t.lipschitz), hn::Sub(hi, lo))), zero);
+      result = hn::Or(result, hn::And(alive, last));
+    }
+  }
+  result = hn::And(result, hn::FirstN(d, count));
+  std::uint8_t bytes[8] = {};
+  hn::StoreMaskBits(d, result, bytes);
+  std::uint64_t bits = 0;
+  std::memcpy(&bits, bytes, sizeof bits);
+  return bits;
+}
+
+void CullCandidates(const GatheredCones& cones, const shadowcts::softtile::TileBound& bound,
+                    std::vector<std::uint32_t>& candidates) {
+  const D d;
+  const std::size_t lanes = hn::Lanes(d);
+  const BoundTerms t = detail::bound_terms(bound);
+  SunLanes sun;
+  for (int k = 0; k < 3; ++k) {
+    sun.d[k] = hn::Set(d, cones.direction[k]);
+    sun.axis[k] = hn::Set(d, -cones.direction[k]);
+  }
+  sun.c = hn::Set(d, cones.cos_radius);
+  sun.s = hn::Set(d, cones.sin_radius);
+  candidates.clear();
+  const std::size_t clusters = cones.first.size();
+  for (std::size_t c0 = 0; c0 < clusters; c0 += lanes) {
+    const std::size_t n = std::min(lanes, clusters - c0);
+    std::uint64_t kept = may_shadow_lanes(d, cones.clusters, c0, n, sun, t);
+    while (kept != 0) {
+      const std::size_t cluster = c0 + std::size_t(__builtin_ctzll(kept));
+      kept &= kept - 1;
+      const std::size_t first = cones.first[cluster], end = first + cones.count[cluster];
+      for (std::size_t k0 = first; k0 < end; k0 += lanes) {
+        const std::size_t m = std::min(lanes, end - k0);
+        std::uint64_t bits = may_shadow_lanes(d, cones.triangles, k0, m, sun, t);
+        while (bits != 0) {
+          candidates.push_back(std::uint32_t(k0 + std::size_t(__builtin_ctzll(bits))));
+          bits &= bits - 1;
+        }
+      }
+    }
+  }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace shadowcts::simd::softtile
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace shadowcts::simd::softtile {
+
+HWY_EXPORT(CullCandidates);
+
+namespace {
+
+void append(ConeArrays& arrays, const shadowcts::softtile::ShadowCone& cone) {
+  for (int k = 0; k < 3; ++k) arrays.tip[k].push_back(cone.tip[k]);
+  arrays.start_height.push_back(cone.start_height);
+  arrays.tip_length.push_back(glm::length(cone.tip));
+}
+
+}  // namespace
+
+GatheredCones gathered_cones(const shadowcts::softtile::Gathered& gathered) {
+  GatheredCones cones;
+  for (const shadowcts::softtile::GatheredCluster& cluster : gathered.clusters) {
+    append(cones.clusters, cluster.cone);
+    cones.first.push_back(cluster.first);
+    cones.count.push_back(cluster.count);
+  }
+  for (const shadowcts::softtile::GatheredTriangle& t : gathered.triangles)
+    append(cones.triangles, t.cone);
+  for (int k = 0; k < 3; ++k) cones.direction[k] = gathered.sun.direction[k];
+  // distance_to_cone's std::cos / std::sin of the half-angle, the same value every call.
+  cones.cos_radius = std::cos(gathered.sun.angular_radius);
+  cones.sin_radius = std::sin(gathered.sun.angular_radius);
+  return cones;
+}
+
+void cull_candidates(const GatheredCones& cones, const shadowcts::softtile::TileBound& bound,
+                     std::vector<std::uint32_t>& candidates) {
+  HWY_DYNAMIC_DISPATCH(CullCandidates)(cones, bound, candidates);
+}
+
+}  // namespace shadowcts::simd::softtile
+#endif  // HWY_ONCE
