@@ -3,6 +3,7 @@
 # packages that are missing, reconfigures and rebuilds incrementally.
 #   SHADOWCTS_BUILD_DIR  build folder (default: build)
 #   SHADOWCTS_JOBS       parallel build jobs (default: number of cores)
+#   SHADOWCTS_TARGETS    space-separated targets to build (default: all)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -30,4 +31,6 @@ jobs="${SHADOWCTS_JOBS:-$(nproc)}"
 launcher=()
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_CUDA_COMPILER_LAUNCHER=ccache)
 cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release "${launcher[@]}"
-cmake --build "$build_dir" -j "$jobs"
+targets=()
+for t in ${SHADOWCTS_TARGETS:-}; do targets+=(--target "$t"); done
+cmake --build "$build_dir" -j "$jobs" "${targets[@]}"

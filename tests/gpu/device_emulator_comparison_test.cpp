@@ -1,0 +1,91 @@
+// The device build and the emulated build of each kernel on the same cases, sample by sample
+// (ci/device.sh runs this where a GPU is lent). Every robust sample must get the same answer;
+// every difference is listed with its class in the ambiguity band, and a table gives the sizes
+// and times. Without a device it is skipped with the reason.
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "gpu/device.h"
+#include "shadowcts/fixtures.h"
+#include "shadowcts/hard_shadow_inputs.h"
+#include "shadowcts/hard_shadow_oracle.h"
+#include "shadowcts/registry.h"
+#include "shadowcts/view_samples.h"
+
+namespace shadowcts {
+namespace {
+
+const char* band_name(BandClass b) {
+  switch (b) {
+    case BandClass::robust_lit:
+      return "robust lit";
+    case BandClass::robust_shadowed:
+      return "robust shadowed";
+    case BandClass::ambiguous:
+      return "ambiguous";
+    case BandClass::not_compared:
+      break;
+  }
+  return "not compared";
+}
+
+double run_ms(const Algorithm& a, const PreparedScene& scene, AlgorithmOutput& out) {
+  const auto start = std::chrono::steady_clock::now();
+  out = a.run(scene, a.info().variants.front());
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+TEST(DeviceEmulatorComparison, RobustSamplesAgreeOnEveryDefaultFixture) {
+  if (const auto reason = cuda_unavailable_reason()) GTEST_SKIP() << *reason;
+  const Registry& registry = builtin_registry();
+  int compared = 0;
+  std::printf("%-26s %10s %8s %8s %12s %12s\n", "case", "regular", "differ", "robust", "device ms",
+              "emulated ms");
+  for (const std::string& fixture : default_fixtures()) {
+    for (const auto& device : registry.algorithms()) {
+      if (device->info().backend != "cuda") continue;
+      const Algorithm* emulated = registry.find(device->info().id, "cuda-emu");
+      ASSERT_NE(emulated, nullptr) << device->info().id << " has no emulated backend";
+      const Case c = hard_shadow_view(make_fixture(fixture));
+      const ViewSamples samples = generate_view_samples(c);
+      const std::string& variant = device->info().variants.front();
+      if (device->unsupported_reason(c, samples, variant) ||
+          emulated->unsupported_reason(c, samples, variant))
+        continue;
+      const PreparedScene scene = prepare_scene(c, samples);
+      AlgorithmOutput on_device, under_emulator;
+      const double device_ms = run_ms(*device, scene, on_device);
+      const double emulated_ms = run_ms(*emulated, scene, under_emulator);
+      ASSERT_EQ(on_device.shadowed.size(), under_emulator.shadowed.size());
+      std::vector<std::size_t> differ;
+      for (std::size_t i = 0; i < samples.samples.size(); ++i)
+        if (on_device.shadowed[i] != under_emulator.shadowed[i]) differ.push_back(i);
+      std::size_t robust = 0;
+      if (!differ.empty()) {
+        const HardShadowTruth truth = exact_hard_shadow_oracle(c, samples);
+        for (std::size_t i : differ) {
+          const ViewSample& s = samples.samples[i];
+          robust += truth.band[i] != BandClass::ambiguous;
+          std::printf("  %s %s pixel (%u, %u): device %d, emulated %d, exact %d, %s\n",
+                      c.name.c_str(), device->info().id.c_str(), s.pixel_x, s.pixel_y,
+                      on_device.shadowed[i], under_emulator.shadowed[i], truth.shadowed[i],
+                      band_name(truth.band[i]));
+        }
+      }
+      std::printf("%-26s %10zu %8zu %8zu %12.1f %12.1f\n",
+                  (c.name + " " + device->info().id).c_str(), scene.samples.size(), differ.size(),
+                  robust, device_ms, emulated_ms);
+      EXPECT_EQ(robust, 0u) << c.name << ": robust samples differ between device and emulator";
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 0) << "no case ran on both backends";
+}
+
+}  // namespace
+}  // namespace shadowcts
