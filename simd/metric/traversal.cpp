@@ -30,6 +30,7 @@ struct Packet {
   alignas(64) double ux[P], uy[P], uz[P], qld[P];
   std::uint32_t regular[P];
   const ViewSample* sample[P];
+  std::uint32_t receiver[P];
   LightSpaceQuery query[P];
   RaySpace ray[P];
   glm::dvec3 from[P], to[P];
@@ -208,52 +209,61 @@ NodeDecisions evaluate_node(const PacketTraversal& traversal, const PacketNode& 
 }
 
 // The cluster's slots [begin, begin + count), count <= 64, that the reference's
-// triangle_blocks_sample might not reject: those whose exact double edge functions do not have
-// strictly mixed signs, or lie within ray_near_triangle_edge's bound (both bit for bit as
-// segment_triangle.h computes them from the same float ray-space vertices).
+// triangle_blocks_sample might not reject. A slot is left out only when, for the same float
+// ray-space vertices segment_triangle.h computes (bit for bit), every float edge function
+// E_f = q.x p.y - q.y p.x exceeds 9/8 of the float near-edge bound B_f = 2^-16 n_p n_q and the
+// signs are strictly mixed. Why that is certain: |E - E_f| <= 2.1 u (|q.x p.y| + |q.y p.x|)
+// <= 2.1 u n_p n_q = 2.1 * 2^-8 B (u = 2^-24), and B_f is within 6u of the double bound B, so
+// |E| > B: ray_near_triangle_edge is false, every sign is exact, and with mixed signs the
+// watertight test misses. Where a float value is not normal (scenes far below 2^-40 or above
+// 2^40) or not finite, the slot is left to the reference.
 std::uint64_t triangles_to_decide(const ClusterTriangles& triangles, std::uint32_t begin,
                                   std::uint32_t count, const RaySpace& ray) {
   if (ray.zero_direction) return 0;  // the reference's tests hit nothing
-  const hn::ScalableTag<double> d;
-  const hn::Rebind<float, decltype(d)> df;
-  using V = hn::Vec<decltype(d)>;
+  const hn::ScalableTag<float> df;
   using VF = hn::Vec<decltype(df)>;
-  constexpr std::size_t max_lanes = 8;
-  const std::size_t N = std::min(hn::Lanes(d), max_lanes);
+  constexpr std::size_t max_lanes = 16;
+  const std::size_t N = std::min(hn::Lanes(df), max_lanes);
   const VF ox = hn::Set(df, component(ray.origin, ray.kx)),
            oy = hn::Set(df, component(ray.origin, ray.ky)),
            oz = hn::Set(df, component(ray.origin, ray.kz));
   const VF shear_x = hn::Set(df, ray.shear_x), shear_y = hn::Set(df, ray.shear_y);
-  const V edge_scale = hn::Set(d, 0x1p-16), zero = hn::Zero(d);
+  const VF edge_scale = hn::Set(df, 0x1p-16f), margin = hn::Set(df, 1.125f),
+           smallest = hn::Set(df, 0x1p-100f), zero = hn::Zero(df);
   std::uint64_t decide = 0;
   for (std::uint32_t j = 0; j < count; j += std::uint32_t(N)) {
-    V x[3], y[3], extent[3];
+    VF x[3], y[3], extent[3];
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t slot = begin + j;
       const VF rx = hn::Sub(hn::LoadU(df, triangles.xyz[ray.kx][k].data() + slot), ox);
       const VF ry = hn::Sub(hn::LoadU(df, triangles.xyz[ray.ky][k].data() + slot), oy);
       const VF rz = hn::Sub(hn::LoadU(df, triangles.xyz[ray.kz][k].data() + slot), oz);
-      const VF fx = hn::Sub(rx, hn::Mul(shear_x, rz));
-      const VF fy = hn::Sub(ry, hn::Mul(shear_y, rz));
-      x[k] = hn::PromoteTo(d, fx);
-      y[k] = hn::PromoteTo(d, fy);
-      extent[k] = hn::Add(hn::Add(hn::PromoteTo(d, hn::Abs(fx)), hn::PromoteTo(d, hn::Abs(fy))),
-                          hn::PromoteTo(d, hn::Abs(rz)));
+      x[k] = hn::Sub(rx, hn::Mul(shear_x, rz));
+      y[k] = hn::Sub(ry, hn::Mul(shear_y, rz));
+      extent[k] = hn::Add(hn::Add(hn::Abs(x[k]), hn::Abs(y[k])), hn::Abs(rz));
     }
-    // exact_edge_function(p, q) = q.x p.y - q.y p.x for (b, c), (c, a), (a, b).
+    // Edges (b, c), (c, a), (a, b), as exact_edge_function(p, q) = q.x p.y - q.y p.x.
     const int p_of[3] = {1, 2, 0}, q_of[3] = {2, 0, 1};
-    auto near = hn::Lt(edge_scale, zero);  // all false
-    auto negative = near, positive = near;
+    auto certain = hn::Not(hn::Lt(edge_scale, zero));  // all true
+    auto negative = hn::Lt(edge_scale, zero), positive = negative;
     for (int e = 0; e < 3; ++e) {
       const int p = p_of[e], q = q_of[e];
-      const V edge = hn::Sub(hn::Mul(x[q], y[p]), hn::Mul(y[q], x[p]));
-      near =
-          hn::Or(near, hn::Le(hn::Abs(edge), hn::Mul(hn::Mul(edge_scale, extent[p]), extent[q])));
+      const VF edge = hn::Sub(hn::Mul(x[q], y[p]), hn::Mul(y[q], x[p]));
+      const VF bound = hn::Mul(hn::Mul(edge_scale, extent[p]), extent[q]);
+      certain = hn::And(
+          certain, hn::And(hn::Gt(hn::Abs(edge), hn::Mul(margin, bound)),
+                           hn::And(hn::Ge(bound, smallest), hn::And(hn::Ge(extent[p], smallest),
+                                                                    hn::Ge(extent[q], smallest)))));
       negative = hn::Or(negative, hn::Lt(edge, zero));
       positive = hn::Or(positive, hn::Gt(edge, zero));
     }
-    const auto undecided = hn::Or(near, hn::Not(hn::And(negative, positive)));
-    decide |= std::uint64_t(lane_bits(d, undecided)) << j;
+    const auto skip = hn::And(certain, hn::And(negative, positive));
+    std::uint8_t bytes[8] = {};
+    hn::StoreMaskBits(df, hn::Not(skip), bytes);
+    std::uint64_t bits = 0;
+    for (std::size_t byte = 0; byte < (N + 7) / 8; ++byte)
+      bits |= std::uint64_t(bytes[byte]) << (8 * byte);
+    decide |= bits << j;
   }
   return count >= 64 ? decide : decide & ((std::uint64_t(1) << count) - 1);
 }
@@ -268,7 +278,7 @@ bool cluster_blocks(const PacketTraversal& traversal, Packet<P>& pk, int l, std:
                                               pk.to[l]))
     return false;
   const shadowcts::metric::Clustering& clustering = *scene.clustering;
-  const std::uint32_t receiver = pk.sample[l]->receiver;
+  const std::uint32_t receiver = pk.receiver[l];
   const std::uint32_t end = clustering.cluster_begin[cluster + 1];
   for (std::uint32_t begin = clustering.cluster_begin[cluster]; begin < end; begin += 64) {
     const std::uint32_t count = std::min<std::uint32_t>(64, end - begin);
@@ -301,16 +311,19 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
     pk.ux[l] = pk.uy[l] = pk.uz[l] = pk.qld[l] = 0.0;
     if (l >= count) continue;
     const std::uint32_t i = members[l];
-    const ViewSample& sample = prepared.view_samples.samples[prepared.samples.index[i]];
+    // The prepared scene's compacted arrays (the same floats as the view sample's); the view
+    // sample itself is read only by the reference's triangle decisions.
+    pk.sample[l] = &prepared.view_samples.samples[prepared.samples.index[i]];
+    pk.receiver[l] = prepared.samples.receiver[i];
     pk.regular[l] = i;
-    pk.sample[l] = &sample;
     shadowed[i] = 0;
-    const glm::dvec3 p(sample.position);
+    const glm::vec3 position(prepared.samples.px[i], prepared.samples.py[i],
+                             prepared.samples.pz[i]);
+    const glm::dvec3 p(position);
     pk.query[l] = shadowcts::metric::make_light_space_query(frame, p);
     if (pk.query[l].at_light) continue;  // the segment is a point: nothing hits it
-    const ShadowRay ray = frame.directional
-                              ? ray_to_directional_light(sample.position, c.light->direction)
-                              : segment_to_point_light(sample.position, c.light->position);
+    const ShadowRay ray = frame.directional ? ray_to_directional_light(position, c.light->direction)
+                                            : segment_to_point_light(position, c.light->position);
     pk.ray[l] = make_ray_space(ray);
     pk.from[l] = p;
     pk.to[l] =
@@ -345,9 +358,18 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
     // Pushed overlap, far, near, so that near is walked first, as the reference walks it.
     const std::uint32_t overlap = decisions.overlap & going, far = decisions.far & going,
                         near = decisions.near & going;
-    if (overlap) stack.push_back({n.child[int(TreeChild::overlap)], overlap});
-    if (far) stack.push_back({n.child[int(TreeChild::far)], far});
-    if (near) stack.push_back({n.child[int(TreeChild::near)], near});
+    // The first lines of a pushed node are fetched while the walk goes on: far and overlap
+    // children lie elsewhere in the near-first order.
+    const auto push = [&](int child, std::uint32_t mask) {
+      const PacketNode* next = &nodes[n.child[child]];
+      __builtin_prefetch(next);
+      __builtin_prefetch(reinterpret_cast<const char*>(next) + 64);
+      __builtin_prefetch(reinterpret_cast<const char*>(next) + 128);
+      stack.push_back({n.child[child], mask});
+    };
+    if (overlap) push(int(TreeChild::overlap), overlap);
+    if (far) push(int(TreeChild::far), far);
+    if (near) push(int(TreeChild::near), near);
   }
 }
 
