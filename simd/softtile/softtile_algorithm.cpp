@@ -6,7 +6,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "reference/softtile/fragment_occlusion.h"
 #include "reference/softtile/softtile_algorithm.h"
 #include "reference/softtile/softtile_variant.h"
 #include "shadowcts/hard_shadow_inputs.h"
@@ -22,27 +21,48 @@ namespace ref = shadowcts::softtile;
 void rasterize_tile(const ViewSamples& samples, const ref::Gathered& gathered,
                     const DiskRaster& raster, const ref::Tile& tile, TileScratch& scratch,
                     TileRaster& out) {
-  out.masks.assign(tile.pixels.size(), raster.empty_disk());
+  const std::size_t n = tile.pixels.size();
+  out.masks.assign(n, raster.empty_disk());
   out.tests = out.rasterized = out.rasterized_max = 0;
-  std::array<glm::vec3, 3> edges;
-  for (std::size_t j = 0; j < tile.pixels.size(); ++j) {
-    const std::uint32_t receiver = samples.samples[tile.pixels[j]].receiver;
-    // The reference's per-candidate setup (scalar, the same floats), then one dispatched call
-    // that rasterizes every triangle that touches the disk. The reference's batches of
-    // softtile_tile_triangle_limit candidates only split this loop: the masks persist.
-    scratch.edges.clear();
-    std::uint64_t rasterized = 0;
-    for (const std::uint32_t k : tile.candidates) {
-      const ref::GatheredTriangle& t = gathered.triangles[k];
-      if (t.triangle == receiver) continue;
-      ++out.tests;
-      if (!ref::triangle_edges(tile.fragments[j], t.light_space, edges)) continue;
-      scratch.edges.insert(scratch.edges.end(), edges.begin(), edges.end());
-      ++rasterized;
+  scratch.fragments.assign(tile.fragments);
+  const std::size_t stride = scratch.fragments.x.size();
+  scratch.accepted.resize(stride);
+  scratch.lane_edges.resize(9 * stride);
+  scratch.receivers.resize(n);
+  scratch.per_pixel.resize(std::max(scratch.per_pixel.size(), n));
+  for (std::size_t j = 0; j < n; ++j)
+    scratch.receivers[j] = samples.samples[tile.pixels[j]].receiver;
+  std::vector<std::uint64_t> rasterized(n, 0);
+  // Batches of candidates: each triangle set up for every fragment in lanes, then each pixel's
+  // accepted triangles rasterized into its mask with the rows in lanes. The masks persist across
+  // batches, as across the reference's softtile_tile_triangle_limit batches.
+  constexpr std::size_t batch = 16;
+  for (std::size_t begin = 0; begin < tile.candidates.size(); begin += batch) {
+    const std::size_t end = std::min(tile.candidates.size(), begin + batch);
+    for (std::size_t j = 0; j < n; ++j) scratch.per_pixel[j].clear();
+    for (std::size_t k = begin; k < end; ++k) {
+      const ref::GatheredTriangle& t = gathered.triangles[tile.candidates[k]];
+      triangle_edges(scratch.fragments, t.light_space, scratch.accepted.data(),
+                     scratch.lane_edges.data(), stride);
+      for (std::size_t j = 0; j < n; ++j) {
+        if (scratch.receivers[j] == t.triangle) continue;
+        ++out.tests;
+        if (scratch.accepted[j] == 0) continue;
+        const float* e = scratch.lane_edges.data() + j;
+        for (int i = 0; i < 3; ++i)
+          scratch.per_pixel[j].emplace_back(e[(3 * i) * stride], e[(3 * i + 1) * stride],
+                                            e[(3 * i + 2) * stride]);
+      }
     }
-    raster.clear_triangles(scratch.edges.data(), rasterized, out.masks[j]);
-    out.rasterized += rasterized;
-    out.rasterized_max = std::max(out.rasterized_max, rasterized);
+    for (std::size_t j = 0; j < n; ++j) {
+      const std::size_t triangles = scratch.per_pixel[j].size() / 3;
+      raster.clear_triangles(scratch.per_pixel[j].data(), triangles, out.masks[j]);
+      rasterized[j] += triangles;
+    }
+  }
+  for (std::size_t j = 0; j < n; ++j) {
+    out.rasterized += rasterized[j];
+    out.rasterized_max = std::max(out.rasterized_max, rasterized[j]);
   }
 }
 

@@ -1,9 +1,9 @@
 #pragma once
 // simd `softtile`: the reference's tiles (reference/softtile/softtile_tile.h: relevant pixels,
 // sphere/capsule bound, cone-culled caster list, fragment setups) over oneTBB, each pixel's
-// candidates set up with the reference's triangle_edges, and the disk bitmask rasterized with
-// Highway (rows in lanes, simd/softtile/disk_bitmask.h). Same masks, answers and counters as the
-// reference for every variant.
+// candidates set up for all its fragments in float lanes (simd/softtile/fragment_occlusion.h), and
+// the disk bitmask rasterized with Highway (rows in lanes, simd/softtile/disk_bitmask.h). Same
+// masks, answers and counters as the reference for every variant.
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -12,6 +12,7 @@
 #include "reference/softtile/softtile_tile.h"
 #include "shadowcts/algorithm.h"
 #include "simd/softtile/disk_bitmask.h"
+#include "simd/softtile/fragment_occlusion.h"
 
 namespace shadowcts {
 
@@ -29,7 +30,10 @@ struct TileRaster {
 
 // Scratch reused across the tiles of one thread.
 struct TileScratch {
-  std::vector<glm::vec3> edges;
+  FragmentArrays fragments;
+  std::vector<std::uint32_t> accepted, receivers;
+  std::vector<float> lane_edges;                  // 9 rows of the padded fragment count
+  std::vector<std::vector<glm::vec3>> per_pixel;  // accepted edges of the current batch
 };
 
 void rasterize_tile(const ViewSamples& samples, const shadowcts::softtile::Gathered& gathered,

@@ -2,6 +2,7 @@
 // disk bitmask rows on adversarial edges, per pixel on every tile of the soft fixtures (the first
 // differing tile / pixel / row is reported), and the same answers and counters, for every variant,
 // thread count and Highway target this CPU runs.
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -20,6 +21,7 @@
 #include "reference/softtile/softtile_variant.h"
 #include "shadowcts/fixtures.h"
 #include "shadowcts/prepared_scene.h"
+#include "simd/softtile/fragment_occlusion.h"
 #include "simd/softtile/shadow_cone.h"
 #include "simd/softtile/softtile_algorithm.h"
 
@@ -133,7 +135,9 @@ void expect_tiles_match(const Case& c, const ViewSamples& samples, const std::st
   port::TileScratch scratch;
   port::TileRaster result;
   const port::GatheredCones cones = port::gathered_cones(gathered);
-  std::vector<std::uint32_t> list;
+  std::vector<std::uint32_t> list, accepted;
+  port::FragmentArrays fragments;
+  std::vector<float> lane_edges;
   std::size_t compared = 0, capsules = 0;
   for (std::size_t index = 0; index < tiles; ++index) {
     if (!ref::prepare_tile(c, samples, gathered, variant, inverse_scale, index, tile)) continue;
@@ -143,6 +147,28 @@ void expect_tiles_match(const Case& c, const ViewSamples& samples, const std::st
           << "tile " << index << (tile.bound.capsule ? " (capsule)" : " (sphere)");
     });
     capsules += tile.bound.capsule ? 1 : 0;
+    // The fragment setup in lanes: the reference's accept/reject and edge functions, bitwise.
+    fragments.assign(tile.fragments);
+    const std::size_t stride = fragments.x.size();
+    accepted.resize(stride);
+    lane_edges.resize(9 * stride);
+    for (std::size_t k = 0; k < std::min<std::size_t>(tile.candidates.size(), 64); ++k) {
+      const ref::GatheredTriangle& t = gathered.triangles[tile.candidates[k]];
+      port::triangle_edges(fragments, t.light_space, accepted.data(), lane_edges.data(), stride);
+      for (std::size_t j = 0; j < tile.pixels.size(); ++j) {
+        std::array<glm::vec3, 3> want;
+        const bool ok = ref::triangle_edges(tile.fragments[j], t.light_space, want);
+        ASSERT_EQ(accepted[j], ok ? 1u : 0u)
+            << "tile " << index << ", candidate " << k << ", pixel " << tile.pixels[j];
+        if (!ok) continue;
+        for (int i = 0; i < 3; ++i)
+          for (int comp = 0; comp < 3; ++comp)
+            ASSERT_EQ(std::bit_cast<std::uint32_t>(lane_edges[(3 * i + comp) * stride + j]),
+                      std::bit_cast<std::uint32_t>(want[i][comp]))
+                << "tile " << index << ", candidate " << k << ", pixel " << tile.pixels[j]
+                << ", edge " << i << ", component " << comp;
+      }
+    }
     port::rasterize_tile(samples, gathered, raster, tile, scratch, result);
     ASSERT_EQ(result.masks.size(), tile.pixels.size());
     std::uint64_t tests = 0, rasterized = 0;
