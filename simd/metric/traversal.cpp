@@ -283,15 +283,23 @@ bool cluster_blocks(const PacketTraversal& traversal, Packet<P>& pk, int l, std:
   for (std::uint32_t begin = clustering.cluster_begin[cluster]; begin < end; begin += 64) {
     const std::uint32_t count = std::min<std::uint32_t>(64, end - begin);
     const std::uint64_t decide = triangles_to_decide(*traversal.triangles, begin, count, pk.ray[l]);
-    for (std::uint32_t k = 0; k < count; ++k) {
-      const std::uint32_t t = clustering.triangles[begin + k];
-      if (t == receiver) continue;
-      ++counters.triangle_tests;
-      if ((decide >> k & 1) == 0) continue;
-      if (shadowcts::metric::triangle_blocks_sample(scene, *pk.sample[l], pk.ray[l], t,
-                                                    pk.half_space[l]))
+    const std::uint32_t* slots = clustering.triangles.data() + begin;
+    // The slot of the receiver, which is never tested nor counted (at most one per cluster).
+    std::uint32_t receiver_slot = count;
+    for (std::uint32_t k = 0; k < count; ++k)
+      if (slots[k] == receiver) receiver_slot = k;
+    // Only the slots the filter could not rule out need the reference; every other slot is a
+    // test that misses, counted as the reference counts it.
+    for (std::uint64_t rest = decide; rest != 0; rest &= rest - 1) {
+      const std::uint32_t k = std::uint32_t(std::countr_zero(rest));
+      if (k == receiver_slot) continue;
+      if (shadowcts::metric::triangle_blocks_sample(scene, *pk.sample[l], pk.ray[l], slots[k],
+                                                    pk.half_space[l])) {
+        counters.triangle_tests += k + 1 - (receiver_slot < k ? 1 : 0);
         return true;
+      }
     }
+    counters.triangle_tests += count - (receiver_slot < count ? 1 : 0);
   }
   ++counters.clusters_tested_without_hit;
   return false;
