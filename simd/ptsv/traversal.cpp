@@ -233,6 +233,9 @@ class Engine {
     // Visitors of level 0: every volume, in order.
     std::vector<std::uint32_t> offsets = {0, std::uint32_t(vols_.order.size())};
     std::vector<std::uint32_t> visitors = vols_.order;
+    // Per visit of a level; reused from level to level (every entry is written before it is read).
+    std::vector<Verdicts> verdicts;
+    std::vector<std::uint32_t> remaining;
     std::atomic<std::uint64_t> node_tests{0}, sample_tests{0}, accepts{0}, rejects{0}, culls{0};
     for (int l = 0; l <= leaves; ++l) {
       const Level& L = h_.levels[std::size_t(l)];
@@ -264,8 +267,8 @@ class Engine {
         break;
       }
       const Level& below = h_.levels[std::size_t(l) + 1];
-      std::vector<Verdicts> verdicts(visits);
-      std::vector<std::uint32_t> remaining(visits);
+      verdicts.resize(std::max<std::size_t>(verdicts.size(), visits));
+      remaining.resize(std::max<std::size_t>(remaining.size(), visits));
       std::vector<std::uint32_t> child_count(below.size() + 1, 0u);
       std::vector<std::uint32_t>& level_live = live[std::size_t(l)];
       tbb::parallel_for(

@@ -1,8 +1,11 @@
 #include "simd/ptsv/triangle_setup.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
+#include <new>
 #include <stdexcept>
 
 #include <tbb/blocked_range.h>
@@ -64,7 +67,18 @@ bool holds_a_sample(const Hierarchy& h, const glm::vec3& lo, const glm::vec3& hi
   return false;
 }
 
+PackedVolume* allocate_volumes(std::size_t n) {
+  void* p =
+      std::aligned_alloc(alignof(PackedVolume), std::max<std::size_t>(1, n) * sizeof(PackedVolume));
+  if (p == nullptr) throw std::bad_alloc();
+  return static_cast<PackedVolume*>(p);
+}
+
 }  // namespace
+
+void FreeVolumes::operator()(PackedVolume* p) const {
+  std::free(p);
+}
 
 std::vector<bool> front_face_culling_meshes(const PreparedScene& scene, const Hierarchy& h,
                                             const std::vector<double>& sample_reach) {
@@ -153,7 +167,7 @@ PackedVolumes set_up_shadow_volumes(const Case& c, const std::vector<bool>& cull
                                     const ref::SetupOptions& options, double scene_bound) {
   PackedVolumes out;
   const std::size_t n = c.triangles.size();
-  out.slot.reset(new PackedVolume[n]);  // default-initialized: written in parallel below
+  out.slot.reset(allocate_volumes(n));  // uninitialized: written in parallel below
   std::vector<std::uint8_t> has(n, 0);
   tbb::combinable<ref::SetupCounts> counts;
   tbb::parallel_for(

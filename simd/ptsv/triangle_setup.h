@@ -39,9 +39,14 @@ struct alignas(64) PackedVolume {
   void exact_volume(ref::ShadowVolume& v, bool directional, const glm::vec3& light) const;
 };
 
+struct FreeVolumes {
+  void operator()(PackedVolume* p) const;
+};
+
 struct PackedVolumes {
-  std::unique_ptr<PackedVolume[]> slot;  // per triangle; valid where `order` names it
-  std::vector<std::uint32_t> order;      // triangles with a volume, in index order
+  // Per triangle; valid where `order` names it (aligned_alloc: not written before the setup).
+  std::unique_ptr<PackedVolume[], FreeVolumes> slot;
+  std::vector<std::uint32_t> order;  // triangles with a volume, in index order
   ref::SetupCounts counts;
   bool directional = false;
   glm::vec3 light{0.0f};  // the point light, or the direction towards the light
