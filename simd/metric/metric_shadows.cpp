@@ -8,6 +8,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 #include <glm/geometric.hpp>
 
 #include "reference/metric/seeded_random.h"
@@ -52,14 +53,31 @@ std::vector<bool> meshes_around_light(const PreparedScene& scene, const ref::Lig
   const std::size_t meshes = scene.casters.mesh_closed.size();
   std::vector<bool> around(meshes, false);
   if (frame.directional) return around;
-  std::vector<glm::dvec3> lo(meshes, glm::dvec3(INFINITY)), hi(meshes, glm::dvec3(-INFINITY));
+  // Per-mesh boxes, reduced in parallel: min and max do not depend on the order.
+  using Boxes = std::pair<std::vector<glm::dvec3>, std::vector<glm::dvec3>>;
   const CasterArrays& t = scene.casters;
-  for (std::size_t i = 0; i < t.size(); ++i)
-    for (int k = 0; k < 3; ++k) {
-      const glm::dvec3 v(t.corner(i, k));
-      lo[t.mesh[i]] = glm::min(lo[t.mesh[i]], v);
-      hi[t.mesh[i]] = glm::max(hi[t.mesh[i]], v);
-    }
+  const Boxes empty(std::vector<glm::dvec3>(meshes, glm::dvec3(INFINITY)),
+                    std::vector<glm::dvec3>(meshes, glm::dvec3(-INFINITY)));
+  const Boxes boxes = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, t.size(), 16384), empty,
+      [&](const tbb::blocked_range<std::size_t>& range, Boxes box) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i)
+          for (int k = 0; k < 3; ++k) {
+            const glm::dvec3 v(t.corner(i, k));
+            box.first[t.mesh[i]] = glm::min(box.first[t.mesh[i]], v);
+            box.second[t.mesh[i]] = glm::max(box.second[t.mesh[i]], v);
+          }
+        return box;
+      },
+      [](Boxes a, const Boxes& b) {
+        for (std::size_t m = 0; m < a.first.size(); ++m) {
+          a.first[m] = glm::min(a.first[m], b.first[m]);
+          a.second[m] = glm::max(a.second[m], b.second[m]);
+        }
+        return a;
+      });
+  const std::vector<glm::dvec3>& lo = boxes.first;
+  const std::vector<glm::dvec3>& hi = boxes.second;
   for (std::size_t m = 0; m < meshes; ++m)
     around[m] = glm::all(glm::greaterThanEqual(frame.light_position, lo[m] - frame.margin)) &&
                 glm::all(glm::lessThanEqual(frame.light_position, hi[m] + frame.margin));

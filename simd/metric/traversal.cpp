@@ -11,6 +11,8 @@
 #include <numbers>
 #include <optional>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 
 #include "simd/metric/traversal.h"
@@ -461,61 +463,67 @@ std::vector<PacketNode> packet_nodes(const shadowcts::metric::TraversalScene& sc
     }
   }
   std::vector<PacketNode> nodes(order.size());
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    const shadowcts::metric::MetricTreeNode& t = tree_nodes[order[i]];
-    const shadowcts::metric::LightSpaceElement& e = (*scene.elements)[t.pivot];
-    PacketNode& n = nodes[i];
-    n.light_distance = t.light_distance;
-    n.pivot_light_distance = e.light_distance;
-    n.pivot = t.pivot;
-    for (int c = 0; c < 3; ++c) {
-      n.has_child[c] = t.child[c] != no_node;
-      n.child[c] = n.has_child[c] ? packed[t.child[c]] : 0;
-    }
-    n.radius = e.radius;
-    // The reference's comparisons: distance <= 0, >= overlap_min - slack, <= overlap_max +
-    // slack, >= delta - slack, <= delta + slack.
-    n.threshold[inside] = 0.0;
-    n.threshold[overlap_low] = t.overlap_min - frame.slack;
-    n.threshold[overlap_high] = t.overlap_max + frame.slack;
-    n.threshold[far_side] = t.partition_distance - frame.slack;
-    n.threshold[near_side] = t.partition_distance + frame.slack;
-    const bool point = e.centre == CentreKind::point;
-    if (e.covers_everything) {
-      n.kind = NodeKind::covers_everything;
-    } else if (frame.directional) {
-      n.kind = point ? NodeKind::disk : NodeKind::capsule_2d;
-    } else {
-      n.kind = point ? NodeKind::point_cone : NodeKind::arc_cone;
-    }
-    const glm::dvec3 a = n.kind == NodeKind::arc_cone ? e.arc.a : e.a;
-    n.a[0] = a.x, n.a[1] = a.y, n.a[2] = a.z;
-    if (n.kind == NodeKind::arc_cone) {
-      n.b[0] = e.arc.b.x, n.b[1] = e.arc.b.y, n.b[2] = e.arc.b.z;
-      n.normal[0] = e.arc.normal.x, n.normal[1] = e.arc.normal.y, n.normal[2] = e.arc.normal.z;
-    }
-    if (n.kind == NodeKind::capsule_2d) {
-      // b - a and dot(b - a, b - a) as closest_parameter computes them (z is 0 in the plane).
-      const glm::dvec3 ab = e.b - e.a;
-      n.b[0] = ab.x, n.b[1] = ab.y;
-      n.segment_length_squared = glm::dot(ab, ab);
-    }
-    if (!frame.directional && !e.covers_everything) {
-      for (int k = 0; k < thresholds; ++k) {
-        const double shifted = n.threshold[k] + e.radius;
-        if (std::isnan(shifted)) {
-          n.cos_t[k] = n.sin_t[k] = 0.0;  // always near: decided by the reference
-        } else if (shifted < -0x1p-30) {
-          n.cos_t[k] = 2.0;  // every angle is above
-        } else if (shifted > std::numbers::pi + 0x1p-30) {
-          n.cos_t[k] = -2.0;  // every angle is below
-        } else {
-          n.cos_t[k] = std::cos(shifted);
-          n.sin_t[k] = std::sin(shifted);
-        }
-      }
-    }
-  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, order.size(), 512),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                        const shadowcts::metric::MetricTreeNode& t = tree_nodes[order[i]];
+                        const shadowcts::metric::LightSpaceElement& e = (*scene.elements)[t.pivot];
+                        PacketNode& n = nodes[i];
+                        n.light_distance = t.light_distance;
+                        n.pivot_light_distance = e.light_distance;
+                        n.pivot = t.pivot;
+                        for (int c = 0; c < 3; ++c) {
+                          n.has_child[c] = t.child[c] != no_node;
+                          n.child[c] = n.has_child[c] ? packed[t.child[c]] : 0;
+                        }
+                        n.radius = e.radius;
+                        // The reference's comparisons: distance <= 0, >= overlap_min - slack, <=
+                        // overlap_max + slack, >= delta - slack, <= delta + slack.
+                        n.threshold[inside] = 0.0;
+                        n.threshold[overlap_low] = t.overlap_min - frame.slack;
+                        n.threshold[overlap_high] = t.overlap_max + frame.slack;
+                        n.threshold[far_side] = t.partition_distance - frame.slack;
+                        n.threshold[near_side] = t.partition_distance + frame.slack;
+                        const bool point = e.centre == CentreKind::point;
+                        if (e.covers_everything) {
+                          n.kind = NodeKind::covers_everything;
+                        } else if (frame.directional) {
+                          n.kind = point ? NodeKind::disk : NodeKind::capsule_2d;
+                        } else {
+                          n.kind = point ? NodeKind::point_cone : NodeKind::arc_cone;
+                        }
+                        const glm::dvec3 a = n.kind == NodeKind::arc_cone ? e.arc.a : e.a;
+                        n.a[0] = a.x, n.a[1] = a.y, n.a[2] = a.z;
+                        if (n.kind == NodeKind::arc_cone) {
+                          n.b[0] = e.arc.b.x, n.b[1] = e.arc.b.y, n.b[2] = e.arc.b.z;
+                          n.normal[0] = e.arc.normal.x, n.normal[1] = e.arc.normal.y,
+                          n.normal[2] = e.arc.normal.z;
+                        }
+                        if (n.kind == NodeKind::capsule_2d) {
+                          // b - a and dot(b - a, b - a) as closest_parameter computes them (z is 0
+                          // in the plane).
+                          const glm::dvec3 ab = e.b - e.a;
+                          n.b[0] = ab.x, n.b[1] = ab.y;
+                          n.segment_length_squared = glm::dot(ab, ab);
+                        }
+                        if (!frame.directional && !e.covers_everything) {
+                          for (int k = 0; k < thresholds; ++k) {
+                            const double shifted = n.threshold[k] + e.radius;
+                            if (std::isnan(shifted)) {
+                              n.cos_t[k] = n.sin_t[k] =
+                                  0.0;  // always near: decided by the reference
+                            } else if (shifted < -0x1p-30) {
+                              n.cos_t[k] = 2.0;  // every angle is above
+                            } else if (shifted > std::numbers::pi + 0x1p-30) {
+                              n.cos_t[k] = -2.0;  // every angle is below
+                            } else {
+                              n.cos_t[k] = std::cos(shifted);
+                              n.sin_t[k] = std::sin(shifted);
+                            }
+                          }
+                        }
+                      }
+                    });
   return nodes;
 }
 
