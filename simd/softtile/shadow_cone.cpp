@@ -49,6 +49,27 @@ inline BoundTerms bound_terms(const shadowcts::softtile::TileBound& bound) {
   return t;
 }
 
+// Whether every cluster of group `group` provably gets may_shadow false for a bound whose first
+// cone test is against the sphere (x, r) (the sphere bound, or the capsule's enclosing sphere):
+// member i answers false when its computed gap_i = dist(cone_i, x) - r - 1e-9 (|x - tip_i| + r)
+// is > 0. cone_i lies inside the group's cone G, so dist(cone_i, x) >= dist(G, x), and
+// |x - tip_i| <= |x - tip_G| + spread. Hence dist(G, x) - r > 2e-9 (|x - tip_G| + spread + r)
+// leaves gap_i > 1e-9 (...) exactly, far above the rounding of either computation (~1e-15 of the
+// same magnitudes). NaN anywhere: not skipped.
+inline bool group_outside(const GatheredCones& cones, const ConeGroups& groups, std::size_t group,
+                          const glm::dvec3& x, double r) {
+  if (!groups.skippable[group]) return false;
+  const glm::dvec3 tip(groups.tip[0][group], groups.tip[1][group], groups.tip[2][group]);
+  const glm::dvec3 axis(-cones.direction[0], -cones.direction[1], -cones.direction[2]);
+  const glm::dvec3 v = x - tip;
+  const double h = glm::dot(v, axis);
+  const double l = glm::length(v - h * axis);
+  const double distance = h * cones.cos_radius + l * cones.sin_radius <= 0.0
+                              ? glm::length(v)
+                              : std::max(0.0, l * cones.cos_radius - h * cones.sin_radius);
+  return distance - r > 2.0 * relative_margin * (glm::length(v) + groups.spread[group] + r);
+}
+
 }  // namespace shadowcts::simd::softtile::detail
 #endif
 
@@ -212,19 +233,36 @@ void CullCandidates(const GatheredCones& cones, const shadowcts::softtile::TileB
   sun.s = hn::Set(d, cones.sin_radius);
   candidates.clear();
   const std::size_t clusters = cones.first.size();
-  for (std::size_t c0 = 0; c0 < clusters; c0 += lanes) {
-    const std::size_t n = std::min(lanes, clusters - c0);
-    std::uint64_t kept = may_shadow_lanes(d, cones.clusters, c0, n, sun, t);
-    while (kept != 0) {
-      const std::size_t cluster = c0 + std::size_t(__builtin_ctzll(kept));
-      kept &= kept - 1;
-      const std::size_t first = cones.first[cluster], end = first + cones.count[cluster];
-      for (std::size_t k0 = first; k0 < end; k0 += lanes) {
-        const std::size_t m = std::min(lanes, end - k0);
-        std::uint64_t bits = may_shadow_lanes(d, cones.triangles, k0, m, sun, t);
-        while (bits != 0) {
-          candidates.push_back(std::uint32_t(k0 + std::size_t(__builtin_ctzll(bits))));
-          bits &= bits - 1;
+  // The sphere the reference's first cone test rejects with: the bound itself, or the capsule's
+  // enclosing sphere.
+  const glm::dvec3 test_centre = t.capsule ? glm::dvec3(t.middle[0], t.middle[1], t.middle[2])
+                                           : glm::dvec3(t.a[0], t.a[1], t.a[2]);
+  const double test_radius = t.capsule ? t.enclosing : t.ra;
+  for (std::size_t g0 = 0; g0 < clusters; g0 += cluster_group) {
+    if (detail::group_outside(cones, cones.cluster_groups, g0 / cluster_group, test_centre,
+                              test_radius))
+      continue;
+    const std::size_t group_end = std::min(clusters, g0 + cluster_group);
+    for (std::size_t c0 = g0; c0 < group_end; c0 += lanes) {
+      const std::size_t n = std::min(lanes, group_end - c0);
+      std::uint64_t kept = may_shadow_lanes(d, cones.clusters, c0, n, sun, t);
+      while (kept != 0) {
+        const std::size_t cluster = c0 + std::size_t(__builtin_ctzll(kept));
+        kept &= kept - 1;
+        const std::size_t first = cones.first[cluster], end = first + cones.count[cluster];
+        std::size_t group = cones.first_triangle_group[cluster];
+        for (std::size_t t0 = first; t0 < end; t0 += triangle_group, ++group) {
+          if (detail::group_outside(cones, cones.triangle_groups, group, test_centre, test_radius))
+            continue;
+          const std::size_t t_end = std::min(end, t0 + triangle_group);
+          for (std::size_t k0 = t0; k0 < t_end; k0 += lanes) {
+            const std::size_t m = std::min(lanes, t_end - k0);
+            std::uint64_t bits = may_shadow_lanes(d, cones.triangles, k0, m, sun, t);
+            while (bits != 0) {
+              candidates.push_back(std::uint32_t(k0 + std::size_t(__builtin_ctzll(bits))));
+              bits &= bits - 1;
+            }
+          }
         }
       }
     }
@@ -250,6 +288,40 @@ void append(ConeArrays& arrays, const shadowcts::softtile::ShadowCone& cone) {
 
 }  // namespace
 
+// A sphere (centre c, radius R) around the members' tips lies inside the cone of half-angle a
+// whose tip is R / sin(a) above c (as shadow_cone() places a cone around a caster's sphere;
+// widened by 1e-9 against rounding); the members' cones, translates of it by points inside it,
+// lie inside it too.
+void ConeGroups::add(const ConeArrays& cones, std::size_t begin, std::size_t end,
+                     const double direction[3], double sin_radius) {
+  const auto tip_of = [&](std::size_t i) {
+    return glm::dvec3(cones.tip[0][i], cones.tip[1][i], cones.tip[2][i]);
+  };
+  glm::dvec3 lo = tip_of(begin), hi = lo;
+  bool finite = true;
+  for (std::size_t i = begin; i < end; ++i) {
+    const glm::dvec3 t = tip_of(i);
+    finite = finite && std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.z);
+    lo = glm::min(lo, t);
+    hi = glm::max(hi, t);
+  }
+  const glm::dvec3 centre = 0.5 * (lo + hi);
+  double radius = 0.0;
+  for (std::size_t i = begin; i < end; ++i)
+    radius = std::max(radius, glm::length(tip_of(i) - centre));
+  radius = radius * (1.0 + 1e-9) + 1e-300;
+  const glm::dvec3 d(direction[0], direction[1], direction[2]);
+  const glm::dvec3 group_tip = centre + d * (radius * (1.0 + 1e-9) / sin_radius);
+  double largest = 0.0;
+  for (std::size_t i = begin; i < end; ++i)
+    largest = std::max(largest, glm::length(tip_of(i) - group_tip));
+  for (int k = 0; k < 3; ++k) tip[k].push_back(group_tip[k]);
+  spread.push_back(largest * (1.0 + 1e-9));
+  finite = finite && std::isfinite(group_tip.x) && std::isfinite(group_tip.y) &&
+           std::isfinite(group_tip.z) && std::isfinite(largest);
+  skippable.push_back(finite ? 1 : 0);
+}
+
 GatheredCones gathered_cones(const shadowcts::softtile::Gathered& gathered) {
   GatheredCones cones;
   for (const shadowcts::softtile::GatheredCluster& cluster : gathered.clusters) {
@@ -263,6 +335,17 @@ GatheredCones gathered_cones(const shadowcts::softtile::Gathered& gathered) {
   // distance_to_cone's std::cos / std::sin of the half-angle, the same value every call.
   cones.cos_radius = std::cos(gathered.sun.angular_radius);
   cones.sin_radius = std::sin(gathered.sun.angular_radius);
+  for (std::size_t g0 = 0; g0 < gathered.clusters.size(); g0 += cluster_group)
+    cones.cluster_groups.add(cones.clusters, g0,
+                             std::min(gathered.clusters.size(), g0 + cluster_group),
+                             cones.direction, cones.sin_radius);
+  for (const shadowcts::softtile::GatheredCluster& cluster : gathered.clusters) {
+    cones.first_triangle_group.push_back(std::uint32_t(cones.triangle_groups.spread.size()));
+    const std::size_t end = std::size_t(cluster.first) + cluster.count;
+    for (std::size_t t0 = cluster.first; t0 < end; t0 += triangle_group)
+      cones.triangle_groups.add(cones.triangles, t0, std::min(end, t0 + triangle_group),
+                                cones.direction, cones.sin_radius);
+  }
   return cones;
 }
 

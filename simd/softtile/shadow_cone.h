@@ -17,10 +17,32 @@ struct ConeArrays {
   std::vector<double> tip_length;  // glm::length(tip), as the reference's height slack takes it
 };
 
+// Consecutive clusters per group. A group's cone (same axis and angle, its tip placed so that the
+// cone holds every member's tip, hence every member's cone) lets a tile skip all of them when its
+// bound lies farther outside the group's cone than every member's slack plus rounding: then each
+// member's may_shadow is provably false (see gathered_cones).
+inline constexpr std::size_t cluster_group = 16;
+// Consecutive triangles of one cluster per group, the same way.
+inline constexpr std::size_t triangle_group = 8;
+
+struct ConeGroups {
+  // Per group: the group cone's tip, the largest distance from it to a member's tip, and whether
+  // the group may be skipped at all (every member's tip finite).
+  std::vector<double> tip[3], spread;
+  std::vector<std::uint8_t> skippable;
+
+  // Adds the group of cones [begin, end) of `cones`.
+  void add(const ConeArrays& cones, std::size_t begin, std::size_t end, const double direction[3],
+           double sin_radius);
+};
+
 // The gathered cones as structure of arrays, and the sun.
 struct GatheredCones {
   ConeArrays clusters, triangles;
   std::vector<std::uint32_t> first, count;  // per cluster: its range of triangles
+  ConeGroups cluster_groups;                // of cluster_group clusters
+  ConeGroups triangle_groups;  // of triangle_group triangles, from each cluster's first
+  std::vector<std::uint32_t> first_triangle_group;  // per cluster
   double direction[3] = {0, 0, 1};
   double cos_radius = 1.0, sin_radius = 0.0;
 };
