@@ -6,13 +6,13 @@
 // per-sample counter is the reference's (reference/metric/traversal.h).
 //
 // Exactness: the node tests decide in lanes only where the decision is certain, and hand a lane
-// back to the reference's scalar pivot_distance where a float comparison lies within 2^-40 (of an
+// back to the reference's scalar pivot_distance where a double comparison lies within 2^-40 (of an
 // angle, or of S in the plane) of its threshold. The angle test needs no atan2: for an angle
 // theta = atan2(s, c) with s >= 0 and a threshold T in [0, pi], sign(theta - T) is the sign of
-// s cos T - c sin T. The triangles of a candidate cluster are filtered in lanes by the exact
-// signs of their double edge functions and the reference's near-edge bound (both bit for bit the
-// reference's); the ones the filter cannot rule out are decided by the reference's own
-// triangle_blocks_sample.
+// s cos T - c sin T. The triangles of a candidate cluster are filtered in float lanes: a
+// triangle is skipped only where its float edge functions (from the reference's own float
+// ray-space vertices) certainly have mixed signs and certainly exceed the reference's near-edge
+// bound; every other one is decided by the reference's own triangle_blocks_sample.
 #include <cstdint>
 #include <vector>
 
