@@ -11,8 +11,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "core/external_result.h"
-#include "core/scene_export.h"
+#include "runner/external_result.h"
+#include "runner/scene_export.h"
 #include "list_command.h"
 #include "report_command.h"
 #include "shadowcts/case_manifest.h"

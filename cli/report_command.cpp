@@ -3,8 +3,8 @@
 #include <filesystem>
 
 #include "core/atomic_file.h"
-#include "core/report/html_report.h"
-#include "core/report/run_comparison.h"
+#include "runner/report/html_report.h"
+#include "runner/report/run_comparison.h"
 #include "shadowcts/errors.h"
 #include "shadowcts/runner.h"
 

@@ -19,7 +19,8 @@ namespace shadowcts {
 namespace {
 
 namespace fs = std::filesystem;
-using nlohmann::json;
+// Keeps the file's key order: phases are listed in the order the algorithm declares them.
+using json = nlohmann::ordered_json;
 
 // Phases are read inside the runner's timed interval with the same steady clock, so they never
 // exceed it; this only absorbs the rounding of nanoseconds converted to double milliseconds.

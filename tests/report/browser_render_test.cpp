@@ -81,7 +81,7 @@ std::size_t count_of(const std::string& text, const std::string& part) {
   return n;
 }
 
-// The verdict matrix's cell colours (core/report/html_report.cpp, .m-Pass and .m-Fail).
+// The verdict matrix's cell colours (runner/report/html_report.cpp, .m-Pass and .m-Fail).
 constexpr int pass_cell[] = {0x7b, 0xc7, 0x7f}, fail_cell[] = {0xe8, 0x67, 0x5a};
 
 TEST(BrowserRender, ChromiumShowsEveryCaseWithItsPlotAndImages) {
