@@ -61,10 +61,9 @@ double reference_query_cpu_seconds(const FullHdCase& f, const std::string& varia
   const metric::MetricOptions options = metric::parse_metric_variant(variant);
   const metric::ClusteredScene scene = metric::cluster_scene(f.c, options);
   const metric::LightStructure structure = metric::build_light_structure(f.c, scene, options);
-  const auto exact = metric::make_traversal_exact(f.c);
   metric::TraversalScene traversal;
   traversal.c = &f.c;
-  traversal.exact = exact.get();
+  traversal.light = hard_shadow_light(f.c);
   traversal.clustering = &scene.clustering;
   traversal.volumes = &scene.volumes;
   traversal.elements = &structure.elements;

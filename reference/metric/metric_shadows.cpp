@@ -10,10 +10,10 @@
 #include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 
-#include "shadowcts/hard_shadow_inputs.h"
-#include "shadowcts/thread_limit.h"
 #include "reference/metric/seeded_random.h"
 #include "reference/metric/traversal.h"
+#include "shadowcts/hard_shadow_inputs.h"
+#include "shadowcts/thread_limit.h"
 
 namespace shadowcts::metric {
 namespace {
@@ -153,8 +153,7 @@ MetricRun run_metric(const Case& c, const ViewSamples& samples, const MetricOpti
     start = std::chrono::steady_clock::now();
     TraversalScene traversal;
     traversal.c = &c;
-    const ExactShadowPredicate exact(hard_shadow_light(c), c.scale());
-    traversal.exact = &exact;
+    traversal.light = hard_shadow_light(c);
     traversal.clustering = &scene.clustering;
     traversal.volumes = &scene.volumes;
     traversal.elements = &structure.elements;

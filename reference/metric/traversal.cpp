@@ -5,6 +5,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "shadowcts/geometry/exact_segment_triangle.h"
 #include "shadowcts/geometry/receiver_half_space.h"
 #include "shadowcts/geometry/segment_triangle.h"
 
@@ -24,10 +25,6 @@ geometry::ReceiverHalfSpace sample_half_space(const Case& c, const LightFrame& f
 }
 
 }  // namespace
-
-std::unique_ptr<const ExactShadowPredicate> make_traversal_exact(const Case& c) {
-  return std::make_unique<const ExactShadowPredicate>(hard_shadow_light(c), c.scale());
-}
 
 // Section 5.4, step 2: the slabs along the normal-cone axis reject a shadow segment that stays on
 // one side of them. Both ends of the segment are exact in double up to the rounding of the dot
@@ -61,7 +58,10 @@ bool triangle_blocks_sample(const TraversalScene& scene, const ViewSample& sampl
   const glm::dvec3 v0(triangle.v0), v1(triangle.v1), v2(triangle.v2);
   const geometry::CasterReach reach = geometry::caster_reach(*half_space, v0, v1, v2);
   if (reach == geometry::CasterReach::no_hit) return false;
-  if (!float_hit && !scene.exact->blocks(triangle, MovedPoint{p, 0.0, {0, 0, 0}})) return false;
+  if (!float_hit && !(scene.light.directional
+                          ? geometry::ray_meets_triangle(p, scene.light.direction, v0, v1, v2)
+                          : geometry::segment_meets_triangle(p, scene.light.position, v0, v1, v2)))
+    return false;
   if (reach == geometry::CasterReach::every_hit ||
       geometry::hit_on_light_side(*half_space, p, v0, v1, v2))
     return true;

@@ -9,7 +9,6 @@
 #include <optional>
 #include <vector>
 
-#include "oracles/exact_segment_triangle.h"
 #include "reference/metric/bounding_volumes.h"
 #include "reference/metric/clustering.h"
 #include "reference/metric/counters.h"
@@ -18,15 +17,17 @@
 #include "shadowcts/case.h"
 #include "shadowcts/geometry/receiver_half_space.h"
 #include "shadowcts/geometry/segment_triangle.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/view_samples.h"
 
 namespace shadowcts::metric {
 
 struct TraversalScene {
   const Case* c = nullptr;
-  // Decides again where the float test misses a triangle whose edge the ray passes within
-  // rounding of (ray_near_triangle_edge: a crack at a T-junction).
-  const ExactShadowPredicate* exact = nullptr;
+  // The light as the exact segment/ray-triangle test reads it (shadowcts/geometry/
+  // exact_segment_triangle.h), which decides again where the float test misses a triangle whose
+  // edge the ray passes within rounding of (ray_near_triangle_edge: a crack at a T-junction).
+  HardShadowLight light;
   const Clustering* clustering = nullptr;
   const std::vector<ClusterVolume>* volumes = nullptr;  // per cluster
   const std::vector<LightSpaceElement>* elements = nullptr;
@@ -72,9 +73,6 @@ bool for_each_candidate_element(const MetricTree& tree,
   }
   return false;
 }
-
-// The exact predicate of the case's light that TraversalScene::exact points to.
-std::unique_ptr<const ExactShadowPredicate> make_traversal_exact(const Case& c);
 
 // Section 5.4, step 2: whether the segment from `from` to `to` meets the cluster's slabs.
 bool segment_meets_slabs(const TraversalScene& scene, const ClusterVolume& volume,

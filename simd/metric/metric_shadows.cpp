@@ -141,7 +141,7 @@ ref::LightStructure build_light_structure(const PreparedScene& scene,
 SimdMetricRun run_metric(const PreparedScene& scene, const SimdMetricOptions& options) {
   const Case& c = scene.source;
   // Throws InputError without a point or directional light, as the reference does.
-  const std::unique_ptr<const ExactShadowPredicate> exact = ref::make_traversal_exact(c);
+  const HardShadowLight light = hard_shadow_light(c);
   SimdMetricRun run;
 
   auto start = std::chrono::steady_clock::now();
@@ -154,7 +154,7 @@ SimdMetricRun run_metric(const PreparedScene& scene, const SimdMetricOptions& op
   const ref::LightStructure structure = build_light_structure(scene, clustered, options.metric);
   ref::TraversalScene traversal_scene;
   traversal_scene.c = &c;
-  traversal_scene.exact = exact.get();
+  traversal_scene.light = light;
   traversal_scene.clustering = &clustered.clustering;
   traversal_scene.volumes = &clustered.volumes;
   traversal_scene.elements = &structure.elements;
