@@ -261,6 +261,12 @@ void CullCandidates(const GatheredCones& cones, const shadowcts::softtile::TileB
                                            : glm::dvec3(t.a[0], t.a[1], t.a[2]);
   const double test_radius = t.capsule ? t.enclosing : t.ra;
   for (std::size_t g0 = 0; g0 < clusters; g0 += cluster_group) {
+    if (g0 % cluster_super_group == 0 &&
+        detail::group_outside(cones, cones.cluster_super_groups, g0 / cluster_super_group,
+                              test_centre, test_radius)) {
+      g0 += cluster_super_group - cluster_group;  // the loop adds the last group
+      continue;
+    }
     if (detail::group_outside(cones, cones.cluster_groups, g0 / cluster_group, test_centre,
                               test_radius))
       continue;
@@ -357,6 +363,10 @@ GatheredCones gathered_cones(const shadowcts::softtile::Gathered& gathered) {
   // distance_to_cone's std::cos / std::sin of the half-angle, the same value every call.
   cones.cos_radius = std::cos(gathered.sun.angular_radius);
   cones.sin_radius = std::sin(gathered.sun.angular_radius);
+  for (std::size_t g0 = 0; g0 < gathered.clusters.size(); g0 += cluster_super_group)
+    cones.cluster_super_groups.add(cones.clusters, g0,
+                                   std::min(gathered.clusters.size(), g0 + cluster_super_group),
+                                   cones.direction, cones.sin_radius);
   for (std::size_t g0 = 0; g0 < gathered.clusters.size(); g0 += cluster_group)
     cones.cluster_groups.add(cones.clusters, g0,
                              std::min(gathered.clusters.size(), g0 + cluster_group),

@@ -22,6 +22,8 @@ struct ConeArrays {
 // bound lies farther outside the group's cone than every member's slack plus rounding: then each
 // member's may_shadow is provably false (see gathered_cones).
 inline constexpr std::size_t cluster_group = 16;
+// Groups of cluster_group groups (256 clusters), tested first.
+inline constexpr std::size_t cluster_super_group = 16 * cluster_group;
 // Consecutive triangles of one cluster per group, the same way.
 inline constexpr std::size_t triangle_group = 8;
 
@@ -40,6 +42,7 @@ struct ConeGroups {
 struct GatheredCones {
   ConeArrays clusters, triangles;
   std::vector<std::uint32_t> first, count;  // per cluster: its range of triangles
+  ConeGroups cluster_super_groups;          // of cluster_super_group clusters
   ConeGroups cluster_groups;                // of cluster_group clusters
   ConeGroups triangle_groups;  // of triangle_group triangles, from each cluster's first
   std::vector<std::uint32_t> first_triangle_group;  // per cluster
