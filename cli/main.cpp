@@ -11,10 +11,10 @@
 
 #include <CLI/CLI.hpp>
 
-#include "runner/external_result.h"
-#include "runner/scene_export.h"
 #include "list_command.h"
 #include "report_command.h"
+#include "runner/external_result.h"
+#include "runner/scene_export.h"
 #include "shadowcts/case_manifest.h"
 #include "shadowcts/errors.h"
 #include "shadowcts/fixtures.h"

@@ -42,8 +42,8 @@
 #include "oracles/caster_bvh.h"
 #include "oracles/caster_closure.h"
 #include "oracles/exact_segment_triangle.h"
-#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/case.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/hard_shadow_truth.h"
 #include "shadowcts/view_samples.h"
 

@@ -10,8 +10,8 @@
 #include "oracles/embree_shadow_rays.h"
 #include "oracles/exact_segment_triangle.h"
 #include "shadowcts/hard_shadow_inputs.h"
-#include "shadowcts/thread_limit.h"
 #include "shadowcts/phase_progress.h"
+#include "shadowcts/thread_limit.h"
 
 namespace shadowcts {
 namespace {

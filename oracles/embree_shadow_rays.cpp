@@ -6,8 +6,8 @@
 #include <embree3/rtcore.h>
 
 #include "oracles/exact_segment_triangle.h"
-#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/embree_scene.h"
+#include "shadowcts/hard_shadow_inputs.h"
 
 namespace shadowcts {
 namespace {

@@ -11,8 +11,8 @@
 #include "oracles/caster_bvh.h"
 #include "oracles/exact_segment_triangle.h"
 #include "shadowcts/hard_shadow_inputs.h"
-#include "shadowcts/thread_limit.h"
 #include "shadowcts/phase_progress.h"
+#include "shadowcts/thread_limit.h"
 
 namespace shadowcts {
 namespace {

@@ -9,8 +9,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/case.h"
+#include "shadowcts/hard_shadow_inputs.h"
 
 namespace shadowcts {
 

@@ -11,10 +11,10 @@
 #include <optional>
 #include <sstream>
 
-#include "shadowcts/hard_shadow_inputs.h"
 #include "reproducer.h"
 #include "shadowcts/case_manifest.h"
 #include "shadowcts/gbuffer_exr.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/hard_shadow_oracle.h"
 #include "shadowcts/registry.h"
 

@@ -8,10 +8,10 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "shadowcts/hard_shadow_inputs.h"
-#include "shadowcts/thread_limit.h"
 #include "reference/bruteforce/hard_shadow_bruteforce.h"
 #include "reference/light_on_caster.h"
+#include "shadowcts/hard_shadow_inputs.h"
+#include "shadowcts/thread_limit.h"
 
 namespace shadowcts {
 

@@ -15,9 +15,9 @@
 #include "oracles/light_assignment/light_band.h"
 #include "oracles/light_assignment/light_candidate_grid.h"
 #include "oracles/light_assignment/light_volume_predicates.h"
-#include "shadowcts/thread_limit.h"
 #include "shadowcts/errors.h"
 #include "shadowcts/light_assignment_oracle.h"
+#include "shadowcts/thread_limit.h"
 
 namespace shadowcts {
 namespace {

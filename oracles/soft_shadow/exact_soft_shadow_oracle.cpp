@@ -7,13 +7,13 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "shadowcts/hard_shadow_inputs.h"
 #include "oracles/soft_shadow/band_sensitivity.h"
 #include "oracles/soft_shadow/exact_disk_union.h"
 #include "oracles/soft_shadow/light_cone_bvh.h"
 #include "oracles/soft_shadow/sun_disk_projection.h"
-#include "shadowcts/thread_limit.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/soft_shadow_oracle.h"
+#include "shadowcts/thread_limit.h"
 
 namespace shadowcts {
 namespace {

@@ -10,12 +10,12 @@
 #include <tbb/parallel_for.h>
 
 #include "oracles/exact_segment_triangle.h"
-#include "shadowcts/hard_shadow_inputs.h"
 #include "oracles/soft_shadow/sun_disk_projection.h"
-#include "shadowcts/thread_limit.h"
 #include "shadowcts/embree_scene.h"
 #include "shadowcts/errors.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/soft_shadow_oracle.h"
+#include "shadowcts/thread_limit.h"
 
 namespace shadowcts {
 namespace {

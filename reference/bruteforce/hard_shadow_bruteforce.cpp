@@ -10,11 +10,11 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "shadowcts/hard_shadow_inputs.h"
-#include "shadowcts/thread_limit.h"
 #include "reference/sample_half_space.h"
 #include "shadowcts/geometry/exact_segment_triangle.h"
 #include "shadowcts/geometry/receiver_half_space.h"
+#include "shadowcts/hard_shadow_inputs.h"
+#include "shadowcts/thread_limit.h"
 
 namespace shadowcts {
 

@@ -11,8 +11,8 @@
 #include <memory>
 #include <vector>
 
-#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/algorithm.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/prepared_scene.h"
 
 namespace shadowcts {

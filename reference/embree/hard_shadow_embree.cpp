@@ -10,11 +10,11 @@
 #include <tbb/parallel_for.h>
 
 #include "oracles/embree_shadow_rays.h"
-#include "shadowcts/hard_shadow_inputs.h"
-#include "shadowcts/thread_limit.h"
 #include "reference/sample_half_space.h"
 #include "shadowcts/geometry/receiver_half_space.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/phase_clock.h"
+#include "shadowcts/thread_limit.h"
 
 namespace shadowcts {
 namespace {

@@ -14,13 +14,13 @@
 #include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 
-#include "shadowcts/hard_shadow_inputs.h"
-#include "shadowcts/thread_limit.h"
 #include "reference/embree/hard_shadow_embree.h"
 #include "reference/sample_half_space.h"
 #include "shadowcts/embree_scene.h"
 #include "shadowcts/geometry/receiver_half_space.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/phase_clock.h"
+#include "shadowcts/thread_limit.h"
 
 namespace shadowcts {
 namespace {

@@ -3,13 +3,13 @@
 #include <stdexcept>
 #include <string>
 
-#include "shadowcts/thread_limit.h"
 #include "reference/lightassign/brute_assignment.h"
 #include "reference/lightassign/cluster_key.h"
 #include "reference/lightassign/clustered_assignment.h"
 #include "reference/lightassign/tiled_assignment.h"
 #include "reference/lightassign/view_frustum.h"
 #include "shadowcts/phase_clock.h"
+#include "shadowcts/thread_limit.h"
 
 namespace shadowcts {
 namespace {

@@ -11,8 +11,8 @@
 #include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 
-#include "shadowcts/hard_shadow_inputs.h"
 #include "reference/metric/seeded_random.h"
+#include "shadowcts/hard_shadow_inputs.h"
 
 namespace shadowcts::metric {
 namespace {

@@ -98,8 +98,8 @@ double PlaneSide::error_bound(const TopNode& node, bool capping, const glm::dvec
   // both and the evaluation's roundings; the extra term covers the double normal's own error.
   // Below float's normal range (a scene scaled below about 2^-40: the offset is a product of
   // three coordinates) rounding moves a coefficient by up to 2^-150 instead, whatever its size
-  // (subnormal_error). A coefficient beyond float's range is infinite, and so is the bound: the exact
-  // test decides.
+  // (subnormal_error). A coefficient beyond float's range is infinite, and so is the bound: the
+  // exact test decides.
   const double a = std::fabs(node.plane[0]), b = std::fabs(node.plane[1]),
                c = std::fabs(node.plane[2]), d = std::fabs(node.plane[3]);
   const double magnitude =

@@ -14,9 +14,9 @@
 
 #include <glm/vec3.hpp>
 
-#include "shadowcts/hard_shadow_inputs.h"
 #include "reference/psv/top_tree.h"
 #include "shadowcts/case.h"
+#include "shadowcts/hard_shadow_inputs.h"
 
 namespace shadowcts::psv {
 

@@ -10,8 +10,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "shadowcts/hard_shadow_inputs.h"
-#include "shadowcts/thread_limit.h"
 #include "reference/psv/plane_side.h"
 #include "reference/psv/query_context.h"
 #include "reference/psv/query_hybrid.h"
@@ -20,7 +18,9 @@
 #include "reference/psv/rule_culling.h"
 #include "reference/psv/top_tree_build.h"
 #include "reference/psv/top_tree_depth.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/phase_clock.h"
+#include "shadowcts/thread_limit.h"
 
 namespace shadowcts::psv {
 namespace {

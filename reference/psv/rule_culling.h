@@ -8,8 +8,8 @@
 // and leaves it only through the faces turned towards the light, the culled ones.
 #include <vector>
 
-#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/case.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/view_samples.h"
 
 namespace shadowcts::psv {

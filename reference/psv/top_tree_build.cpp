@@ -5,8 +5,8 @@
 #include <random>
 #include <utility>
 
-#include "shadowcts/hard_shadow_inputs.h"
 #include "reference/psv/top_tree_depth.h"
+#include "shadowcts/hard_shadow_inputs.h"
 
 namespace shadowcts::psv {
 namespace {

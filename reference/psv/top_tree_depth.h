@@ -9,8 +9,8 @@
 // distance is -d . x up to a constant, and a volume point y - t d (t >= 0) only gets farther.
 #include <glm/vec3.hpp>
 
-#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/case.h"
+#include "shadowcts/hard_shadow_inputs.h"
 
 namespace shadowcts::psv {
 

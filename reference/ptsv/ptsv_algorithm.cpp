@@ -7,7 +7,6 @@
 #include <utility>
 #include <vector>
 
-#include "shadowcts/hard_shadow_inputs.h"
 #include "reference/light_on_caster.h"
 #include "reference/ptsv/cluster_keys.h"
 #include "reference/ptsv/counters.h"
@@ -20,6 +19,7 @@
 #include "reference/ptsv/two_pass.h"
 #include "reference/ptsv/view_frame.h"
 #include "shadowcts/errors.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/phase_clock.h"
 
 namespace shadowcts {

@@ -9,14 +9,14 @@
 #include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 
-#include "shadowcts/hard_shadow_inputs.h"
-#include "shadowcts/thread_limit.h"
 #include "reference/shadowmap/bias.h"
 #include "reference/shadowmap/cube_map.h"
 #include "reference/shadowmap/depth_map.h"
 #include "reference/shadowmap/orthographic_map.h"
 #include "reference/shadowmap/rasterizer.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/phase_clock.h"
+#include "shadowcts/thread_limit.h"
 
 namespace shadowcts {
 namespace {

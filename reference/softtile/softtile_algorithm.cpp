@@ -8,14 +8,14 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "shadowcts/hard_shadow_inputs.h"
-#include "shadowcts/thread_limit.h"
 #include "reference/softtile/disk_bitmask.h"
 #include "reference/softtile/fragment_occlusion.h"
 #include "reference/softtile/softtile_gather.h"
 #include "reference/softtile/softtile_tile.h"
 #include "reference/softtile/softtile_variant.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/phase_clock.h"
+#include "shadowcts/thread_limit.h"
 
 namespace shadowcts {
 namespace {

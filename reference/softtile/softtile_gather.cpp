@@ -6,9 +6,9 @@
 
 #include <glm/geometric.hpp>
 
-#include "shadowcts/hard_shadow_inputs.h"
 #include "oracles/soft_shadow/sun_disk_projection.h"
 #include "reference/closed_mesh_culling.h"
+#include "shadowcts/hard_shadow_inputs.h"
 
 namespace shadowcts::softtile {
 namespace {

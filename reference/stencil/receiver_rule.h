@@ -28,13 +28,13 @@
 
 #include <glm/vec3.hpp>
 
-#include "shadowcts/hard_shadow_inputs.h"
 #include "reference/stencil/cap_tree.h"
 #include "reference/stencil/shadow_volume.h"
 #include "reference/stencil/silhouette.h"
 #include "reference/stencil/volume_counting.h"
 #include "shadowcts/case.h"
 #include "shadowcts/geometry/receiver_half_space.h"
+#include "shadowcts/hard_shadow_inputs.h"
 
 namespace shadowcts::stencil {
 

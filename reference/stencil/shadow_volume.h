@@ -16,8 +16,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "shadowcts/hard_shadow_inputs.h"
 #include "reference/stencil/silhouette.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/view_samples.h"
 
 namespace shadowcts::stencil {

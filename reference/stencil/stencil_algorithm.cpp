@@ -6,15 +6,15 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "shadowcts/hard_shadow_inputs.h"
-#include "shadowcts/thread_limit.h"
 #include "reference/light_on_caster.h"
 #include "reference/stencil/receiver_rule.h"
 #include "reference/stencil/shadow_volume.h"
 #include "reference/stencil/silhouette.h"
 #include "reference/stencil/view_grid.h"
 #include "reference/stencil/volume_counting.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/phase_clock.h"
+#include "shadowcts/thread_limit.h"
 
 namespace shadowcts {
 namespace {

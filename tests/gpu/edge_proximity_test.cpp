@@ -14,8 +14,8 @@
 #include <glm/vec3.hpp>
 
 #include "oracles/exact_segment_triangle.h"
-#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/geometry/segment_triangle.h"
+#include "shadowcts/hard_shadow_inputs.h"
 
 namespace shadowcts {
 namespace {

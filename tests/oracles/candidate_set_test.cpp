@@ -10,8 +10,8 @@
 #include "oracles/band_moves.h"
 #include "oracles/caster_bvh.h"
 #include "oracles/exact_segment_triangle.h"
-#include "shadowcts/hard_shadow_inputs.h"
 #include "oracles/shadow_segment.h"
+#include "shadowcts/hard_shadow_inputs.h"
 
 namespace shadowcts {
 namespace {

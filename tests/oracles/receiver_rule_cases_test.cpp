@@ -10,9 +10,9 @@
 
 #include "oracles/caster_bvh.h"
 #include "oracles/exact_segment_triangle.h"
-#include "shadowcts/hard_shadow_inputs.h"
 #include "oracles/shadow_segment.h"
 #include "shadowcts/fixtures.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/hard_shadow_oracle.h"
 #include "shadowcts/view_samples.h"
 

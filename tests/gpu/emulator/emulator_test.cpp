@@ -351,8 +351,10 @@ TEST_P(EmulatorBugs, WarpSynchronousCodeWithoutSyncwarp) {
 
 TEST_P(EmulatorBugs, SyncwarpOfAnotherHalfDoesNotOrder) {
   expect_error({ErrorKind::shared_race, "half_warp_syncwarp", "half_warp_syncwarp", {16, 0, 0}, {}},
-               [&] { SHADOWCTS_LAUNCH(bug::half_warp_syncwarp, 1, 32, 0)
-                     (out_.data()); });
+               [&] {
+                 SHADOWCTS_LAUNCH(bug::half_warp_syncwarp, 1, 32, 0)
+                 (out_.data());
+               });
 }
 
 TEST_P(EmulatorBugs, Deadlock) {

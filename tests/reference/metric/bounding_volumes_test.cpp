@@ -11,10 +11,10 @@
 #include <glm/geometric.hpp>
 
 #include "metric_test_cases.h"
-#include "shadowcts/hard_shadow_inputs.h"
 #include "reference/metric/angular_distance.h"
 #include "reference/metric/clustering.h"
 #include "reference/metric/metric_shadows.h"
+#include "shadowcts/hard_shadow_inputs.h"
 
 namespace shadowcts::metric {
 namespace {

@@ -7,13 +7,13 @@
 #include "hand_built_case.h"
 #include "metric_test_cases.h"
 #include "oracles/exact_segment_triangle.h"
-#include "shadowcts/hard_shadow_inputs.h"
 #include "reference/metric/metric_algorithm.h"
 #include "reference/metric/metric_shadows.h"
 #include "reference/metric/traversal.h"
 #include "shadowcts/geometry/receiver_half_space.h"
 #include "shadowcts/geometry/segment_triangle.h"
 #include "shadowcts/hard_shadow_comparison.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/hard_shadow_oracle.h"
 
 namespace shadowcts::metric {

@@ -15,11 +15,11 @@
 #include <gtest/gtest.h>
 
 #include "hand_built_case.h"
-#include "shadowcts/hard_shadow_inputs.h"
 #include "reference/psv/psv_algorithm.h"
 #include "reference/psv/psv_shadows.h"
 #include "shadowcts/geometry/exact_orientation.h"
 #include "shadowcts/geometry/receiver_half_space.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/hard_shadow_oracle.h"
 
 namespace shadowcts::psv {

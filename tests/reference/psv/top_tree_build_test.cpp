@@ -7,11 +7,11 @@
 #include <gtest/gtest.h>
 
 #include "hand_built_case.h"
-#include "shadowcts/hard_shadow_inputs.h"
 #include "reference/psv/plane_side.h"
 #include "reference/psv/top_tree.h"
 #include "reference/psv/top_tree_build.h"
 #include "reference/psv/top_tree_depth.h"
+#include "shadowcts/hard_shadow_inputs.h"
 
 namespace shadowcts::psv {
 namespace {
