@@ -14,28 +14,6 @@
 namespace shadowcts {
 namespace {
 
-// Paper I's tile size, also Paper II's screen-space tiling of the clusters.
-constexpr std::uint32_t tile_size = 32;
-
-std::optional<ClusteredSettings> clustered_settings(const std::string& variant) {
-  ClusteredSettings s;
-  s.tile_size = tile_size;
-  if (variant == "clustered") return s;
-  if (variant == "clustered+eb") {
-    s.explicit_bounds = true;
-    return s;
-  }
-  if (variant == "clustered+en") {
-    s.explicit_normal_cones = true;
-    return s;
-  }
-  if (variant == "clustered+nk3") {
-    s.normal_divisions = 3;
-    return s;
-  }
-  return std::nullopt;
-}
-
 class LightAssign final : public Algorithm {
  public:
   LightAssign() {
@@ -91,7 +69,7 @@ class LightAssign final : public Algorithm {
     AlgorithmOutput output;
     run_with_thread_limit(c.parameters.threads, [&] {
       if (variant == "tiled")
-        output = assign_lights_tiled(c, samples, tile_size);
+        output = assign_lights_tiled(c, samples, lightassign_tile_size);
       else if (variant == "brute")
         output = assign_lights_brute(c, samples);
       else if (const auto settings = clustered_settings(variant))
@@ -110,6 +88,25 @@ class LightAssign final : public Algorithm {
 
 std::unique_ptr<Algorithm> make_lightassign() {
   return std::make_unique<LightAssign>();
+}
+
+std::optional<ClusteredSettings> clustered_settings(const std::string& variant) {
+  ClusteredSettings s;
+  s.tile_size = lightassign_tile_size;
+  if (variant == "clustered") return s;
+  if (variant == "clustered+eb") {
+    s.explicit_bounds = true;
+    return s;
+  }
+  if (variant == "clustered+en") {
+    s.explicit_normal_cones = true;
+    return s;
+  }
+  if (variant == "clustered+nk3") {
+    s.normal_divisions = 3;
+    return s;
+  }
+  return std::nullopt;
 }
 
 }  // namespace shadowcts

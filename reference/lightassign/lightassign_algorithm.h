@@ -8,11 +8,22 @@
 //   clustered+nk3  normal clustering, 3x3 cells per cube face, implicit cones
 //   brute          per-sample exact sets (optimal efficiency)
 // Counters: see light_assignment_counters() in light_list_builder.h.
+#include <cstdint>
 #include <memory>
+#include <optional>
+#include <string>
 
+#include "reference/lightassign/clustered_assignment.h"
 #include "shadowcts/algorithm.h"
 
 namespace shadowcts {
+
+// Paper I's tile size, also Paper II's screen-space tiling of the clusters.
+inline constexpr std::uint32_t lightassign_tile_size = 32;
+
+// The settings of a clustered variant; nullopt for a variant that is not clustered. Every
+// backend of lightassign reads its variants from here.
+std::optional<ClusteredSettings> clustered_settings(const std::string& variant);
 
 // id "lightassign", backend "reference", output light_lists, capability ranged_lights.
 std::unique_ptr<Algorithm> make_lightassign();

@@ -13,28 +13,6 @@
 namespace shadowcts {
 namespace {
 
-// The reference's tile size and variant settings.
-constexpr std::uint32_t tile_size = 32;
-
-std::optional<ClusteredSettings> clustered_settings(const std::string& variant) {
-  ClusteredSettings s;
-  s.tile_size = tile_size;
-  if (variant == "clustered") return s;
-  if (variant == "clustered+eb") {
-    s.explicit_bounds = true;
-    return s;
-  }
-  if (variant == "clustered+en") {
-    s.explicit_normal_cones = true;
-    return s;
-  }
-  if (variant == "clustered+nk3") {
-    s.normal_divisions = 3;
-    return s;
-  }
-  return std::nullopt;
-}
-
 class SimdLightAssign final : public Algorithm {
  public:
   SimdLightAssign() : reference_(make_lightassign()) {
@@ -65,7 +43,7 @@ class SimdLightAssign final : public Algorithm {
     const ViewSamples& samples = scene.view_samples;
     if (samples.samples.size() != std::size_t(samples.width) * samples.height)
       throw std::invalid_argument("lightassign: sample count is not width x height");
-    if (variant == "tiled") return simd::assign_lights_tiled(scene, tile_size);
+    if (variant == "tiled") return simd::assign_lights_tiled(scene, lightassign_tile_size);
     if (const auto settings = clustered_settings(variant))
       return simd::assign_lights_clustered(scene, *settings);
     throw std::invalid_argument("lightassign: unknown variant '" + variant + "'");
