@@ -102,7 +102,8 @@ int main(int argc, char** argv) {
   run->add_option("--case", options.case_files, "JSON case manifest (repeatable)")
       ->check(CLI::ExistingFile);
   run->add_option("--algorithm", algorithm_texts, "ID or ID:VARIANT (repeatable); default all");
-  run->add_option("--backend", options.backend, "Only this backend (reference, embree, cuda, ...)");
+  run->add_option("--backend", options.backends,
+                  "Only these backends (reference, simd, embree, cuda, cuda-emu, ...); repeatable");
   run->add_option("--out", options.out_dir, "Output folder")->capture_default_str();
   // Not CLI::Range: it lets "nan" through (every comparison with NaN is false), and the case's
   // validation then blamed the manifest's parameters.eps_rel for the command line's value.

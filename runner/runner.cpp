@@ -115,8 +115,20 @@ struct PlannedRun {
   std::string variant;
 };
 
+bool on_selected_backend(const RunOptions& options, const AlgorithmInfo& meta) {
+  return options.backends.empty() ||
+         std::count(options.backends.begin(), options.backends.end(), meta.backend) != 0;
+}
+
+// " --backend a --backend b" as the user gave them, for messages.
+std::string backend_flags(const RunOptions& options) {
+  std::string flags;
+  for (const std::string& backend : options.backends) flags += " --backend " + backend;
+  return flags;
+}
+
 bool selected(const RunOptions& options, const AlgorithmInfo& meta, const std::string& variant) {
-  if (!options.backend.empty() && meta.backend != options.backend) return false;
+  if (!on_selected_backend(options, meta)) return false;
   if (options.algorithms.empty()) return true;
   for (const AlgorithmSelection& s : options.algorithms)
     if (s.id == meta.id && (s.variant.empty() || s.variant == variant)) return true;
@@ -135,24 +147,24 @@ void check_selection(const RunOptions& options, const Registry& registry) {
     backends.insert(a->info().backend);
     ids.insert(a->info().id);
   }
-  if (!options.backend.empty() && !backends.count(options.backend))
-    throw UsageError("--backend " + options.backend +
-                     ": unknown backend (known: " + comma_list(backends) + ")");
+  for (const std::string& backend : options.backends)
+    if (!backends.count(backend))
+      throw UsageError("--backend " + backend +
+                       ": unknown backend (known: " + comma_list(backends) + ")");
   for (const AlgorithmSelection& s : options.algorithms) {
     bool found = false;
     std::set<std::string> variants;  // of s.id on the selected backends, for the message
     for (const auto& a : registry.algorithms()) {
       const AlgorithmInfo& meta = a->info();
       if (meta.id != s.id) continue;
-      if (!options.backend.empty() && meta.backend != options.backend) continue;
+      if (!on_selected_backend(options, meta)) continue;
       variants.insert(meta.variants.begin(), meta.variants.end());
       if (s.variant.empty() || std::count(meta.variants.begin(), meta.variants.end(), s.variant))
         found = true;
     }
     if (!found)
       throw UsageError("--algorithm " + s.id + (s.variant.empty() ? "" : ":" + s.variant) +
-                       (options.backend.empty() ? "" : " --backend " + options.backend) +
-                       ": no such registered algorithm (" +
+                       backend_flags(options) + ": no such registered algorithm (" +
                        (!ids.count(s.id)   ? "known: " + comma_list(ids)
                         : variants.empty() ? "not on this backend"
                                            : "variants of " + s.id + ": " + comma_list(variants)) +

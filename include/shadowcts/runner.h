@@ -23,7 +23,7 @@ struct RunOptions {
   std::vector<std::string> case_files;  // JSON case manifests
   std::string suite;                    // "stiff": every case of the stiff-case suite
   std::vector<AlgorithmSelection> algorithms;  // empty: every registered algorithm
-  std::string backend;                         // empty: every backend
+  std::vector<std::string> backends;           // empty: every backend
   std::string out_dir = "shadowcts-out";
   std::optional<double> eps_rel;
   std::optional<std::uint32_t> repeats;  // timed repeats after one untimed warm-up run

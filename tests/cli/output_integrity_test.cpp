@@ -275,6 +275,26 @@ TEST(OutputIntegrity, AnUnknownBackendOrAnEmptySelectionIsExitTwo) {
   EXPECT_FALSE(fs::exists(dir / "out"));
 }
 
+// --backend is repeatable: a timing run keeps the backends it names and leaves the others (the
+// emulated kernels) out; one unknown name among known ones is still a usage error.
+TEST(OutputIntegrity, RepeatedBackendsSelectExactlyThoseBackends) {
+  const fs::path dir = fresh_dir("repeated_backends");
+  ASSERT_EQ(run_tool("run --fixture ground_blockers.2k --algorithm bruteforce --algorithm embree "
+                     "--backend reference --backend embree --repeat 1 --out out",
+                     dir),
+            exit_pass)
+      << err_of(dir);
+  const auto results = json::parse(read_file(dir / "out" / "results.json"));
+  std::set<std::string> backends;
+  for (const auto& r : results["results"]) backends.insert(r["backend"].get<std::string>());
+  EXPECT_EQ(backends, (std::set<std::string>{"reference", "embree"}));
+
+  EXPECT_EQ(run_tool("run --backend reference --backend vulkan --out out2", dir), exit_bad_input);
+  EXPECT_NE(err_of(dir).find("--backend vulkan: unknown backend"), std::string::npos)
+      << err_of(dir);
+  EXPECT_FALSE(fs::exists(dir / "out2"));
+}
+
 // Item 5: a case whose samples are all sky has nothing to judge: hard, soft and light-list
 // records are NotSupported with the reason, never "right on all 0 robust samples".
 TEST(OutputIntegrity, ACaseWithNothingToJudgeIsNotSupportedNeverPass) {

@@ -52,7 +52,7 @@ TEST_P(Conformance, PassesOrIsNotSupported) {
   RunOptions options;
   options.fixtures = {c.fixture};
   options.algorithms = {{c.algorithm, c.variant}};
-  options.backend = c.backend;
+  options.backends = {c.backend};
   options.out_dir = out.string();
   options.repeats = 1;
   std::ostringstream log, err;

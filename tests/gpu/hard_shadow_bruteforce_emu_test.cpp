@@ -207,7 +207,7 @@ TEST(BruteforceHardShadowCudaEmu, PassesTheLightBesideACasterEdgeStiffCase) {
   RunOptions options;
   options.fixtures = {"stiff.light_1e-6_from_caster"};
   options.algorithms = {{"bruteforce", "float32"}};
-  options.backend = "cuda-emu";
+  options.backends = {"cuda-emu"};
   options.out_dir = out.string();
   options.repeats = 1;
   std::ostringstream log, err;

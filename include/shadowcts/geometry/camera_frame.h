@@ -7,8 +7,10 @@
 #include <glm/vec3.hpp>
 
 #include "shadowcts/case.h"
+#include "shadowcts/host_device.h"
 
 namespace shadowcts {
+SHADOWCTS_GEOMETRY_ABI_BEGIN
 
 struct CameraFrame {
   glm::dvec3 origin, right, up, forward;
@@ -26,4 +28,5 @@ inline CameraFrame camera_frame(const Camera& cam) {
   return f;
 }
 
+SHADOWCTS_GEOMETRY_ABI_END
 }  // namespace shadowcts

@@ -23,6 +23,7 @@
 #include "shadowcts/host_device.h"
 
 namespace shadowcts {
+SHADOWCTS_GEOMETRY_ABI_BEGIN
 
 SHADOWCTS_HD inline bool ray_within_rounding_of_triangle_edge(const RaySpace& space,
                                                               const glm::vec3& v0,
@@ -60,4 +61,5 @@ SHADOWCTS_HD inline bool ray_within_rounding_of_triangle_edge(const RaySpace& sp
   return false;
 }
 
+SHADOWCTS_GEOMETRY_ABI_END
 }  // namespace shadowcts

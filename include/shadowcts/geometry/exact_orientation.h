@@ -16,6 +16,7 @@
 #include "shadowcts/host_device.h"
 
 namespace shadowcts::geometry {
+SHADOWCTS_GEOMETRY_ABI_BEGIN
 
 namespace detail {
 
@@ -137,4 +138,5 @@ SHADOWCTS_HD inline int orientation_towards(const glm::dvec3& a, const glm::dvec
   return sign(orientation_towards_value(a, b, c, direction));
 }
 
+SHADOWCTS_GEOMETRY_ABI_END
 }  // namespace shadowcts::geometry

@@ -18,6 +18,7 @@
 #include "shadowcts/host_device.h"
 
 namespace shadowcts::geometry {
+SHADOWCTS_GEOMETRY_ABI_BEGIN
 
 namespace detail {
 
@@ -134,4 +135,5 @@ SHADOWCTS_HD inline bool ray_meets_triangle(const glm::dvec3& p, const glm::dvec
          detail::ray_meets_segment(p, d, b, c, i, j) || detail::ray_meets_segment(p, d, c, a, i, j);
 }
 
+SHADOWCTS_GEOMETRY_ABI_END
 }  // namespace shadowcts::geometry

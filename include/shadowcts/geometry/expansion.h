@@ -17,6 +17,7 @@
 #include "shadowcts/host_device.h"
 
 namespace shadowcts::geometry {
+SHADOWCTS_GEOMETRY_ABI_BEGIN
 
 template <int Capacity>
 struct Expansion {
@@ -190,4 +191,5 @@ SHADOWCTS_HD inline bool narrowed(const Expansion<N>& e, Expansion<M>& out) {
   return true;
 }
 
+SHADOWCTS_GEOMETRY_ABI_END
 }  // namespace shadowcts::geometry

@@ -33,6 +33,7 @@
 #include "shadowcts/host_device.h"
 
 namespace shadowcts::geometry {
+SHADOWCTS_GEOMETRY_ABI_BEGIN
 
 struct ReceiverHalfSpace {
   glm::dvec3 a{0.0}, b{0.0}, c{0.0};  // the receiver's vertices
@@ -225,4 +226,5 @@ SHADOWCTS_HD inline bool caster_counts(const ReceiverHalfSpace& h, const glm::dv
   return hit_on_light_side(h, p, v0, v1, v2);
 }
 
+SHADOWCTS_GEOMETRY_ABI_END
 }  // namespace shadowcts::geometry

@@ -27,6 +27,7 @@
 #include "shadowcts/host_device.h"
 
 namespace shadowcts {
+SHADOWCTS_GEOMETRY_ABI_BEGIN
 
 // The points origin + t * direction for t in (0, t_max].
 struct ShadowRay {
@@ -226,4 +227,5 @@ SHADOWCTS_HD inline bool ray_hits_triangle(const ShadowRay& ray, const glm::vec3
   return ray_hits_triangle(make_ray_space(ray), v0, v1, v2);
 }
 
+SHADOWCTS_GEOMETRY_ABI_END
 }  // namespace shadowcts

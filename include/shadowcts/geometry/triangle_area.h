@@ -11,6 +11,7 @@
 #include "shadowcts/host_device.h"
 
 namespace shadowcts {
+SHADOWCTS_GEOMETRY_ABI_BEGIN
 
 struct TwoSum {
   double sum;    // a + b rounded
@@ -68,4 +69,5 @@ SHADOWCTS_HD inline bool triangle_has_zero_area(const glm::vec3& a, const glm::v
          vector_area_component_is_zero(a.x, a.y, b.x, b.y, c.x, c.y);
 }
 
+SHADOWCTS_GEOMETRY_ABI_END
 }  // namespace shadowcts
