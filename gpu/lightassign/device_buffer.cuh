@@ -17,6 +17,8 @@ namespace shadowcts::SHADOWCTS_KERNEL_NAMESPACE::lightassign {
 // Four warps per block for the per-item kernels; the warp-per-list kernels use the same.
 constexpr int threads_per_block = 128;
 constexpr unsigned full_warp = 0xffffffffu;
+// warpSize for host code (CUDA's warpSize is a device variable).
+constexpr unsigned lanes_per_warp = 32;
 
 inline void check(cudaError_t status, const char* call) {
   if (status == cudaSuccess) return;

@@ -121,7 +121,7 @@ inline LightAssignKernelResult run(const LightAssignKernelInput& in) {
   DeviceArray<std::uint32_t> out_lights;
   std::vector<std::uint32_t> offsets{0};
   const auto warp_blocks = [&](std::uint32_t warps) {
-    return launches.blocks_for(std::size_t(warps) * warpSize, threads_per_block);
+    return launches.blocks_for(std::size_t(warps) * lanes_per_warp, threads_per_block);
   };
   if (!in.tiled) {
     // The slice planes of each cluster's sub-frustum, from the reference's slice_near.

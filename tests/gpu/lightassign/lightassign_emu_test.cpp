@@ -17,6 +17,7 @@
 #include "gpu/emulator/emulator.h"
 #include "gpu/lightassign/lightassign_algorithm.h"
 #include "gpu/lightassign/lightassign_kernels.h"
+#include "oracles/light_assignment/light_volume_predicates.h"
 #include "reference/lightassign/cluster_key.h"
 #include "reference/lightassign/light_bvh.h"
 #include "reference/lightassign/lightassign_algorithm.h"
@@ -332,7 +333,45 @@ TEST(LightAssignEmu, IdenticalWithLightsTangentToTheBoxes) {
   expect_identical(c, samples, "tangent lights");
 }
 
-TEST(LightAssignEmu, NoLightsGiveEmptyListsAndNoSamplesNoLists) {
+// The kernels' cull (shadowcts/geometry/sphere_box.h) against the oracle's exact predicate, on
+// near ties (ranges within 2 ulps of the rounded distance) and exact ties.
+TEST(LightAssignEmu, SharedSphereBoxEqualsTheExactPredicate) {
+  std::mt19937_64 random(3);
+  std::uniform_real_distribution<float> coordinate(-4.0f, 4.0f);
+  int undecided = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    Aabb box;
+    for (int i = 0; i < 3; ++i) {
+      const float a = coordinate(random), b = coordinate(random);
+      box.min[i] = std::min(a, b);
+      box.max[i] = std::max(a, b);
+    }
+    glm::vec3 centre(coordinate(random), coordinate(random), coordinate(random));
+    double d2 = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      const double gap =
+          std::max({0.0, double(box.min[i]) - centre[i], centre[i] - double(box.max[i])});
+      d2 += gap * gap;
+    }
+    float r = float(std::sqrt(d2));
+    for (int step = int(random() % 5) - 2; step != 0; step += step > 0 ? -1 : 1)
+      r = std::nextafter(r, step > 0 ? 8.0f : 0.0f);
+    if (!(r > 0.0f)) continue;
+    undecided += geometry::sphere_meets_box_filter(centre, r, box.min, box.max) == 0;
+    ASSERT_EQ(geometry::sphere_meets_box(centre, r, box.min, box.max),
+              exact_only::sphere_meets_box(centre, r, box))
+        << "centre (" << centre.x << ", " << centre.y << ", " << centre.z << ") r " << r;
+    const int axis = trial % 3;
+    centre = 0.5f * (box.min + box.max);
+    centre[axis] = box.max[axis] + 0.375f;
+    EXPECT_TRUE(geometry::sphere_meets_box(centre, 0.375f, box.min, box.max));
+    EXPECT_FALSE(
+        geometry::sphere_meets_box(centre, std::nextafter(0.375f, 0.0f), box.min, box.max));
+  }
+  EXPECT_GT(undecided, 0);
+}
+
+TEST(LightAssignEmu, NoLightsGiveEmptyLists) {
   Case c = small_city();
   const ViewSamples samples = generate_view_samples(c);
   c.ranged_lights.clear();
