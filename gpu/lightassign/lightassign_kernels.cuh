@@ -250,7 +250,6 @@ inline LightAssignKernelResult run(const LightAssignKernelInput& in) {
   result.cluster_keys = clusters.keys.download();
   result.cluster_tiles = clusters.tiles.download();
   result.member_offsets = clusters.member_offsets.download(std::size_t(lists) + 1);
-  if (n == 0) result.member_offsets.assign(1, 0);
   result.members = clusters.members.download();
   result.list_of_regular = clusters.cluster_of_sample.download();
   result.emulated_threads = launches.threads;
