@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <random>
@@ -227,6 +228,27 @@ TEST(LightAssignEmu, IdenticalToTheReferenceOnTheDefaultFixturesWithRangedLights
   }
   EXPECT_TRUE(many_lights && depth_gaps) << "the default fixtures changed";
   EXPECT_GE(cases, 2);
+}
+
+// Other sizes: partial tiles (77 = 2 x 32 + 13), more lights (a 3-level light BVH).
+TEST(LightAssignEmu, IdenticalToTheReferenceOnTheLightFixtures) {
+  for (const auto& [name, side] : std::vector<std::pair<std::string, std::uint32_t>>{
+           {"many_lights.20k", 200}, {"depth_gaps.20k", 160}, {"many_lights.2k", 77}}) {
+    Case c = make_fixture(name);
+    c.camera.width = c.camera.height = side;
+    expect_identical(c, generate_view_samples(c), name);
+  }
+}
+
+// A full-HD view with many lights, when asked for (SHADOWCTS_LIGHTASSIGN_LARGE=1: 32k lights, about
+// 40 s under the emulator).
+TEST(LightAssignEmu, IdenticalAtFullHdWhenAskedFor) {
+  if (!std::getenv("SHADOWCTS_LIGHTASSIGN_LARGE"))
+    GTEST_SKIP() << "SHADOWCTS_LIGHTASSIGN_LARGE unset";
+  Case c = make_fixture("many_lights", 128000, 1);
+  c.camera.width = 1920;
+  c.camera.height = 1080;
+  expect_identical(c, generate_view_samples(c), "many_lights 1920x1080");
 }
 
 TEST(LightAssignEmu, OutputsDoNotDependOnTheThreadCount) {
