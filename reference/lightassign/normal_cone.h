@@ -5,20 +5,15 @@
 // delta the half angle of the cone from the light around the box. Then every sample p of the box
 // with a normal in the cone has n . (c - p) < 0: the angle between n and c - p is at least
 // omega - alpha - delta.
+//
+// The definitions live in shadowcts/geometry/normal_cone.h (host and device, shared with the
+// CUDA port); these are the reference's names for them.
 #include <glm/vec3.hpp>
 
 #include "shadowcts/algorithm.h"
+#include "shadowcts/geometry/normal_cone.h"
 
 namespace shadowcts {
-
-struct NormalCone {
-  glm::dvec3 axis{0.0, 0.0, 1.0};  // unit
-  double half_angle = 3.2;         // radians; >= pi: no culling
-};
-
-// Margin added to every angle of the rule (radians): far above the rounding of the few double
-// operations behind each angle, far below anything the culling could use.
-inline constexpr double normal_cone_margin = 1e-6;
 
 // The implicit cone of a cube-face cell (quantize_normal's code): the axis through the cell's
 // centre, the half angle to its farthest corner (a convex spherical quadrilateral within a
@@ -35,7 +30,7 @@ class ExplicitNormalCone {
   static void widen(NormalCone& cone, const glm::vec3& n);
 
  private:
-  glm::dvec3 sum_{0.0};
+  geometry::ExplicitNormalConeSum sum_;
 };
 
 // Whether the light at `centre` faces away from every sample of `box` whose normal lies in the

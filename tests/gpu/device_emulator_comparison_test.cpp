@@ -4,6 +4,7 @@
 // and times. Without a device it is skipped with the reason.
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,7 @@ TEST(DeviceEmulatorComparison, RobustSamplesAgreeOnEveryDefaultFixture) {
   for (const std::string& fixture : default_fixtures()) {
     for (const auto& device : registry.algorithms()) {
       if (device->info().backend != "cuda") continue;
+      if (device->info().capabilities.output != OutputKind::hard_shadow) continue;
       const Algorithm* emulated = registry.find(device->info().id, "cuda-emu");
       ASSERT_NE(emulated, nullptr) << device->info().id << " has no emulated backend";
       const Case c = hard_shadow_view(make_fixture(fixture));
@@ -85,6 +87,58 @@ TEST(DeviceEmulatorComparison, RobustSamplesAgreeOnEveryDefaultFixture) {
     }
   }
   EXPECT_GT(compared, 0) << "no case ran on both backends";
+}
+
+bool same_box(const Aabb& a, const Aabb& b) {
+  return std::memcmp(&a.min, &b.min, sizeof a.min) == 0 &&
+         std::memcmp(&a.max, &b.max, sizeof a.max) == 0;
+}
+
+// Light-list kernels (lightassign): every variant's lists, boxes (bit for bit), list_of_sample
+// and counters identical on the device and under the emulator.
+TEST(DeviceEmulatorComparison, LightListsAreIdenticalOnEveryDefaultFixture) {
+  if (const auto reason = cuda_unavailable_reason()) GTEST_SKIP() << *reason;
+  const Registry& registry = builtin_registry();
+  int compared = 0;
+  for (const std::string& fixture : default_fixtures()) {
+    const Case c = make_fixture(fixture);
+    const ViewSamples samples = generate_view_samples(c);
+    for (const auto& device : registry.algorithms()) {
+      if (device->info().backend != "cuda") continue;
+      if (device->info().capabilities.output != OutputKind::light_lists) continue;
+      const Algorithm* emulated = registry.find(device->info().id, "cuda-emu");
+      ASSERT_NE(emulated, nullptr) << device->info().id << " has no emulated backend";
+      const PreparedScene scene = prepare_scene(c, samples);
+      for (const std::string& variant : device->info().variants) {
+        if (device->unsupported_reason(c, samples, variant)) continue;
+        SCOPED_TRACE(c.name + " " + device->info().id + ":" + variant);
+        const auto start = std::chrono::steady_clock::now();
+        const AlgorithmOutput on_device = device->run(scene, variant);
+        const auto middle = std::chrono::steady_clock::now();
+        const AlgorithmOutput under_emulator = emulated->run(scene, variant);
+        const auto end = std::chrono::steady_clock::now();
+        const LightLists &a = on_device.light_lists, &b = under_emulator.light_lists;
+        EXPECT_EQ(a.list_of_sample, b.list_of_sample);
+        EXPECT_EQ(a.offsets, b.offsets);
+        EXPECT_EQ(a.lights, b.lights);
+        ASSERT_EQ(a.bounds.size(), b.bounds.size());
+        for (std::size_t k = 0; k < a.bounds.size(); ++k)
+          ASSERT_TRUE(same_box(a.bounds[k], b.bounds[k])) << "list " << k;
+        // The emulated record carries emulated_threads after the same counters.
+        ASSERT_EQ(a.offsets.size(), b.offsets.size());
+        ASSERT_EQ(on_device.counters.size() + 1, under_emulator.counters.size());
+        for (std::size_t i = 0; i < on_device.counters.size(); ++i)
+          EXPECT_EQ(on_device.counters[i], under_emulator.counters[i]);
+        std::printf("%-40s %8zu lists %12.1f ms device %12.1f ms emulated\n",
+                    (c.name + " " + device->info().id + ":" + variant).c_str(),
+                    a.offsets.size() - 1,
+                    std::chrono::duration<double, std::milli>(middle - start).count(),
+                    std::chrono::duration<double, std::milli>(end - middle).count());
+        ++compared;
+      }
+    }
+  }
+  EXPECT_GT(compared, 0) << "no light-list case ran on both backends";
 }
 
 }  // namespace

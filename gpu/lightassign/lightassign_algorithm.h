@@ -1,0 +1,35 @@
+#pragma once
+// The Algorithm around the lightassign kernels, one for each build of the kernel source: the
+// device (`cuda`) and the emulator (`cuda-emu`). Variants, unsupported reasons and counters are
+// the reference's (reference/lightassign/lightassign_algorithm.h); `brute` stays the reference's.
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "gpu/lightassign/lightassign_kernels.h"
+#include "shadowcts/algorithm.h"
+#include "shadowcts/prepared_scene.h"
+
+namespace shadowcts {
+
+struct LightAssignKernelBackend {
+  std::string backend;  // "cuda" or "cuda-emu"
+  std::string summary;
+  LightAssignKernelResult (*run_kernels)(const LightAssignKernelInput&) = nullptr;
+  // Why the kernels cannot run here (no device), or nullopt; nullptr: they always can.
+  std::optional<std::string> (*unavailable_reason)() = nullptr;
+  bool emulated = false;  // adds the `emulated_threads` counter to every record
+};
+
+std::unique_ptr<Algorithm> make_lightassign_kernel_algorithm(LightAssignKernelBackend backend);
+
+// The kernels' input for one variant of the scene (throws std::invalid_argument for a variant
+// the kernels do not implement). Its hooks refer to scene.source's camera.
+LightAssignKernelInput lightassign_kernel_input(const PreparedScene& scene,
+                                                const std::string& variant);
+
+// id "lightassign", backend "cuda-emu": the kernels run by the CUDA-subset emulator; counters as
+// the reference plus "emulated_threads".
+std::unique_ptr<Algorithm> make_lightassign_cuda_emu();
+
+}  // namespace shadowcts
