@@ -21,7 +21,8 @@ struct MetricKernelBackend {
 };
 
 // id "metric", variants "capsules", "spheres", "capsules16"; phases clustering, build, query;
-// counters as the reference's plus host_walked_samples and stack_overflow_samples.
+// counters as the reference's plus near_threshold_samples, stack_overflow_samples and
+// exact_test_samples (the samples the kernel handed to the host, by reason).
 std::unique_ptr<Algorithm> make_metric_kernel_algorithm(MetricKernelBackend backend);
 
 // Backend "cuda-emu": the kernel run by the CUDA-subset emulator (gpu/emulator) on the host, on

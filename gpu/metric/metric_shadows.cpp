@@ -156,7 +156,7 @@ GpuMetricRun run_metric(const PreparedScene& scene, const GpuMetricOptions& opti
     for (std::size_t i = 0; i < result.state.size(); ++i) {
       const std::uint8_t state = result.state[i];
       shadowed[i] = state == sample_shadowed ? 1 : 0;
-      if (state == sample_unsure) ++run.host_walked_samples;
+      if (state == sample_unsure) ++run.near_threshold_samples;
       if (state == sample_stack_overflow) ++run.stack_overflow_samples;
       if (state == sample_exact_test) ++run.exact_test_samples;
       if (handed_to_host(state)) handed_back.push_back(std::uint32_t(i));
@@ -206,7 +206,7 @@ GpuMetricRun run_metric(const PreparedScene& scene, const GpuMetricOptions& opti
   const std::uint64_t blocks = (scene.samples.size() + threads_per_block - 1) / threads_per_block;
   run.kernel_threads = blocks * threads_per_block;
   run.output.counters = ref::to_counters(run.counters);
-  run.output.counters.push_back({"host_walked_samples", run.host_walked_samples});
+  run.output.counters.push_back({"near_threshold_samples", run.near_threshold_samples});
   run.output.counters.push_back({"stack_overflow_samples", run.stack_overflow_samples});
   run.output.counters.push_back({"exact_test_samples", run.exact_test_samples});
   return run;

@@ -39,7 +39,7 @@ using KernelRunner = MetricResult (*)(const MetricInput&);
 struct GpuMetricRun {
   AlgorithmOutput output;  // per view sample; the reference's counters plus the hand-backs
   shadowcts::metric::MetricCounters counters;
-  std::uint64_t host_walked_samples = 0;     // a decision within the window
+  std::uint64_t near_threshold_samples = 0;  // a decision within the window
   std::uint64_t stack_overflow_samples = 0;  // more than stack_capacity entries
   std::uint64_t exact_test_samples = 0;      // a float miss beside an edge to decide exactly
   std::uint64_t kernel_threads = 0;          // threads launched
