@@ -3,7 +3,13 @@
 // counters equal the reference's walk of each sample (the first differing node or sample is
 // named), on the default fixtures, the reference's stiff cases and random cases; the kernel
 // decides nearly every sample itself (the host's hand-back path cannot hide a kernel bug), and
-// the results do not depend on the thread count or the emulator's schedule.
+// the results do not depend on the thread count or the emulator's schedule. Built a second time
+// with SHADOWCTS_METRIC_TEST_DEVICE for the `cuda` backend (ci/device.sh; skipped without a
+// device).
+#ifndef SHADOWCTS_METRIC_TEST_DEVICE
+#define SHADOWCTS_METRIC_TEST_DEVICE 0
+#endif
+
 #include <cstring>
 #include <string>
 #include <vector>
@@ -20,6 +26,9 @@
 #include "reference/metric/metric_shadows.h"
 #include "reference/metric/traversal.h"
 #include "shadowcts/hard_shadow_inputs.h"
+#if SHADOWCTS_METRIC_TEST_DEVICE
+#include "gpu/device.h"
+#endif
 
 namespace shadowcts::gpu_metric {
 namespace {
@@ -27,6 +36,21 @@ namespace {
 namespace ref = shadowcts::metric;
 
 const char* const variants[] = {"capsules", "spheres", "capsules16"};
+
+#if SHADOWCTS_METRIC_TEST_DEVICE
+constexpr KernelRunner kernel = run_metric_traversal_kernel;
+std::unique_ptr<Algorithm> make_backend() {
+  return make_metric_cuda();
+}
+#define SKIP_WITHOUT_DEVICE() \
+  if (const auto reason = cuda_unavailable_reason()) GTEST_SKIP() << *reason
+#else
+constexpr KernelRunner kernel = run_metric_traversal_kernel_emulated;
+std::unique_ptr<Algorithm> make_backend() {
+  return make_metric_cuda_emu();
+}
+#define SKIP_WITHOUT_DEVICE() static_cast<void>(0)
+#endif
 
 bool same_bits(double a, double b) {
   return std::memcmp(&a, &b, sizeof(double)) == 0;
@@ -109,7 +133,7 @@ KernelDiff diff_kernel_against_reference(const Case& c, const ViewSamples& sampl
   const ref::ClusteredScene clustered = ref::cluster_scene(c, options.metric);
   const ref::LightStructure structure = ref::build_light_structure(c, clustered, options.metric);
   const MetricInput input = metric_kernel_input(scene, clustered, structure, decision_window);
-  const MetricResult result = run_metric_traversal_kernel_emulated(input);
+  const MetricResult result = kernel(input);
 
   ref::TraversalScene traversal;
   traversal.c = &c;
@@ -159,7 +183,7 @@ void expect_same_as_reference(const Case& c, const ViewSamples& samples, const s
   const PreparedScene scene = prepare_scene(c, samples);
   GpuMetricOptions options = parse_gpu_metric_variant(variant);
   options.decision_window = decision_window;
-  const GpuMetricRun actual = run_metric(scene, options, run_metric_traversal_kernel_emulated);
+  const GpuMetricRun actual = run_metric(scene, options, kernel);
   ASSERT_EQ(actual.output.shadowed.size(), expected.output.shadowed.size());
   for (std::size_t i = 0; i < expected.output.shadowed.size(); ++i)
     ASSERT_EQ(actual.output.shadowed[i], expected.output.shadowed[i]) << "view sample " << i;
@@ -174,6 +198,7 @@ void expect_same_as_reference(const Case& c, const ViewSamples& samples, const s
 class CudaEmuMetricOnFixtures : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(CudaEmuMetricOnFixtures, UploadedTreeIsTheReferencesNodeForNode) {
+  SKIP_WITHOUT_DEVICE();
   const ref::testing::FixtureCase f = ref::testing::load_fixture(GetParam(), 16);
   const PreparedScene scene = prepare_scene(f.c, f.samples);
   for (const char* variant : variants) {
@@ -190,6 +215,7 @@ TEST_P(CudaEmuMetricOnFixtures, UploadedTreeIsTheReferencesNodeForNode) {
 
 // The kernel's own answers and per-sample counters; at most 1 % of the samples handed back.
 TEST_P(CudaEmuMetricOnFixtures, KernelWalksEachSampleAsTheReference) {
+  SKIP_WITHOUT_DEVICE();
   const ref::testing::FixtureCase f = ref::testing::load_fixture(GetParam(), 64);
   for (const char* variant : variants) {
     SCOPED_TRACE(variant);
@@ -202,6 +228,7 @@ TEST_P(CudaEmuMetricOnFixtures, KernelWalksEachSampleAsTheReference) {
 }
 
 TEST_P(CudaEmuMetricOnFixtures, SameAnswersAndCountersAsTheReference) {
+  SKIP_WITHOUT_DEVICE();
   const ref::testing::FixtureCase f = ref::testing::load_fixture(GetParam(), 64);
   for (const char* variant : variants) expect_same_as_reference(f.c, f.samples, variant);
 }
@@ -210,6 +237,7 @@ TEST_P(CudaEmuMetricOnFixtures, SameAnswersAndCountersAsTheReference) {
 // host: the kernel's decisions outside it and the host's walks must still add up to the
 // reference's answers and counters.
 TEST_P(CudaEmuMetricOnFixtures, SameResultsWhenManySamplesAreHandedBack) {
+  SKIP_WITHOUT_DEVICE();
   const ref::testing::FixtureCase f = ref::testing::load_fixture(GetParam(), 32);
   const KernelDiff diff = diff_kernel_against_reference(f.c, f.samples, "capsules", 0x1p-5);
   EXPECT_EQ(diff.first_difference, "");
@@ -225,6 +253,7 @@ INSTANTIATE_TEST_SUITE_P(DefaultFixtures, CudaEmuMetricOnFixtures,
 class CudaEmuMetricOnStiffCases : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(CudaEmuMetricOnStiffCases, SameAnswersAndCountersAsTheReference) {
+  SKIP_WITHOUT_DEVICE();
   ref::testing::FixtureCase f;
   f.c = make_fixture(GetParam());
   if (f.c.light && f.c.light->kind == ShadowLightKind::sun_disk) {
@@ -251,6 +280,7 @@ INSTANTIATE_TEST_SUITE_P(
 class CudaEmuMetricOnRandomCases : public ::testing::TestWithParam<int> {};
 
 TEST_P(CudaEmuMetricOnRandomCases, SameAnswersAndCountersAsTheReference) {
+  SKIP_WITHOUT_DEVICE();
   const int k = GetParam();
   const ShadowLight light = k % 3 == 0 ? shadowcts::testing::point_light({1.5f, 10.0f, 0.75f})
                             : k % 3 == 1
@@ -266,6 +296,7 @@ TEST_P(CudaEmuMetricOnRandomCases, SameAnswersAndCountersAsTheReference) {
 INSTANTIATE_TEST_SUITE_P(RandomCases, CudaEmuMetricOnRandomCases, ::testing::Range(0, 6));
 
 TEST(CudaEmuMetric, LightInsideVolumesAndATJunction) {
+  SKIP_WITHOUT_DEVICE();
   // Cones covering every direction.
   auto inside = shadowcts::testing::make_random_case(
       77, 4, 400, 1.5f, 600, shadowcts::testing::point_light({0.0f, 2.0f, 0.0f}));
@@ -298,14 +329,15 @@ TEST(CudaEmuMetric, LightInsideVolumesAndATJunction) {
     EXPECT_EQ(diff.first_difference, "");
     EXPECT_EQ(diff.exact_tests, 1u);
     EXPECT_EQ(diff.handed_back, 1u);
-    EXPECT_EQ(make_metric_cuda_emu()->run(crack.c, crack.samples, variant).shadowed[sample], 1);
+    EXPECT_EQ(make_backend()->run(crack.c, crack.samples, variant).shadowed[sample], 1);
   }
 }
 
 // Outputs and counters do not depend on the thread count or on the emulator's schedule.
 TEST(CudaEmuMetric, DeterministicForAnyThreadCountAndSchedule) {
+  SKIP_WITHOUT_DEVICE();
   const ref::testing::FixtureCase f = ref::testing::load_fixture("foliage.10k", 48);
-  const auto algorithm = make_metric_cuda_emu();
+  const auto algorithm = make_backend();
   AlgorithmOutput single;
   {
     tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
@@ -318,6 +350,7 @@ TEST(CudaEmuMetric, DeterministicForAnyThreadCountAndSchedule) {
   }
   EXPECT_EQ(single.shadowed, two.shadowed);
   EXPECT_EQ(single.counters, two.counters);
+#if !SHADOWCTS_METRIC_TEST_DEVICE
   emu::Options options;
   options.schedule = emu::Schedule::random;
   options.seed = 12345;
@@ -326,13 +359,15 @@ TEST(CudaEmuMetric, DeterministicForAnyThreadCountAndSchedule) {
   const AlgorithmOutput shuffled = algorithm->run(f.c, f.samples, "capsules");
   EXPECT_EQ(shuffled.shadowed, single.shadowed);
   EXPECT_EQ(shuffled.counters, single.counters);
+#endif
 }
 
 TEST(CudaEmuMetric, DescribesItselfAndRejectsTheMedianBuild) {
-  const auto algorithm = make_metric_cuda_emu();
+  SKIP_WITHOUT_DEVICE();
+  const auto algorithm = make_backend();
   const AlgorithmInfo& info = algorithm->info();
   EXPECT_EQ(info.id, "metric");
-  EXPECT_EQ(info.backend, "cuda-emu");
+  EXPECT_EQ(info.backend, SHADOWCTS_METRIC_TEST_DEVICE ? "cuda" : "cuda-emu");
   EXPECT_EQ(info.variants, (std::vector<std::string>{"capsules", "spheres", "capsules16"}));
   EXPECT_EQ(algorithm->timed_phases("capsules"),
             (std::vector<std::string>{"clustering", "build", "query"}));
@@ -342,7 +377,7 @@ TEST(CudaEmuMetric, DescribesItselfAndRejectsTheMedianBuild) {
   bool emulated_threads = false;
   for (const auto& [name, value] : output.counters)
     if (name == "emulated_threads") emulated_threads = value > 0;
-  EXPECT_TRUE(emulated_threads);
+  EXPECT_EQ(emulated_threads, !SHADOWCTS_METRIC_TEST_DEVICE);
 }
 
 }  // namespace
