@@ -145,8 +145,8 @@ GpuMetricRun run_metric(const PreparedScene& scene, const GpuMetricOptions& opti
     // pivots inserted before it).
     start = std::chrono::steady_clock::now();
     const ref::LightStructure structure = ref::build_light_structure(c, clustered, options.metric);
-    const MetricInput input =
-        metric_kernel_input(scene, clustered, structure, options.decision_window);
+    MetricInput input = metric_kernel_input(scene, clustered, structure, options.decision_window);
+    input.stack_limit = options.stack_limit;
     run.build_seconds = seconds_since(start);
 
     start = std::chrono::steady_clock::now();

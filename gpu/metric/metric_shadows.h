@@ -21,6 +21,8 @@ struct GpuMetricOptions {
   // device's and the reference's roundings (a few 2^-53 of numbers below 8); tests widen it to
   // send many samples to the host.
   double decision_window = 0x1p-40;
+  // Stack entries per thread (MetricInput::stack_limit); tests lower it.
+  std::uint32_t stack_limit = stack_capacity;
 };
 
 // "capsules", "spheres" and "capsules16" (and the reference's names with another

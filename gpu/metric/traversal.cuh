@@ -164,7 +164,7 @@ __device__ std::uint8_t walk(const MetricNode* nodes, std::uint32_t node_count,
                              const MetricCluster* clusters, const MetricTriangle* triangles,
                              const MetricFrame& frame, const glm::vec3& position,
                              std::uint32_t receiver, const MetricReceiver* receiver_triangle,
-                             WalkCounters& counters) {
+                             std::uint32_t stack_limit, WalkCounters& counters) {
   const glm::dvec3 p(position);
   glm::dvec3 query(0.0);
   double light_distance = 0.0;
@@ -227,7 +227,7 @@ __device__ std::uint8_t walk(const MetricNode* nodes, std::uint32_t node_count,
     if (unsure) return gpu_metric::sample_unsure;
     // Never a silent overflow: the host walks such a sample (and counts it).
     if (size + std::uint32_t(take_overlap) + std::uint32_t(take_far) + std::uint32_t(take_near) >
-        gpu_metric::stack_capacity)
+        stack_limit)
       return gpu_metric::sample_stack_overflow;
     if (take_overlap) stack[size++] = overlap;
     if (take_far) stack[size++] = far;
@@ -240,14 +240,14 @@ __global__ void SHADOWCTS_METRIC_LAUNCH_BOUNDS metric_traversal(
     const MetricNode* nodes, std::uint32_t node_count, const MetricCluster* clusters,
     const MetricTriangle* triangles, MetricFrame frame, const glm::vec3* sample_positions,
     const std::uint32_t* sample_receivers, const MetricReceiver* sample_receiver_triangles,
-    std::uint32_t sample_count, std::uint8_t* sample_states, std::uint32_t* sample_counters,
-    unsigned long long* totals) {
+    std::uint32_t sample_count, std::uint32_t stack_limit, std::uint8_t* sample_states,
+    std::uint32_t* sample_counters, unsigned long long* totals) {
   const std::uint32_t sample = blockIdx.x * blockDim.x + threadIdx.x;
   WalkCounters counters;
   if (sample < sample_count) {
     const std::uint8_t state =
         walk(nodes, node_count, clusters, triangles, frame, sample_positions[sample],
-             sample_receivers[sample], sample_receiver_triangles + sample, counters);
+             sample_receivers[sample], sample_receiver_triangles + sample, stack_limit, counters);
     sample_states[sample] = state;
     // A sample handed to the host is counted there, by the reference's walk.
     if (gpu_metric::handed_to_host(state)) counters = WalkCounters{};
@@ -310,6 +310,11 @@ inline gpu_metric::MetricResult run(const gpu_metric::MetricInput& input) {
   if (sample_count > UINT32_MAX || input.nodes.size() > UINT32_MAX ||
       input.triangles.size() > UINT32_MAX)
     throw std::length_error("metric_traversal: more than 2^32 samples, nodes or triangles");
+  // At least the root's entry.
+  const std::uint32_t stack_limit = input.stack_limit < 1 ? 1
+                                    : input.stack_limit < gpu_metric::stack_capacity
+                                        ? input.stack_limit
+                                        : gpu_metric::stack_capacity;
   if (input.sample_receivers.size() != sample_count ||
       input.sample_receiver_triangles.size() != sample_count)
     throw std::invalid_argument("metric_traversal: one receiver and receiver triangle per sample");
@@ -336,7 +341,8 @@ inline gpu_metric::MetricResult run(const gpu_metric::MetricInput& input) {
   SHADOWCTS_LAUNCH(metric_traversal, block_count, threads_per_block, 0)
   (nodes.data(), static_cast<std::uint32_t>(input.nodes.size()), clusters.data(), triangles.data(),
    input.frame, positions.data(), receivers.data(), receiver_triangles.data(),
-   static_cast<std::uint32_t>(sample_count), states.data(), sample_counters.data(), totals.data());
+   static_cast<std::uint32_t>(sample_count), stack_limit, states.data(), sample_counters.data(),
+   totals.data());
   check(cudaGetLastError(), "metric_traversal launch");
   check(cudaDeviceSynchronize(), "metric_traversal");
 

@@ -7,6 +7,8 @@
 
 #include <glm/vec3.hpp>
 
+#include "shadowcts/host_device.h"
+
 namespace shadowcts::gpu_metric {
 
 inline constexpr std::uint32_t no_node = 0xffffffffu;
@@ -80,7 +82,7 @@ inline constexpr std::uint8_t sample_stack_overflow = 3;
 // needs_exact_segment_test): the host walks the sample.
 inline constexpr std::uint8_t sample_exact_test = 4;
 
-inline bool handed_to_host(std::uint8_t state) {
+SHADOWCTS_HD inline bool handed_to_host(std::uint8_t state) {
   return state == sample_unsure || state == sample_stack_overflow || state == sample_exact_test;
 }
 
@@ -93,6 +95,8 @@ inline constexpr std::uint32_t stack_capacity = 128;
 
 struct MetricInput {
   MetricFrame frame;
+  // Entries a thread may use, at most stack_capacity (tests lower it to exercise the hand-back).
+  std::uint32_t stack_limit = stack_capacity;
   std::vector<MetricNode> nodes;  // nodes[0] is the root when not empty
   std::vector<MetricCluster> clusters;
   std::vector<MetricTriangle> triangles;  // cluster after cluster

@@ -120,19 +120,21 @@ std::string first_cluster_difference(const Case& c, const ref::ClusteredScene& c
 
 struct KernelDiff {
   std::string first_difference;  // empty: every sample the kernel decided is the reference's
-  std::size_t samples = 0, handed_back = 0, exact_tests = 0;
+  std::size_t samples = 0, handed_back = 0, exact_tests = 0, stack_overflows = 0;
 };
 
 // Runs the kernel alone (no host hand-back) and compares every sample it decided with the
 // reference's walk of that sample: answer and the three work counters.
 KernelDiff diff_kernel_against_reference(const Case& c, const ViewSamples& samples,
                                          const std::string& variant,
-                                         double decision_window = 0x1p-40) {
+                                         double decision_window = 0x1p-40,
+                                         std::uint32_t stack_limit = stack_capacity) {
   const GpuMetricOptions options = parse_gpu_metric_variant(variant);
   const PreparedScene scene = prepare_scene(c, samples);
   const ref::ClusteredScene clustered = ref::cluster_scene(c, options.metric);
   const ref::LightStructure structure = ref::build_light_structure(c, clustered, options.metric);
-  const MetricInput input = metric_kernel_input(scene, clustered, structure, decision_window);
+  MetricInput input = metric_kernel_input(scene, clustered, structure, decision_window);
+  input.stack_limit = stack_limit;
   const MetricResult result = kernel(input);
 
   ref::TraversalScene traversal;
@@ -152,6 +154,7 @@ KernelDiff diff_kernel_against_reference(const Case& c, const ViewSamples& sampl
     if (handed_to_host(state)) {
       ++diff.handed_back;
       if (state == sample_exact_test) ++diff.exact_tests;
+      if (state == sample_stack_overflow) ++diff.stack_overflows;
       continue;
     }
     ref::TraversalCounters expected;
@@ -177,12 +180,14 @@ KernelDiff diff_kernel_against_reference(const Case& c, const ViewSamples& sampl
 
 // The whole backend (kernel and hand-backs) against the reference's run: answers and counters.
 void expect_same_as_reference(const Case& c, const ViewSamples& samples, const std::string& variant,
-                              double decision_window = 0x1p-40) {
+                              double decision_window = 0x1p-40,
+                              std::uint32_t stack_limit = stack_capacity) {
   SCOPED_TRACE(variant);
   const ref::MetricRun expected = ref::run_metric(c, samples, ref::parse_metric_variant(variant));
   const PreparedScene scene = prepare_scene(c, samples);
   GpuMetricOptions options = parse_gpu_metric_variant(variant);
   options.decision_window = decision_window;
+  options.stack_limit = stack_limit;
   const GpuMetricRun actual = run_metric(scene, options, kernel);
   ASSERT_EQ(actual.output.shadowed.size(), expected.output.shadowed.size());
   for (std::size_t i = 0; i < expected.output.shadowed.size(); ++i)
@@ -242,6 +247,17 @@ TEST_P(CudaEmuMetricOnFixtures, SameResultsWhenManySamplesAreHandedBack) {
   const KernelDiff diff = diff_kernel_against_reference(f.c, f.samples, "capsules", 0x1p-5);
   EXPECT_EQ(diff.first_difference, "");
   expect_same_as_reference(f.c, f.samples, "capsules", 0x1p-5);
+}
+
+// A stack of 4 entries overflows on the walks that keep more siblings pending: those samples go to
+// the host (never silently dropped), and the results are still the reference's.
+TEST_P(CudaEmuMetricOnFixtures, SameResultsWhenStacksOverflow) {
+  SKIP_WITHOUT_DEVICE();
+  const ref::testing::FixtureCase f = ref::testing::load_fixture(GetParam(), 32);
+  const KernelDiff diff = diff_kernel_against_reference(f.c, f.samples, "capsules", 0x1p-40, 4);
+  EXPECT_EQ(diff.first_difference, "");
+  EXPECT_GT(diff.stack_overflows, 0u);
+  expect_same_as_reference(f.c, f.samples, "capsules", 0x1p-40, 4);
 }
 
 INSTANTIATE_TEST_SUITE_P(DefaultFixtures, CudaEmuMetricOnFixtures,
