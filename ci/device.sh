@@ -13,11 +13,12 @@ if ! command -v nvcc >/dev/null; then
   exit 2
 fi
 export SHADOWCTS_BUILD_DIR="${SHADOWCTS_BUILD_DIR:-build-device}"
-SHADOWCTS_TARGETS="hard_shadow_bruteforce_cuda_test conformance_test device_emulator_comparison_test" \
+SHADOWCTS_TARGETS="hard_shadow_bruteforce_cuda_test gpu_metric_cuda_test conformance_test device_emulator_comparison_test" \
   bash ci/setup.sh || exit 1
 build="$SHADOWCTS_BUILD_DIR"
 status=0
 "$build/tests/gpu/hard_shadow_bruteforce_cuda_test" || status=1
+"$build/tests/gpu/metric/gpu_metric_cuda_test" --gtest_brief=1 || status=1
 "$build/tests/conformance/conformance_test" --gtest_filter='*_cuda_*:-*_cuda_emu_*' --gtest_brief=1 ||
   status=1
 "$build/tests/gpu/device_emulator_comparison_test" || status=1

@@ -1,6 +1,7 @@
 // The built-in algorithms of this build, in the order `shadowcts list` shows them.
 #include "gpu/bruteforce/hard_shadow_bruteforce_emu.h"
 #include "gpu/lightassign/lightassign_algorithm.h"
+#include "gpu/metric/metric_algorithm.h"
 #include "reference/bruteforce/hard_shadow_bruteforce.h"
 #include "reference/embree/hard_shadow_embree.h"
 #include "reference/embree/soft_shadow_embree.h"
@@ -39,6 +40,7 @@ const Registry& builtin_registry() {
     // The device kernels run by the emulator: on every machine, in their own records.
     r.add(make_bruteforce_hard_shadow_cuda_emu());
     r.add(make_lightassign_cuda_emu());
+    r.add(make_metric_cuda_emu());
     r.add(make_simd_ptsv());
     r.add(make_simd_softtile());
     r.add(make_simd_metric());
@@ -46,6 +48,7 @@ const Registry& builtin_registry() {
 #if SHADOWCTS_HAVE_CUDA
     r.add(make_bruteforce_hard_shadow_cuda());
     r.add(make_lightassign_cuda());
+    r.add(make_metric_cuda());
 #endif
     return r;
   }();

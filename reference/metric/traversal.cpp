@@ -5,7 +5,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "shadowcts/geometry/exact_segment_triangle.h"
+#include "shadowcts/geometry/caster_blocks_sample.h"
 #include "shadowcts/geometry/receiver_half_space.h"
 #include "shadowcts/geometry/segment_triangle.h"
 
@@ -42,30 +42,15 @@ bool triangle_blocks_sample(const TraversalScene& scene, const ViewSample& sampl
                             const RaySpace& ray_space, std::uint32_t t,
                             std::optional<geometry::ReceiverHalfSpace>& half_space) {
   const Case& c = *scene.c;
-  const glm::dvec3 p(sample.position);
   const Triangle& triangle = c.triangles[t];
-  const bool float_hit = ray_hits_triangle(ray_space, triangle.v0, triangle.v1, triangle.v2);
-  // The float test rounds each vertex on its own: beside an edge its miss may be a crack
-  // (a vertex on another triangle's edge, found by fuzz_watertight). A hit there is
-  // never wrong on a robust sample (the ray then passes within rounding of an open edge,
-  // which makes the sample ambiguous, or of a covered one).
-  if (!float_hit && !ray_near_triangle_edge(ray_space, triangle.v0, triangle.v1, triangle.v2))
-    return false;
-  // The receiver half-space rule, built once a triangle may block: a hit counts only
-  // strictly on the light's side of the receiver's plane, so a coplanar neighbour or the
-  // next face of a convex mesh is passed over and the search goes on.
-  if (!half_space) half_space = sample_half_space(c, scene.frame, sample);
-  const glm::dvec3 v0(triangle.v0), v1(triangle.v1), v2(triangle.v2);
-  const geometry::CasterReach reach = geometry::caster_reach(*half_space, v0, v1, v2);
-  if (reach == geometry::CasterReach::no_hit) return false;
-  if (!float_hit && !(scene.light.directional
-                          ? geometry::ray_meets_triangle(p, scene.light.direction, v0, v1, v2)
-                          : geometry::segment_meets_triangle(p, scene.light.position, v0, v1, v2)))
-    return false;
-  if (reach == geometry::CasterReach::every_hit ||
-      geometry::hit_on_light_side(*half_space, p, v0, v1, v2))
-    return true;
-  return false;
+  // The decision is shared with the device port (gpu/metric), so that both answer alike.
+  return geometry::decide_caster<true>(
+             ray_space, glm::dvec3(sample.position), scene.light.directional,
+             scene.light.directional ? scene.light.direction : scene.light.position, triangle.v0,
+             triangle.v1, triangle.v2, [&]() -> const geometry::ReceiverHalfSpace& {
+               if (!half_space) half_space = sample_half_space(c, scene.frame, sample);
+               return *half_space;
+             }) == geometry::CasterDecision::blocks;
 }
 
 bool sample_is_shadowed(const TraversalScene& scene, const ViewSample& sample,
