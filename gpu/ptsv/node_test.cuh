@@ -91,7 +91,12 @@ __device__ inline PlaneRange plane_range(const gpu_ptsv::Plane& plane, const Cel
   return r;
 }
 
-enum Verdict : std::uint32_t { verdict_reject, verdict_accept, verdict_refine, verdict_cull };
+enum Verdict : std::uint32_t {
+  verdict_reject = 0,
+  verdict_accept = 1,
+  verdict_refine = 2,
+  verdict_cull = 3
+};
 
 struct Tolerances {
   double rounding, accept_bias;

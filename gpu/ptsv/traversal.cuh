@@ -7,7 +7,7 @@
 // therefore depends only on the visits to n by earlier volumes, and every volume visits n at most
 // once. So the device runs the traversal level by level over a global queue of (node, volume)
 // jobs sorted by node, then volume (the simd port's schedule, simd/ptsv/traversal.h):
-// - one warp per job tests the node's 32 children against the volume, one child per lane, and
+// - a warp per job tests the node's 32 children against the volume, one child per lane, and
 //   __ballot_sync gathers the accept / refine / reject / cull masks (Algorithm 1, lines 7-19),
 //   against the node's mask at the start of the level;
 // - the mask each job really sees is the start mask less the accepts of the node's earlier jobs:
@@ -51,6 +51,15 @@ struct TraversalParams {
   bool extra_planes;
 };
 
+// Each warp takes a run of consecutive jobs: the kernels' fixed cost (a launch's warps, the
+// emulator's fibers) is paid once per run, and a leaf's tile is read by consecutive jobs of the
+// same leaf.
+constexpr std::uint32_t jobs_per_warp = 8;
+
+inline std::size_t warp_threads(std::uint32_t jobs) {
+  return std::size_t((jobs + jobs_per_warp - 1) / jobs_per_warp) * 32;
+}
+
 // Child verdicts of each job (bit j: child j of the node).
 struct JobVerdicts {
   std::uint32_t* start;  // the node's mask at the start of the level
@@ -60,43 +69,51 @@ struct JobVerdicts {
   std::uint32_t* cull;
 };
 
-// TRAVERSENODE for one job per warp: lane j tests child j if the node's mask still holds it.
+// TRAVERSENODE, one job at a time per warp: lane j tests child j if the node's mask still holds it
+// (verdict codes: reject 0, accept 1, refine 2, cull 3).
 __global__ void test_children(const std::uint32_t* job_node, const std::uint32_t* job_volume,
                               std::uint32_t jobs, int level, const std::uint32_t* live,
                               const std::uint32_t* child_mask, const std::uint32_t* first_child,
                               const std::uint32_t* child_index, const NodeBox* child_box,
                               TraversalParams params, JobVerdicts out) {
-  const std::uint32_t job = (blockIdx.x * blockDim.x + threadIdx.x) / 32;
+  const std::uint32_t warp = (blockIdx.x * blockDim.x + threadIdx.x) / 32;
   const std::uint32_t lane = threadIdx.x % 32;
-  if (job >= jobs) return;  // the whole warp
-  const std::uint32_t node = job_node[job];
-  const std::uint32_t start = live[node];
-  const bool has = ((start >> lane) & 1u) != 0;
-  Verdict verdict = verdict_reject;
-  if (has) {
-    const std::uint32_t child =
-        first_child[node] + bit_count(child_mask[node] & ((1u << lane) - 1u));
-    const Volume& volume = params.volumes[job_volume[job]];
-    const int culling = params.extra_planes ? volume.extra_count : 0;
-    const double reach = child_box[child].reach;
-    if (params.implicit_cells) {
-      const CellCorners corners =
-          implicit_cell_corners(params.layout, params.slice_start, level + 1, child_index[child]);
-      verdict = classify_node(volume, corners, reach, params.tolerances, culling);
-    } else {
-      verdict = classify_node(volume, child_box[child], reach, params.tolerances, culling);
+  const std::uint32_t first = warp * jobs_per_warp;
+  const std::uint32_t last = first + jobs_per_warp < jobs ? first + jobs_per_warp : jobs;
+  for (std::uint32_t job = first; job < last; ++job) {  // warp-uniform
+    const std::uint32_t node = job_node[job];
+    const std::uint32_t start = live[node];
+    if (start == 0) {  // every child accepted by earlier volumes: nothing to test
+      if (lane == 0)
+        out.start[job] = out.accept[job] = out.refine[job] = out.reject[job] = out.cull[job] = 0;
+      continue;
     }
-  }
-  const std::uint32_t accept = __ballot_sync(0xffffffffu, has && verdict == verdict_accept);
-  const std::uint32_t refine = __ballot_sync(0xffffffffu, has && verdict == verdict_refine);
-  const std::uint32_t reject = __ballot_sync(0xffffffffu, has && verdict == verdict_reject);
-  const std::uint32_t cull = __ballot_sync(0xffffffffu, has && verdict == verdict_cull);
-  if (lane == 0) {
-    out.start[job] = start;
-    out.accept[job] = accept;
-    out.refine[job] = refine;
-    out.reject[job] = reject;
-    out.cull[job] = cull;
+    const bool has = ((start >> lane) & 1u) != 0;
+    std::uint32_t verdict = verdict_reject;
+    if (has) {
+      const std::uint32_t child =
+          first_child[node] + bit_count(child_mask[node] & ((1u << lane) - 1u));
+      const Volume& volume = params.volumes[job_volume[job]];
+      const int culling = params.extra_planes ? volume.extra_count : 0;
+      const double reach = child_box[child].reach;
+      if (params.implicit_cells) {
+        const CellCorners corners =
+            implicit_cell_corners(params.layout, params.slice_start, level + 1, child_index[child]);
+        verdict = classify_node(volume, corners, reach, params.tolerances, culling);
+      } else {
+        verdict = classify_node(volume, child_box[child], reach, params.tolerances, culling);
+      }
+    }
+    // The four verdicts are two bits: two ballots gather them (lanes without a child vote 0).
+    const std::uint32_t low = __ballot_sync(0xffffffffu, (verdict & 1u) != 0);
+    const std::uint32_t high = __ballot_sync(0xffffffffu, (verdict & 2u) != 0);
+    if (lane == 0) {
+      out.start[job] = start;
+      out.accept[job] = low & ~high;
+      out.refine[job] = ~low & high;
+      out.reject[job] = start & ~low & ~high;
+      out.cull[job] = low & high;
+    }
   }
 }
 
@@ -154,33 +171,36 @@ struct SampleData {
   const std::uint32_t* tile_samples;  // regular samples in index order
 };
 
-// TESTVIEWSAMPLES for one job per warp: every sample of the leaf's tile, a lane each.
+// TESTVIEWSAMPLES, one job at a time per warp: every sample of the leaf's tile, a lane each.
 __global__ void test_samples(const std::uint32_t* job_node, const std::uint32_t* job_volume,
                              std::uint32_t jobs, const std::uint32_t* leaf_index,
                              TraversalParams params, SampleData data, std::uint32_t* shadow_bits,
                              std::uint32_t* sample_tests) {
-  const std::uint32_t job = (blockIdx.x * blockDim.x + threadIdx.x) / 32;
+  const std::uint32_t warp = (blockIdx.x * blockDim.x + threadIdx.x) / 32;
   const std::uint32_t lane = threadIdx.x % 32;
-  if (job >= jobs) return;
-  std::uint32_t tx = 0, ty = 0, slice = 0;
-  deinterleave(params.layout, leaf_index[job_node[job]], tx, ty, slice);
-  const std::uint32_t tile = ty * params.layout.tiles_x + tx;
-  const std::uint32_t begin = data.tile_offsets[tile], end = data.tile_offsets[tile + 1];
-  if (lane == 0) sample_tests[job] = end - begin;
-  const Volume& volume = params.volumes[job_volume[job]];
-  for (std::uint32_t i = begin + lane; i < end; i += 32) {
-    const std::uint32_t s = data.tile_samples[i];
-    const gpu_ptsv::Sample sample = data.samples[s];
-    const glm::dvec3 p(sample.position[0], sample.position[1], sample.position[2]);
-    if (!sample_in_volume(volume, sample.receiver, p)) continue;
-    std::uint32_t* word = shadow_bits + s / 32;
-    const std::uint32_t bit = 1u << (s % 32);
-    if ((atomicOr(word, 0u) & bit) != 0) continue;  // already shadowed: skip the rule
-    const float* t = volume.caster;
-    if (geometry::caster_counts(data.half_spaces[sample.half_space], p,
-                                glm::dvec3(t[0], t[1], t[2]), glm::dvec3(t[3], t[4], t[5]),
-                                glm::dvec3(t[6], t[7], t[8])))
-      atomicOr(word, bit);
+  const std::uint32_t first = warp * jobs_per_warp;
+  const std::uint32_t last = first + jobs_per_warp < jobs ? first + jobs_per_warp : jobs;
+  for (std::uint32_t job = first; job < last; ++job) {
+    std::uint32_t tx = 0, ty = 0, slice = 0;
+    deinterleave(params.layout, leaf_index[job_node[job]], tx, ty, slice);
+    const std::uint32_t tile = ty * params.layout.tiles_x + tx;
+    const std::uint32_t begin = data.tile_offsets[tile], end = data.tile_offsets[tile + 1];
+    if (lane == 0) sample_tests[job] = end - begin;
+    const Volume& volume = params.volumes[job_volume[job]];
+    for (std::uint32_t i = begin + lane; i < end; i += 32) {
+      const std::uint32_t s = data.tile_samples[i];
+      const gpu_ptsv::Sample sample = data.samples[s];
+      const glm::dvec3 p(sample.position[0], sample.position[1], sample.position[2]);
+      if (!sample_in_volume(volume, sample.receiver, p)) continue;
+      std::uint32_t* word = shadow_bits + s / 32;
+      const std::uint32_t bit = 1u << (s % 32);
+      if ((atomicOr(word, 0u) & bit) != 0) continue;  // already shadowed: skip the rule
+      const float* t = volume.caster;
+      if (geometry::caster_counts(data.half_spaces[sample.half_space], p,
+                                  glm::dvec3(t[0], t[1], t[2]), glm::dvec3(t[3], t[4], t[5]),
+                                  glm::dvec3(t[6], t[7], t[8])))
+        atomicOr(word, bit);
+    }
   }
 }
 
@@ -231,7 +251,7 @@ inline void traverse(DeviceHierarchy& h, std::vector<DeviceArray<std::uint32_t>>
     }
     if (l == leaves) {
       DeviceArray<std::uint32_t> tests(jobs);
-      SHADOWCTS_LAUNCH(test_samples, launches.blocks(std::size_t(jobs) * 32), threads_per_block, 0)
+      SHADOWCTS_LAUNCH(test_samples, launches.blocks(warp_threads(jobs)), threads_per_block, 0)
       (job_node.data(), job_volume.data(), jobs, level.index.data(), params, data, shadow_bits,
        tests.data());
       after_launch("test_samples");
@@ -242,7 +262,7 @@ inline void traverse(DeviceHierarchy& h, std::vector<DeviceArray<std::uint32_t>>
     DeviceArray<std::uint32_t> start(jobs), accept(jobs), refine(jobs), reject(jobs), cull(jobs);
     const JobVerdicts verdicts{start.data(), accept.data(), refine.data(), reject.data(),
                                cull.data()};
-    SHADOWCTS_LAUNCH(test_children, launches.blocks(std::size_t(jobs) * 32), threads_per_block, 0)
+    SHADOWCTS_LAUNCH(test_children, launches.blocks(warp_threads(jobs)), threads_per_block, 0)
     (job_node.data(), job_volume.data(), jobs, l, live[std::size_t(l)].data(),
      level.child_mask.data(), level.first_child.data(), below.index.data(), below.box.data(),
      params, verdicts);
