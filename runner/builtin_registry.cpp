@@ -2,6 +2,7 @@
 #include "gpu/bruteforce/hard_shadow_bruteforce_emu.h"
 #include "gpu/lightassign/lightassign_algorithm.h"
 #include "gpu/metric/metric_algorithm.h"
+#include "gpu/ptsv/ptsv_algorithm.h"
 #include "reference/bruteforce/hard_shadow_bruteforce.h"
 #include "reference/embree/hard_shadow_embree.h"
 #include "reference/embree/soft_shadow_embree.h"
@@ -20,6 +21,7 @@
 #if SHADOWCTS_HAVE_CUDA
 #include "gpu/bruteforce/hard_shadow_bruteforce_cuda.h"
 #include "gpu/lightassign/lightassign_cuda.h"
+#include "gpu/ptsv/ptsv_cuda.h"
 #endif
 
 namespace shadowcts {
@@ -41,6 +43,7 @@ const Registry& builtin_registry() {
     r.add(make_bruteforce_hard_shadow_cuda_emu());
     r.add(make_lightassign_cuda_emu());
     r.add(make_metric_cuda_emu());
+    r.add(make_cuda_emu_ptsv());
     r.add(make_simd_ptsv());
     r.add(make_simd_softtile());
     r.add(make_simd_metric());
@@ -49,6 +52,7 @@ const Registry& builtin_registry() {
     r.add(make_bruteforce_hard_shadow_cuda());
     r.add(make_lightassign_cuda());
     r.add(make_metric_cuda());
+    r.add(make_cuda_ptsv());
 #endif
     return r;
   }();

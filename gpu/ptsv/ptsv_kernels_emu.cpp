@@ -1,0 +1,11 @@
+// The CUDA ptsv kernels (ptsv_kernels.cuh) built by the host compiler against the CUDA-subset
+// emulator.
+#include "gpu/ptsv/ptsv_kernels.cuh"
+
+namespace shadowcts::gpu_ptsv {
+
+KernelResult run_ptsv_kernels_emulated(const KernelInput& input) {
+  return emulated::ptsv::run(input);
+}
+
+}  // namespace shadowcts::gpu_ptsv

@@ -1,0 +1,158 @@
+// The CUDA ptsv kernels, run by the emulator, against the reference, structure by structure: every
+// view sample's cluster key, every node (index, child mask, explicit bounds bit for bit, reject
+// reach), every counter and every sample's answer, for each ported variant, on the default
+// fixtures and the reference tests' big-shadow scenes (trivial accepts, where the order of the
+// volumes matters to the counters); then the same outputs for 1 and 2 threads and under a random
+// schedule. Each diff names the first difference.
+#include <bit>
+#include <cctype>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "gpu/emulator/emulator.h"
+#include "gpu/ptsv/ptsv_algorithm.h"
+#include "gpu/ptsv/ptsv_kernels.h"
+#include "reference/ptsv/cluster_keys.h"
+#include "reference/ptsv/hierarchy.h"
+#include "reference/ptsv/ptsv_algorithm.h"
+#include "reference/ptsv/receiver_rule.h"
+#include "reference/ptsv/view_frame.h"
+#include "shadowcts/fixtures.h"
+#include "shadowcts/prepared_scene.h"
+#include "tests/reference/ptsv/big_shadow_case.h"
+#include "tests/reference/ptsv/ptsv_test_support.h"
+
+namespace shadowcts {
+namespace {
+
+namespace ref = ::shadowcts::ptsv;
+const char* const variants[] = {"twopass", "explicit+planes", "implicit"};
+
+bool same_bits(double a, double b) {
+  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+}
+
+// "" when the kernels' keys and hierarchy equal the reference's, else the first difference.
+std::string diff_structures(const Case& c, const ViewSamples& samples, const PreparedScene& scene,
+                            const std::string& variant) {
+  const bool implicit = variant == "implicit";
+  const ref::ViewFrame frame = ref::make_view_frame(c.camera, samples.width, samples.height);
+  const ref::ClusterKeyLayout layout =
+      ref::make_cluster_key_layout(c.camera, samples.width, samples.height).layout;
+  const ref::ClusterKeys keys = ref::assign_cluster_keys(layout, frame, samples, implicit);
+  if (!keys.problem.empty()) return "reference keys: " + keys.problem;
+  const gpu_ptsv::KernelResult r =
+      gpu_ptsv::run_ptsv_kernels_emulated(gpu_ptsv::kernel_input(scene, variant));
+  if (r.first_bad_sample != gpu_ptsv::no_sample)
+    return "kernels refuse view sample " + std::to_string(r.first_bad_sample);
+  for (std::size_t i = 0; i < keys.key.size(); ++i)
+    if (r.key[i] != keys.key[i])
+      return "key of view sample " + std::to_string(i) + ": " + std::to_string(r.key[i]) +
+             " != reference " + std::to_string(keys.key[i]);
+  const ref::ReceiverRule rule(c, samples);
+  const ref::ClusterHierarchy h(layout, keys.key, samples, rule.reject_reach());
+  if (int(r.levels.size()) != h.leaf_level() + 1) return "number of levels";
+  for (int l = 0; l <= h.leaf_level(); ++l) {
+    const ref::HierarchyLevel& e = h.level(l);
+    const gpu_ptsv::Level& p = r.levels[std::size_t(l)];
+    if (p.index.size() != e.index.size())
+      return "level " + std::to_string(l) + ": " + std::to_string(p.index.size()) +
+             " nodes, reference " + std::to_string(e.index.size());
+    for (std::size_t n = 0; n < p.index.size(); ++n) {
+      const std::string node = "level " + std::to_string(l) + " node " + std::to_string(n) + " ";
+      if (p.index[n] != e.index[n]) return node + "index";
+      if (p.child_mask[n] != e.child_mask[n]) return node + "child mask";
+      for (int k = 0; k < 3; ++k)
+        if (!same_bits(p.lo[3 * n + std::size_t(k)], e.bounds[n].lo[k]) ||
+            !same_bits(p.hi[3 * n + std::size_t(k)], e.bounds[n].hi[k]))
+          return node + "bounds, axis " + std::to_string(k);
+      if (!same_bits(p.reach[n], e.reject_reach[n])) return node + "reject reach";
+    }
+  }
+  return "";
+}
+
+// "" when the port's mask and every reference counter agree (the port adds emulated_threads).
+std::string diff_outputs(const AlgorithmOutput& port, const AlgorithmOutput& reference) {
+  for (const auto& [name, value] : reference.counters) {
+    bool found = false;
+    for (const auto& [port_name, port_value] : port.counters) {
+      if (port_name != name) continue;
+      found = true;
+      if (port_value != value)
+        return "counter " + name + ": " + std::to_string(port_value) + " != reference " +
+               std::to_string(value);
+    }
+    if (!found) return "counter " + name + " missing";
+  }
+  if (port.shadowed.size() != reference.shadowed.size()) return "mask sizes differ";
+  for (std::size_t i = 0; i < port.shadowed.size(); ++i)
+    if (port.shadowed[i] != reference.shadowed[i])
+      return "view sample " + std::to_string(i) + ": " + std::to_string(port.shadowed[i]) +
+             " != reference " + std::to_string(reference.shadowed[i]);
+  return "";
+}
+
+void expect_like_reference(const Case& c, const ViewSamples& samples) {
+  const auto reference = make_ptsv();
+  const auto port = make_cuda_emu_ptsv();
+  const PreparedScene scene = prepare_scene(c, samples);
+  for (const std::string variant : variants) {
+    const auto why = reference->unsupported_reason(c, samples, variant);
+    EXPECT_EQ(port->unsupported_reason(c, samples, variant), why) << variant;
+    if (why) continue;
+    EXPECT_EQ(diff_structures(c, samples, scene, variant), "") << c.name << " " << variant;
+    EXPECT_EQ(diff_outputs(port->run(scene, variant), reference->run(scene, variant)), "")
+        << c.name << " " << variant << " (cuda-emu != reference)";
+  }
+}
+
+class CudaEmuPtsvOnFixture : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(CudaEmuPtsvOnFixture, KeysNodesCountersAndMaskAreTheReferences) {
+  const ptsv_test::FixtureWithSamples f = ptsv_test::load_fixture(GetParam());
+  if (!f.c.light) GTEST_SKIP() << "no shadow light";
+  expect_like_reference(f.c, f.samples);
+}
+
+INSTANTIATE_TEST_SUITE_P(Fixtures, CudaEmuPtsvOnFixture, ::testing::ValuesIn(default_fixtures()),
+                         [](const ::testing::TestParamInfo<std::string>& param) {
+                           std::string name = param.param;
+                           for (char& ch : name)
+                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+                           return name;
+                         });
+
+TEST(CudaEmuPtsv, BigShadowWithTrivialAcceptsIsTheReferences) {
+  for (const bool directional : {false, true}) {
+    const Case c = ptsv_test::big_shadow_case(directional);
+    const ViewSamples samples = generate_view_samples(c);
+    const AlgorithmOutput out = make_cuda_emu_ptsv()->run(c, samples, "twopass");
+    EXPECT_GT(ptsv_test::counter(out, "trivial_accepts"), 0u);
+    expect_like_reference(c, samples);
+  }
+}
+
+// Nothing depends on how the emulator schedules threads and blocks.
+TEST(CudaEmuPtsv, SameOutputsForOneAndTwoThreadsAndARandomSchedule) {
+  Case c = ptsv_test::big_shadow_case(false);
+  const ViewSamples samples = generate_view_samples(c);
+  const auto port = make_cuda_emu_ptsv();
+  for (const std::string variant : variants) {
+    c.parameters.threads = 1;
+    const AlgorithmOutput one = port->run(c, samples, variant);
+    c.parameters.threads = 2;
+    const AlgorithmOutput two = port->run(c, samples, variant);
+    EXPECT_EQ(diff_outputs(two, one), "") << variant;
+    emu::Options options;
+    options.schedule = emu::Schedule::random;
+    options.seed = 7;
+    const emu::ScopedOptions scoped(options);
+    EXPECT_EQ(diff_outputs(port->run(c, samples, variant), one), "") << variant << " random";
+  }
+}
+
+}  // namespace
+}  // namespace shadowcts
