@@ -79,7 +79,8 @@ struct SofttileKernelInput {
   // The tile's shared candidate buffer, in triangles (1..softtile_tile_triangle_limit): a longer
   // list is rasterized in several batches. The results do not depend on it.
   std::uint32_t batch_capacity = 0;
-  // For the diff tests: also return the per-tile candidate lists and the per-pixel bitmasks.
+  // For the diff tests: also return the per-tile candidate lists (device memory for every gathered
+  // triangle in every tile: small frames only) and the per-pixel bitmasks.
   bool record_candidates = false, record_masks = false;
 };
 

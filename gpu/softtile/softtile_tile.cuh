@@ -49,9 +49,9 @@ struct KernelParams {
   std::uint32_t* tests;
   std::uint32_t* rasterized;
   std::uint32_t* tile_candidates;
-  // Optional (null): where each tile's list goes, and the per-pixel masks.
-  const std::uint32_t* candidate_offsets;
+  // Optional (null): each tile's list (tile t's from t * triangle_count on), the per-pixel masks.
   std::uint32_t* candidate_list;
+  std::uint32_t triangle_count;
   std::uint32_t* masks;
 };
 
@@ -160,7 +160,6 @@ __global__ void SHADOWCTS_SOFTTILE_LAUNCH_BOUNDS softtile_tiles(KernelParams p) 
 
   // The list so far (block-uniform) and the tile's candidates before this chunk of clusters.
   std::uint32_t filled = 0, total = 0;
-  const std::uint32_t recorded_at = p.candidate_list ? p.candidate_offsets[tile] : 0;
   for (std::uint32_t chunk = 0; chunk < p.cluster_count; chunk += threads_per_block) {
     const std::uint32_t cluster = chunk + threadIdx.x;
     std::uint64_t survivors = 0;
@@ -173,7 +172,7 @@ __global__ void SHADOWCTS_SOFTTILE_LAUNCH_BOUNDS softtile_tiles(KernelParams p) 
     const std::uint32_t offset =
         block_exclusive_scan(std::uint32_t(bit_count64(survivors)), chunk_total);
     if (p.candidate_list) {
-      std::uint32_t at = recorded_at + total + offset;
+      std::size_t at = std::size_t(tile) * p.triangle_count + total + offset;
       for (std::uint64_t bits = survivors; bits != 0; bits &= bits - 1)
         p.candidate_list[at++] = first + std::uint32_t(lowest_bit(bits));
     }
@@ -298,33 +297,34 @@ inline SofttileKernelResult run(const SofttileKernelInput& input) {
   p.tests = tests.data();
   p.rasterized = rasterized.data();
   p.tile_candidates = candidates.data();
-  const auto launch = [&](const KernelParams& params) {
-    SHADOWCTS_LAUNCH(softtile_tiles, static_cast<unsigned>(tiles), threads_per_block, 0)(params);
-    check(cudaGetLastError(), "softtile_tiles launch");
-    check(cudaDeviceSynchronize(), "softtile_tiles");
-  };
-
-  // The lists' lengths come from a first run; a second one writes the lists where they go.
   const std::size_t mask_words = input.record_masks ? pixels * softtile_kernel_max_rows : 0;
   DeviceArray<std::uint32_t> masks(mask_words);
+  if (mask_words != 0)  // pixels without a relevant sample keep zero rows
+    check(cudaMemset(masks.data(), 0, mask_words * sizeof(std::uint32_t)), "cudaMemset");
   p.masks = masks.data();
-  launch(p);
+  // A list holds each gathered triangle at most once: room for all of them in every tile (the
+  // tests' small frames only).
+  p.triangle_count = static_cast<std::uint32_t>(input.triangles.size());
+  DeviceArray<std::uint32_t> lists(input.record_candidates ? tiles * input.triangles.size() : 0);
+  p.candidate_list = input.record_candidates ? lists.data() : nullptr;
+  SHADOWCTS_LAUNCH(softtile_tiles, static_cast<unsigned>(tiles), threads_per_block, 0)(p);
+  check(cudaGetLastError(), "softtile_tiles launch");
+  check(cudaDeviceSynchronize(), "softtile_tiles");
   visible.download(result.visible_fraction);
   tests.download(result.tests);
   rasterized.download(result.rasterized);
   candidates.download(result.candidates);
   masks.download(result.masks);
   if (input.record_candidates) {
+    std::vector<std::uint32_t> all;
+    lists.download(all);
     result.candidate_offsets.assign(tiles + 1, 0);
-    for (std::size_t t = 0; t < tiles; ++t)
+    for (std::size_t t = 0; t < tiles; ++t) {
       result.candidate_offsets[t + 1] = result.candidate_offsets[t] + result.candidates[t];
-    DeviceArray<std::uint32_t> offsets(tiles + 1), list(result.candidate_offsets[tiles]);
-    offsets.upload(result.candidate_offsets);
-    p.candidate_offsets = offsets.data();
-    p.candidate_list = list.data();
-    p.masks = nullptr;
-    launch(p);
-    list.download(result.candidate_list);
+      const auto first = all.begin() + std::ptrdiff_t(t * input.triangles.size());
+      result.candidate_list.insert(result.candidate_list.end(), first,
+                                   first + std::ptrdiff_t(result.candidates[t]));
+    }
   }
   return result;
 }

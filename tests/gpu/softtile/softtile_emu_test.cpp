@@ -8,12 +8,18 @@
 #include <tbb/global_control.h>
 
 #include <algorithm>
+#include <bit>
 #include <cstdint>
+#include <limits>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "gpu/emulator/emulator.h"
+#include "gpu/emulator/kernel.h"
+#include "gpu/softtile/disk_bitmask.cuh"
+#include "gpu/softtile/fragment_occlusion.cuh"
 #include "gpu/softtile/softtile_algorithm.h"
 #include "gpu/softtile/softtile_kernel.h"
 #include "reference/softtile/disk_bitmask.h"
@@ -26,10 +32,171 @@
 #include "shadowcts/prepared_scene.h"
 #include "shadowcts/view_samples.h"
 
+// The kernel's device functions one call per thread, for the unit tests below.
+namespace shadowcts::SHADOWCTS_KERNEL_NAMESPACE::softtile_test {
+
+__global__ void edges_kernel(const SofttileFragment* fragments, const SofttileTriangle* triangles,
+                             float inverse_scale, std::uint32_t count, std::uint32_t* accepted,
+                             float* edges) {
+  const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= count) return;
+  const SofttileFragment fragment = fragments[i];
+  const SofttileTriangle triangle = triangles[i];
+  accepted[i] = softtile::triangle_edges(fragment, inverse_scale, triangle, edges + 9 * i) ? 1 : 0;
+}
+
+// Thread i clears triangles[i * per_thread ..] (9 edge components each) from the empty disk.
+__global__ void clear_kernel(const float* edges, std::uint32_t per_thread, SofttileRaster raster,
+                             std::uint32_t count, std::uint32_t* masks) {
+  const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= count) return;
+  std::uint32_t rows[softtile_kernel_max_rows] = {};
+  for (int r = 0; r < raster.rows; ++r) rows[r] = raster.empty[r];
+  for (std::uint32_t t = 0; t < per_thread; ++t)
+    softtile::clear_triangle(raster, edges + 9 * (i * per_thread + t), rows);
+  for (int r = 0; r < softtile_kernel_max_rows; ++r)
+    masks[i * softtile_kernel_max_rows + r] = rows[r];
+}
+
+}  // namespace shadowcts::SHADOWCTS_KERNEL_NAMESPACE::softtile_test
+
 namespace shadowcts {
 namespace {
 
 namespace ref = shadowcts::softtile;
+namespace kernels = shadowcts::emulated::softtile_test;
+
+// Host vectors as emulated device memory.
+template <typename T>
+struct Device {
+  T* data = nullptr;
+  std::size_t size;
+  explicit Device(const std::vector<T>& host) : size(host.size()) {
+    EXPECT_EQ(cudaMalloc(&data, size * sizeof(T)), cudaSuccess);
+    EXPECT_EQ(cudaMemcpy(data, host.data(), size * sizeof(T), cudaMemcpyHostToDevice), cudaSuccess);
+  }
+  ~Device() { cudaFree(data); }
+  std::vector<T> get() const {
+    std::vector<T> host(size);
+    EXPECT_EQ(cudaMemcpy(host.data(), data, size * sizeof(T), cudaMemcpyDeviceToHost), cudaSuccess);
+    return host;
+  }
+};
+
+// Random light-space triangles against random fragments, rotated and not, some behind the
+// fragment, some degenerate: the reference's accept / reject and edge functions, bitwise.
+TEST(SofttileEmu, EdgeFunctionsEqualTheReferenceBitwise) {
+  std::mt19937_64 random(5);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  const std::uint32_t count = 4096;
+  std::vector<SofttileFragment> fragments(count);
+  std::vector<SofttileTriangle> triangles(count);
+  std::vector<ref::FragmentSetup> setups(count);
+  std::vector<std::array<glm::vec3, 3>> light_space(count);
+  const float inverse_scale = 1.0f / std::tan(0.035f);
+  for (std::uint32_t i = 0; i < count; ++i) {
+    ref::FragmentSetup& f = setups[i];
+    f.position = {unit(random), unit(random), unit(random)};
+    f.inverse_scale = inverse_scale;
+    if (i % 2 == 1) {
+      const float angle = 3.2f * unit(random);
+      f.cos_rotation = std::cos(angle);
+      f.sin_rotation = std::sin(angle);
+    }
+    // Near the fragment's axis towards the light, mostly above it, the disk's size apart.
+    for (int v = 0; v < 3; ++v) {
+      const float height = i % 7 == 0 ? unit(random) : 0.5f + unit(random) * 0.45f;
+      light_space[i][v] =
+          f.position + glm::vec3(0.05f * unit(random), 0.05f * unit(random), height);
+    }
+    if (i % 11 == 0) light_space[i][2] = light_space[i][0];  // degenerate
+    for (int k = 0; k < 3; ++k) fragments[i].position[k] = f.position[k];
+    fragments[i].cos_rotation = f.cos_rotation;
+    fragments[i].sin_rotation = f.sin_rotation;
+    fragments[i].relevant = 1;
+    for (int v = 0; v < 3; ++v)
+      for (int k = 0; k < 3; ++k) triangles[i].vertices[3 * v + k] = light_space[i][v][k];
+  }
+  const Device<SofttileFragment> d_fragments(fragments);
+  const Device<SofttileTriangle> d_triangles(triangles);
+  Device<std::uint32_t> accepted{std::vector<std::uint32_t>(count)};
+  Device<float> edges{std::vector<float>(9 * count)};
+  SHADOWCTS_LAUNCH(kernels::edges_kernel, (count + 255) / 256, 256, 0)
+  (d_fragments.data, d_triangles.data, inverse_scale, count, accepted.data, edges.data);
+  const std::vector<std::uint32_t> got_accepted = accepted.get();
+  const std::vector<float> got_edges = edges.get();
+  std::size_t accepted_count = 0;
+  for (std::uint32_t i = 0; i < count; ++i) {
+    std::array<glm::vec3, 3> want;
+    const bool ok = ref::triangle_edges(setups[i], light_space[i], want);
+    ASSERT_EQ(got_accepted[i], ok ? 1u : 0u) << "triangle " << i;
+    if (!ok) continue;
+    ++accepted_count;
+    for (int e = 0; e < 3; ++e)
+      for (int k = 0; k < 3; ++k)
+        ASSERT_EQ(std::bit_cast<std::uint32_t>(got_edges[9 * i + 3 * e + k]),
+                  std::bit_cast<std::uint32_t>(want[e][k]))
+            << "triangle " << i << ", edge " << e << ", component " << k;
+  }
+  EXPECT_GT(accepted_count, count / 4);
+  EXPECT_LT(accepted_count, count);
+}
+
+// Horizontal edges, crossings far outside, crossings exactly at cell centres, NaN: the
+// reference's rows for every variant's grid.
+TEST(SofttileEmu, MasksEqualTheReferenceOnAdversarialEdges) {
+  std::mt19937_64 random(11);
+  std::uniform_real_distribution<float> unit(-1.5f, 1.5f);
+  const std::uint32_t trials = 512, per_thread = 3;
+  std::vector<float> edges;
+  for (std::uint32_t i = 0; i < 3 * trials * per_thread; ++i) {
+    glm::vec3 e{unit(random), unit(random), unit(random)};
+    switch (random() % 8) {
+      case 0:
+        e.x = 0.0f;
+        break;
+      case 1:
+        e.x = 1e-30f * unit(random);
+        break;
+      case 2:
+        e.y = 0.0f;
+        e.z = -e.x * float(random() % 5) * 0.25f;
+        break;
+      case 3:
+        e.z = std::numeric_limits<float>::quiet_NaN();
+        break;
+      default:
+        break;
+    }
+    edges.insert(edges.end(), {e.x, e.y, e.z});
+  }
+  const Device<float> d_edges(edges);
+  for (const char* name : {"grid16", "rows15", "rows31", "rows3"}) {
+    SCOPED_TRACE(name);
+    const ref::Variant variant = ref::parse_variant(name);
+    // The variant's raster as the kernel input carries it.
+    Case c = make_fixture("foliage.10k");
+    c.camera.width = c.camera.height = 16;
+    const ViewSamples samples = generate_view_samples(c);
+    const SofttileKernelInput input =
+        softtile_kernel_input(c, samples, variant, ref::gather(c, samples));
+    Device<std::uint32_t> masks{std::vector<std::uint32_t>(trials * softtile_kernel_max_rows)};
+    SHADOWCTS_LAUNCH(kernels::clear_kernel, trials / 256, 256, 0)
+    (d_edges.data, per_thread, input.raster, trials, masks.data);
+    const std::vector<std::uint32_t> got = masks.get();
+    for (std::uint32_t i = 0; i < trials; ++i) {
+      ref::DiskBitmask expected(variant);
+      for (std::uint32_t t = 0; t < per_thread; ++t) {
+        const float* e = edges.data() + 9 * (i * per_thread + t);
+        expected.clear_triangle({glm::vec3(e[0], e[1], e[2]), glm::vec3(e[3], e[4], e[5]),
+                                 glm::vec3(e[6], e[7], e[8])});
+      }
+      for (int r = 0; r < softtile_kernel_max_rows; ++r)
+        ASSERT_EQ(got[i * softtile_kernel_max_rows + r], r < expected.rows() ? expected.row(r) : 0u)
+            << "trial " << i << ", row " << r;
+    }
+  }
+}
 
 // The default soft fixture at 128 x 128 pixels (64 tiles): enough penumbra, little CI time.
 Case small_foliage(std::uint32_t size = 128) {
@@ -130,7 +297,7 @@ SofttileKernelResult run_recorded(const Scene& s, const ref::Variant& variant,
 
 TEST(SofttileEmu, ListsAndBitmasksEqualTheReferenceOnEveryTile) {
   const Scene s(small_foliage());
-  for (const char* name : {"grid16", "grid16+rot", "rows15", "rows31", "rows31+rot", "post"}) {
+  for (const char* name : {"grid16", "grid16+rot", "rows15", "rows31", "post"}) {
     SCOPED_TRACE(name);
     const ref::Variant variant = ref::parse_variant(name);
     const SofttileKernelResult got = run_recorded(s, variant);
@@ -147,14 +314,16 @@ TEST(SofttileEmu, SmallSharedBuffersGiveTheSameListsAndBitmasks) {
   const Scene s(small_foliage(64));
   const ref::Variant variant = ref::parse_variant("grid16+rot");
   const SofttileKernelResult full = run_recorded(s, variant);
+  std::size_t compared = 0, capsules = 0;
+  EXPECT_EQ(first_difference(s, variant, full, compared, capsules), "");
   const std::uint32_t longest = *std::max_element(full.candidates.begin(), full.candidates.end());
   ASSERT_GT(longest, 3u * 61u);
-  for (std::uint32_t capacity : {1u, 61u, 256u}) {
+  for (std::uint32_t capacity : {1u, 61u}) {
     SCOPED_TRACE(capacity);
     const SofttileKernelResult small = run_recorded(s, variant, capacity);
-    std::size_t compared = 0, capsules = 0;
-    EXPECT_EQ(first_difference(s, variant, small, compared, capsules), "");
     EXPECT_EQ(small.masks, full.masks);
+    EXPECT_EQ(small.visible_fraction, full.visible_fraction);
+    EXPECT_EQ(small.tests, full.tests);
     EXPECT_EQ(small.candidate_list, full.candidate_list);
   }
 }
@@ -162,9 +331,10 @@ TEST(SofttileEmu, SmallSharedBuffersGiveTheSameListsAndBitmasks) {
 // A GPU runs warps in any order: under a seeded random interleaving with shared-memory race
 // checking on, the kernel has no race and gives the same lists and masks.
 TEST(SofttileEmu, NoRaceAndTheSameResultsUnderRandomSchedules) {
-  const Scene s(small_foliage(40));
+  const Scene s(small_foliage(32));
   const ref::Variant variant = ref::parse_variant("rows15");
   const SofttileKernelResult plain = run_recorded(s, variant, 100);
+  ASSERT_GT(plain.candidate_list.size(), 100u);  // several batches in some tile
   for (std::uint64_t seed : {1u, 2u}) {
     emu::Options options;
     options.schedule = emu::Schedule::random;
