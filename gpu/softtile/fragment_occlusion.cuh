@@ -27,9 +27,15 @@ __device__ inline void cross3(const float a[3], const float b[3], float out[3]) 
   out[2] = rounded_sub(rounded_mul(a[0], b[1]), rounded_mul(b[0], a[1]));
 }
 
+// The reference's FragmentSetup (its inverse scale is the same for every fragment).
+struct FragmentSetup {
+  float position[3];  // light space
+  float cos_rotation, sin_rotation;
+};
+
 // The three edge functions of the triangle seen from the fragment, edges[3 i + c] component c of
 // edge i; false when it cannot touch the disk (the reference's triangle_edges).
-__device__ inline bool triangle_edges(const SofttileFragment& fragment, float inverse_scale,
+__device__ inline bool triangle_edges(const FragmentSetup& fragment, float inverse_scale,
                                       const SofttileTriangle& triangle, float edges[9]) {
   float h[3][3];
   bool any_front = false;

@@ -24,6 +24,14 @@ __device__ inline double square_root(double x) {
 #endif
 }
 
+__device__ inline double absolute(double x) {
+#if SHADOWCTS_EMULATED
+  return std::fabs(x);
+#else
+  return fabs(x);
+#endif
+}
+
 // glm's dot of double vectors: (x x' + y y') + z z'.
 __device__ inline double dot3(const double a[3], const double b[3]) {
   return rounded_add(rounded_add(rounded_mul(a[0], b[0]), rounded_mul(a[1], b[1])),

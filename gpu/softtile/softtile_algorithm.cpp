@@ -41,29 +41,6 @@ SofttileCone kernel_cone(const ref::ShadowCone& cone) {
   return k;
 }
 
-// may_shadow's terms of the bound alone, in the reference's expressions.
-SofttileBound kernel_bound(const ref::TileBound& bound) {
-  SofttileBound k{};
-  const glm::dvec3 middle = 0.5 * (bound.a + bound.b);
-  const glm::dvec3 ab = bound.b - bound.a;
-  for (int i = 0; i < 3; ++i) {
-    k.a[i] = bound.a[i];
-    k.b[i] = bound.b[i];
-    k.middle[i] = middle[i];
-    k.ab[i] = ab[i];
-  }
-  k.radius_a = bound.radius_a;
-  k.radius_b = bound.radius_b;
-  k.length_a = glm::length(bound.a);
-  k.length_b = glm::length(bound.b);
-  k.enclosing = 0.5 * glm::length(bound.b - bound.a) + std::max(bound.radius_a, bound.radius_b);
-  k.dr = bound.radius_b - bound.radius_a;
-  k.lipschitz = glm::length(bound.b - bound.a) + std::fabs(bound.radius_b - bound.radius_a);
-  k.capsule = bound.capsule ? 1u : 0u;
-  k.relevant = 1;
-  return k;
-}
-
 // The gathered clusters and triangles, the sun and the variant's disk.
 void add_gathered(const ref::Gathered& gathered, const ref::Variant& variant,
                   SofttileKernelInput& input) {
@@ -105,37 +82,42 @@ void add_gathered(const ref::Gathered& gathered, const ref::Variant& variant,
   input.batch_capacity = std::uint32_t(softtile_tile_triangle_limit);
 }
 
-// Per tile and pixel: the reference's bound and fragment setup (prepare_tile_pixels).
-void add_tiles(const Case& c, const ViewSamples& samples, const ref::Gathered& gathered,
-               const ref::Variant& variant, SofttileKernelInput& input) {
+// Per pixel: the sample, the grid's rotation there (prepare_tile_pixels' angle, cos and sin) and
+// its receiver; the camera and light space for the kernel's tile bounds and fragment setups.
+void add_pixels(const Case& c, const ViewSamples& samples, const ref::Gathered& gathered,
+                const ref::Variant& variant, SofttileKernelInput& input) {
   input.width = samples.width;
   input.height = samples.height;
   input.tiles_x = ref::tiles_across(samples.width);
   input.tiles_y = ref::tiles_across(samples.height);
   if (samples.samples.size() != std::size_t(samples.width) * samples.height)
     throw std::invalid_argument("softtile: the view samples are not width x height");
+  for (int k = 0; k < 3; ++k) {
+    input.eye[k] = double(c.camera.position[k]);
+    input.light_axes[0][k] = gathered.light_space.x_axis[k];
+    input.light_axes[1][k] = gathered.light_space.y_axis[k];
+    input.light_axes[2][k] = gathered.light_space.z_axis[k];
+  }
   input.fragments.assign(samples.samples.size(), SofttileFragment{});
-  input.bounds.assign(std::size_t(input.tiles_x) * input.tiles_y, SofttileBound{});
-  const float inverse_scale = input.raster.inverse_scale;
-  tbb::parallel_for(
-      tbb::blocked_range<std::size_t>(0, input.bounds.size()),
-      [&](const tbb::blocked_range<std::size_t>& range) {
-        ref::Tile tile;
-        for (std::size_t index = range.begin(); index != range.end(); ++index) {
-          if (!ref::prepare_tile_pixels(c, samples, gathered, variant, inverse_scale, index, tile))
-            continue;
-          input.bounds[index] = kernel_bound(tile.bound);
-          for (std::size_t j = 0; j < tile.pixels.size(); ++j) {
-            const ref::FragmentSetup& f = tile.fragments[j];
-            SofttileFragment& k = input.fragments[tile.pixels[j]];
-            for (int i = 0; i < 3; ++i) k.position[i] = f.position[i];
-            k.cos_rotation = f.cos_rotation;
-            k.sin_rotation = f.sin_rotation;
-            k.receiver = samples.samples[tile.pixels[j]].receiver;
-            k.relevant = 1;
-          }
-        }
-      });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.samples.size(), 4096),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                        const ViewSample& s = samples.samples[i];
+                        if (s.sample_class != SampleClass::regular) continue;
+                        SofttileFragment& f = input.fragments[i];
+                        for (int k = 0; k < 3; ++k) f.world[k] = s.position[k];
+                        f.cos_rotation = 1.0f;
+                        f.sin_rotation = 0.0f;
+                        if (variant.rotate) {
+                          const double angle =
+                              ref::rotation_angle(c.parameters.seed, s.pixel_x, s.pixel_y);
+                          f.cos_rotation = float(std::cos(angle));
+                          f.sin_rotation = float(std::sin(angle));
+                        }
+                        f.receiver = s.receiver;
+                        f.relevant = 1;
+                      }
+                    });
 }
 
 class SofttileKernelAlgorithm final : public Algorithm {
@@ -183,7 +165,7 @@ class SofttileKernelAlgorithm final : public Algorithm {
       const ref::Gathered gathered = ref::gather(c, samples);
       add_gathered(gathered, variant, input);
       clock.lap(build_phase);
-      add_tiles(c, samples, gathered, variant, input);
+      add_pixels(c, samples, gathered, variant, input);
       result = backend_.run_kernel(input);
       clock.lap(query_phase);
       output.counters = {{"gather_clusters", gathered.clusters_in},
@@ -197,11 +179,11 @@ class SofttileKernelAlgorithm final : public Algorithm {
     // Per tile as the reference counts, then sums and maxima: independent of the launch.
     std::uint64_t relevant = 0, capsule = 0, candidates = 0, candidates_max = 0, overflowing = 0,
                   overflow_batches = 0, tests = 0, rasterized = 0, rasterized_max = 0;
-    for (std::size_t t = 0; t < input.bounds.size(); ++t) {
-      if (!input.bounds[t].relevant) continue;
+    for (std::size_t t = 0; t < result.tile_kinds.size(); ++t) {
+      if (result.tile_kinds[t] == softtile_tile_empty) continue;
       const std::uint64_t n = result.candidates[t];
       ++relevant;
-      capsule += input.bounds[t].capsule;
+      capsule += result.tile_kinds[t] == softtile_tile_capsule ? 1 : 0;
       candidates += n;
       candidates_max = std::max(candidates_max, n);
       overflowing += n > softtile_tile_triangle_limit ? 1 : 0;
@@ -212,7 +194,7 @@ class SofttileKernelAlgorithm final : public Algorithm {
       rasterized += result.rasterized[i];
       rasterized_max = std::max<std::uint64_t>(rasterized_max, result.rasterized[i]);
     }
-    const Counters tile_counters = {{"tiles", input.bounds.size()},
+    const Counters tile_counters = {{"tiles", result.tile_kinds.size()},
                                     {"tiles_with_relevant_pixels", relevant},
                                     {"tile_capsule_bounds", capsule},
                                     {"tile_candidates_total", candidates},
@@ -225,7 +207,8 @@ class SofttileKernelAlgorithm final : public Algorithm {
     output.counters.insert(output.counters.end(), tile_counters.begin(), tile_counters.end());
     // A block of 256 threads per tile (a tile without relevant pixels exits at once).
     if (backend_.emulated)
-      output.counters.push_back({"emulated_threads", 256 * std::uint64_t(input.bounds.size())});
+      output.counters.push_back(
+          {"emulated_threads", 256 * std::uint64_t(result.tile_kinds.size())});
     return output;
   }
 
@@ -241,7 +224,7 @@ SofttileKernelInput softtile_kernel_input(const Case& c, const ViewSamples& samp
                                           const softtile::Gathered& gathered) {
   SofttileKernelInput input;
   add_gathered(gathered, variant, input);
-  add_tiles(c, samples, gathered, variant, input);
+  add_pixels(c, samples, gathered, variant, input);
   return input;
 }
 

@@ -30,23 +30,29 @@ struct SofttileTriangle {
   std::uint32_t triangle;
 };
 
-// What may_shadow needs of a tile's bound (reference TileBound), in the reference's expressions.
+// A tile's bound (reference TileBound) and what may_shadow needs of it, in the reference's
+// expressions; built on the device from the tile's samples.
 struct SofttileBound {
   double a[3], b[3], radius_a, radius_b;
   double length_a, length_b;    // |a|, |b|: terms of the height slack
   double middle[3], enclosing;  // the capsule's enclosing sphere
   double ab[3], dr, lipschitz;  // b - a, rb - ra, |b - a| + |rb - ra|
   std::uint32_t capsule;        // 0: the sphere (a, radius_a)
-  std::uint32_t relevant;       // 0: the tile has no relevant pixel (nothing to do)
 };
 
-// A pixel's fragment setup (reference FragmentSetup) and receiver.
+// A pixel's sample: its position (world space, float as the G-buffer holds it), the grid's
+// rotation there (cos / sin of the reference's seeded angle, by the host's libm) and receiver.
 struct SofttileFragment {
-  float position[3];
+  float world[3];
   float cos_rotation, sin_rotation;
   std::uint32_t receiver;
   std::uint32_t relevant;  // 0: not a regular sample (left at visible fraction 1)
 };
+
+// Per tile, the kind of bound the kernel built.
+inline constexpr std::uint8_t softtile_tile_empty = 0;  // no relevant pixel
+inline constexpr std::uint8_t softtile_tile_sphere = 1;
+inline constexpr std::uint8_t softtile_tile_capsule = 2;
 
 // The sun as may_shadow's cone sees it: the direction d towards the light, the cone axis -d, and
 // cos / sin of the angular radius (std::cos / std::sin on the host, as distance_to_cone takes
@@ -70,7 +76,8 @@ struct SofttileRaster {
 struct SofttileKernelInput {
   std::uint32_t width = 0, height = 0, tiles_x = 0, tiles_y = 0;
   std::vector<SofttileFragment> fragments;  // width * height, row-major (the samples' order)
-  std::vector<SofttileBound> bounds;        // tiles_x * tiles_y, row-major
+  double eye[3] = {0.0, 0.0, 0.0};          // the camera position, for the tile bounds
+  double light_axes[3][3] = {};             // light space's x, y, z axes (the reference's)
   std::vector<SofttileCluster> clusters;
   std::vector<SofttileCone> triangle_cones;  // per gathered triangle
   std::vector<SofttileTriangle> triangles;   // per gathered triangle
@@ -89,6 +96,7 @@ struct SofttileKernelResult {
   std::vector<std::uint32_t> tests;       // per pixel: candidates tested (the receiver skipped)
   std::vector<std::uint32_t> rasterized;  // per pixel: triangles rasterized into its mask
   std::vector<std::uint32_t> candidates;  // per tile: length of its candidate list
+  std::vector<std::uint8_t> tile_kinds;   // per tile: softtile_tile_empty / _sphere / _capsule
   // record_candidates: tile t's list is candidate_list[candidate_offsets[t] ..
   // candidate_offsets[t + 1]), indices into the gathered triangles in gathered order.
   std::vector<std::uint32_t> candidate_offsets, candidate_list;

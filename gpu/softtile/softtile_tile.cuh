@@ -12,6 +12,7 @@
 // The float and double operations are the reference's in its order, rounded one at a time (no
 // FMA under nvcc): the candidate lists and bitmasks are the reference's bit for bit.
 #include <bit>
+#include <cfloat>
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
@@ -37,7 +38,8 @@ constexpr std::uint32_t max_batch_capacity = 2048;
 struct KernelParams {
   std::uint32_t width, height, tiles_x;
   const SofttileFragment* fragments;
-  const SofttileBound* bounds;
+  double eye[3];
+  double light_axes[3][3];
   const SofttileCluster* clusters;
   std::uint32_t cluster_count;
   const SofttileCone* triangle_cones;
@@ -49,6 +51,7 @@ struct KernelParams {
   std::uint32_t* tests;
   std::uint32_t* rasterized;
   std::uint32_t* tile_candidates;
+  std::uint8_t* tile_kinds;
   // Optional (null): each tile's list (tile t's from t * triangle_count on), the per-pixel masks.
   std::uint32_t* candidate_list;
   std::uint32_t triangle_count;
@@ -107,6 +110,112 @@ __device__ inline std::uint64_t cull_cluster(const KernelParams& p, std::uint32_
   return survivors;
 }
 
+// glm::normalize: v * (1 / sqrt(dot(v, v))).
+__device__ inline void normalize3(double v[3]) {
+  const double inverse = 1.0 / length3(v);
+  for (int k = 0; k < 3; ++k) v[k] = rounded_mul(v[k], inverse);
+}
+
+// The sample of pixel (x, y) in double, and whether it is a relevant one.
+__device__ inline bool tile_sample(const KernelParams& p, std::uint32_t x, std::uint32_t y,
+                                   double position[3]) {
+  const SofttileFragment f = p.fragments[std::size_t(y) * p.width + x];
+  for (int k = 0; k < 3; ++k) position[k] = f.world[k];
+  return f.relevant != 0;
+}
+
+// The reference's tile_bound (softtile_tile.cpp) of the tile's relevant samples, visited in its
+// order (rows, then columns): the sums and maxima are order-dependent in floating point, so one
+// thread builds it. Then may_shadow's terms of it.
+__device__ inline SofttileBound build_tile_bound(const KernelParams& p, std::uint32_t x0,
+                                                 std::uint32_t y0) {
+  const std::uint32_t x1 = x0 + tile_size < p.width ? x0 + tile_size : p.width;
+  const std::uint32_t y1 = y0 + tile_size < p.height ? y0 + tile_size : p.height;
+  double direction[3] = {0.0, 0.0, 0.0}, lo[3] = {}, hi[3] = {}, position[3], v[3];
+  std::uint32_t count = 0;
+  for (std::uint32_t y = y0; y < y1; ++y)
+    for (std::uint32_t x = x0; x < x1; ++x) {
+      if (!tile_sample(p, x, y, position)) continue;
+      for (int k = 0; k < 3; ++k) v[k] = rounded_sub(position[k], p.eye[k]);
+      normalize3(v);
+      for (int k = 0; k < 3; ++k) {
+        direction[k] = rounded_add(direction[k], v[k]);
+        lo[k] = count == 0 ? position[k] : std_min(lo[k], position[k]);
+        hi[k] = count == 0 ? position[k] : std_max(hi[k], position[k]);
+      }
+      ++count;
+    }
+  const double scale = rounded_add(length3(p.eye), std_max(length3(lo), length3(hi)));
+  const double margin = rounded_mul(1e-6, scale);
+  SofttileBound bound{};
+  for (int k = 0; k < 3; ++k) bound.a[k] = rounded_mul(0.5, rounded_add(lo[k], hi[k]));
+  double radius = 0.0;
+  for (std::uint32_t y = y0; y < y1; ++y)
+    for (std::uint32_t x = x0; x < x1; ++x) {
+      if (!tile_sample(p, x, y, position)) continue;
+      for (int k = 0; k < 3; ++k) v[k] = rounded_sub(position[k], bound.a[k]);
+      radius = std_max(radius, length3(v));
+    }
+  bound.radius_a = rounded_add(rounded_mul(radius, 1.0 + 1e-9), margin);
+  bool capsule = count > 1 && length3(direction) > 0.0;
+  if (capsule) {
+    normalize3(direction);
+    double t_min = DBL_MAX, t_max = 0.0, k_max = 0.0;
+    for (std::uint32_t y = y0; y < y1 && capsule; ++y)
+      for (std::uint32_t x = x0; x < x1; ++x) {
+        if (!tile_sample(p, x, y, position)) continue;
+        for (int k = 0; k < 3; ++k) v[k] = rounded_sub(position[k], p.eye[k]);
+        const double t = dot3(v, direction);
+        if (!(t > 0.0)) {  // the reference returns the sphere
+          capsule = false;
+          break;
+        }
+        t_min = std_min(t_min, t);
+        t_max = std_max(t_max, t);
+        for (int k = 0; k < 3; ++k) v[k] = rounded_sub(v[k], rounded_mul(t, direction[k]));
+        k_max = std_max(k_max, length3(v) / t);
+      }
+    if (capsule) {
+      const double radius_b =
+          rounded_add(rounded_mul(rounded_mul(k_max, t_max), 1.0 + 1e-9), margin);
+      capsule = rounded_sub(t_max, t_min) > rounded_mul(2.0, radius_b);
+      if (capsule) {
+        for (int k = 0; k < 3; ++k) {
+          bound.a[k] = rounded_add(p.eye[k], rounded_mul(t_min, direction[k]));
+          bound.b[k] = rounded_add(p.eye[k], rounded_mul(t_max, direction[k]));
+        }
+        bound.radius_a = rounded_add(rounded_mul(rounded_mul(k_max, t_min), 1.0 + 1e-9), margin);
+        bound.radius_b = radius_b;
+      }
+    }
+  }
+  bound.capsule = capsule ? 1u : 0u;
+  // may_shadow's terms of the bound, as the reference computes them in may_shadow.
+  double ab[3];
+  for (int k = 0; k < 3; ++k) {
+    bound.middle[k] = rounded_mul(0.5, rounded_add(bound.a[k], bound.b[k]));
+    ab[k] = rounded_sub(bound.b[k], bound.a[k]);
+    bound.ab[k] = ab[k];
+  }
+  bound.length_a = length3(bound.a);
+  bound.length_b = length3(bound.b);
+  bound.enclosing =
+      rounded_add(rounded_mul(0.5, length3(ab)), std_max(bound.radius_a, bound.radius_b));
+  bound.dr = rounded_sub(bound.radius_b, bound.radius_a);
+  bound.lipschitz = rounded_add(length3(ab), absolute(bound.dr));
+  return bound;
+}
+
+// LightSpace::to_light: dot products in double, rounded to float.
+__device__ inline FragmentSetup fragment_setup(const KernelParams& p, const SofttileFragment& f) {
+  FragmentSetup setup;
+  const double world[3] = {f.world[0], f.world[1], f.world[2]};
+  for (int k = 0; k < 3; ++k) setup.position[k] = float(dot3(world, p.light_axes[k]));
+  setup.cos_rotation = f.cos_rotation;
+  setup.sin_rotation = f.sin_rotation;
+  return setup;
+}
+
 #if SHADOWCTS_EMULATED
 #define SHADOWCTS_SOFTTILE_LAUNCH_BOUNDS
 #else
@@ -116,22 +225,33 @@ __device__ inline std::uint64_t cull_cluster(const KernelParams& p, std::uint32_
 __global__ void SHADOWCTS_SOFTTILE_LAUNCH_BOUNDS softtile_tiles(KernelParams p) {
   SHADOWCTS_SHARED(std::uint32_t[max_batch_capacity], list);  // the tile's candidates
   SHADOWCTS_SHARED(SofttileTriangle[threads_per_block], staged);
+  SHADOWCTS_SHARED(SofttileBound, shared_bound);
 
   const std::uint32_t tile = blockIdx.x;
-  const SofttileBound bound = p.bounds[tile];
-  if (!bound.relevant) {  // the whole block: no pixel to shade (the reference's early exit)
-    if (threadIdx.x == 0) p.tile_candidates[tile] = 0;
-    return;
-  }
-  const std::uint32_t x = (tile % p.tiles_x) * tile_size + threadIdx.x % tile_size;
-  const std::uint32_t y = (tile / p.tiles_x) * tile_size + threadIdx.x / tile_size;
+  const std::uint32_t x0 = (tile % p.tiles_x) * tile_size, y0 = (tile / p.tiles_x) * tile_size;
+  const std::uint32_t x = x0 + threadIdx.x % tile_size, y = y0 + threadIdx.x / tile_size;
   const std::size_t pixel = std::size_t(y) * p.width + x;
-  SofttileFragment fragment{};
+  SofttileFragment sample{};
   bool has_pixel = x < p.width && y < p.height;
   if (has_pixel) {
-    fragment = p.fragments[pixel];
-    has_pixel = fragment.relevant != 0;
+    sample = p.fragments[pixel];
+    has_pixel = sample.relevant != 0;
   }
+  if (!__syncthreads_or(has_pixel)) {  // the whole block: no pixel (the reference's early exit)
+    if (threadIdx.x == 0) {
+      p.tile_candidates[tile] = 0;
+      p.tile_kinds[tile] = softtile_tile_empty;
+    }
+    return;
+  }
+  if (threadIdx.x == 0) {
+    const SofttileBound built = build_tile_bound(p, x0, y0);
+    shared_bound = built;
+    p.tile_kinds[tile] = built.capsule ? softtile_tile_capsule : softtile_tile_sphere;
+  }
+  const FragmentSetup fragment = fragment_setup(p, sample);
+  __syncthreads();
+  const SofttileBound bound = shared_bound;
   const int rows = p.raster.rows;
   std::uint32_t mask[softtile_kernel_max_rows];
   for (int r = 0; r < rows; ++r) mask[r] = p.raster.empty[r];
@@ -148,7 +268,7 @@ __global__ void SHADOWCTS_SOFTTILE_LAUNCH_BOUNDS softtile_tiles(KernelParams p) 
           count - begin < std::uint32_t(threads_per_block) ? count - begin : threads_per_block;
       for (std::uint32_t i = 0; i < end; ++i) {
         const SofttileTriangle triangle = staged[i];  // every lane reads one slot: a broadcast
-        if (triangle.triangle == fragment.receiver) continue;
+        if (triangle.triangle == sample.receiver) continue;
         ++tests;
         float edges[9];
         if (!triangle_edges(fragment, p.raster.inverse_scale, triangle, edges)) continue;
@@ -248,7 +368,9 @@ class DeviceArray {
 inline SofttileKernelResult run(const SofttileKernelInput& input) {
   const std::size_t pixels = std::size_t(input.width) * input.height;
   const std::size_t tiles = std::size_t(input.tiles_x) * input.tiles_y;
-  if (input.fragments.size() != pixels || input.bounds.size() != tiles ||
+  if (input.fragments.size() != pixels ||
+      input.tiles_x != (input.width + tile_size - 1) / tile_size ||
+      input.tiles_y != (input.height + tile_size - 1) / tile_size ||
       input.triangle_cones.size() != input.triangles.size())
     throw std::invalid_argument("softtile kernel: inconsistent input sizes");
   if (input.batch_capacity == 0 || input.batch_capacity > max_batch_capacity)
@@ -262,17 +384,17 @@ inline SofttileKernelResult run(const SofttileKernelInput& input) {
   result.tests.assign(pixels, 0);
   result.rasterized.assign(pixels, 0);
   result.candidates.assign(tiles, 0);
+  result.tile_kinds.assign(tiles, softtile_tile_empty);
   if (pixels == 0) return result;
 
   DeviceArray<SofttileFragment> fragments(pixels);
-  DeviceArray<SofttileBound> bounds(tiles);
   DeviceArray<SofttileCluster> clusters(input.clusters.size());
   DeviceArray<SofttileCone> cones(input.triangle_cones.size());
   DeviceArray<SofttileTriangle> triangles(input.triangles.size());
   DeviceArray<float> visible(pixels);
   DeviceArray<std::uint32_t> tests(pixels), rasterized(pixels), candidates(tiles);
+  DeviceArray<std::uint8_t> kinds(tiles);
   fragments.upload(input.fragments);
-  bounds.upload(input.bounds);
   clusters.upload(input.clusters);
   cones.upload(input.triangle_cones);
   triangles.upload(input.triangles);
@@ -285,7 +407,10 @@ inline SofttileKernelResult run(const SofttileKernelInput& input) {
   p.height = input.height;
   p.tiles_x = input.tiles_x;
   p.fragments = fragments.data();
-  p.bounds = bounds.data();
+  for (int k = 0; k < 3; ++k) {
+    p.eye[k] = input.eye[k];
+    for (int j = 0; j < 3; ++j) p.light_axes[k][j] = input.light_axes[k][j];
+  }
   p.clusters = clusters.data();
   p.cluster_count = static_cast<std::uint32_t>(input.clusters.size());
   p.triangle_cones = cones.data();
@@ -297,6 +422,7 @@ inline SofttileKernelResult run(const SofttileKernelInput& input) {
   p.tests = tests.data();
   p.rasterized = rasterized.data();
   p.tile_candidates = candidates.data();
+  p.tile_kinds = kinds.data();
   const std::size_t mask_words = input.record_masks ? pixels * softtile_kernel_max_rows : 0;
   DeviceArray<std::uint32_t> masks(mask_words);
   if (mask_words != 0)  // pixels without a relevant sample keep zero rows
@@ -314,6 +440,7 @@ inline SofttileKernelResult run(const SofttileKernelInput& input) {
   tests.download(result.tests);
   rasterized.download(result.rasterized);
   candidates.download(result.candidates);
+  kinds.download(result.tile_kinds);
   masks.download(result.masks);
   if (input.record_candidates) {
     std::vector<std::uint32_t> all;

@@ -35,12 +35,12 @@
 // The kernel's device functions one call per thread, for the unit tests below.
 namespace shadowcts::SHADOWCTS_KERNEL_NAMESPACE::softtile_test {
 
-__global__ void edges_kernel(const SofttileFragment* fragments, const SofttileTriangle* triangles,
-                             float inverse_scale, std::uint32_t count, std::uint32_t* accepted,
-                             float* edges) {
+__global__ void edges_kernel(const softtile::FragmentSetup* fragments,
+                             const SofttileTriangle* triangles, float inverse_scale,
+                             std::uint32_t count, std::uint32_t* accepted, float* edges) {
   const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= count) return;
-  const SofttileFragment fragment = fragments[i];
+  const softtile::FragmentSetup fragment = fragments[i];
   const SofttileTriangle triangle = triangles[i];
   accepted[i] = softtile::triangle_edges(fragment, inverse_scale, triangle, edges + 9 * i) ? 1 : 0;
 }
@@ -89,7 +89,7 @@ TEST(SofttileEmu, EdgeFunctionsEqualTheReferenceBitwise) {
   std::mt19937_64 random(5);
   std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
   const std::uint32_t count = 4096;
-  std::vector<SofttileFragment> fragments(count);
+  std::vector<emulated::softtile::FragmentSetup> fragments(count);
   std::vector<SofttileTriangle> triangles(count);
   std::vector<ref::FragmentSetup> setups(count);
   std::vector<std::array<glm::vec3, 3>> light_space(count);
@@ -113,11 +113,10 @@ TEST(SofttileEmu, EdgeFunctionsEqualTheReferenceBitwise) {
     for (int k = 0; k < 3; ++k) fragments[i].position[k] = f.position[k];
     fragments[i].cos_rotation = f.cos_rotation;
     fragments[i].sin_rotation = f.sin_rotation;
-    fragments[i].relevant = 1;
     for (int v = 0; v < 3; ++v)
       for (int k = 0; k < 3; ++k) triangles[i].vertices[3 * v + k] = light_space[i][v][k];
   }
-  const Device<SofttileFragment> d_fragments(fragments);
+  const Device<emulated::softtile::FragmentSetup> d_fragments(fragments);
   const Device<SofttileTriangle> d_triangles(triangles);
   Device<std::uint32_t> accepted{std::vector<std::uint32_t>(count)};
   Device<float> edges{std::vector<float>(9 * count)};
@@ -236,10 +235,15 @@ std::string first_difference(const Scene& s, const ref::Variant& variant,
   for (std::size_t index = 0; index < tiles; ++index) {
     const std::string at = "tile " + std::to_string(index);
     if (!ref::prepare_tile(s.c, s.samples, s.gathered, variant, inverse_scale, index, tile)) {
-      if (got.candidates[index] != 0) return at + ": candidates in a tile without pixels";
+      if (got.candidates[index] != 0 || got.tile_kinds[index] != softtile_tile_empty)
+        return at + ": a bound or candidates in a tile without pixels";
       continue;
     }
     capsules += tile.bound.capsule ? 1 : 0;
+    if (got.tile_kinds[index] !=
+        (tile.bound.capsule ? softtile_tile_capsule : softtile_tile_sphere))
+      return at + ": reference bound " + (tile.bound.capsule ? "capsule" : "sphere") +
+             ", kernel kind " + std::to_string(got.tile_kinds[index]);
     const std::uint32_t* list = got.candidate_list.data() + got.candidate_offsets[index];
     const std::size_t length = got.candidate_offsets[index + 1] - got.candidate_offsets[index];
     if (got.candidates[index] != length) return at + ": counted and recorded lists differ";
