@@ -2,6 +2,8 @@
 // The softtile eval pass, written once (gpu/emulator/kernel.h): nvcc builds it into the `cuda`
 // backend, the host compiler into `cuda-emu` against the emulator. One block per 16 x 16 pixel
 // tile, one thread per pixel:
+//  - setup: one thread builds the tile's bound (sphere or tapered capsule) from its relevant
+//    samples in the reference's order; each thread moves its sample into light space;
 //  - culling: each thread takes one cluster of the gathered list, tests its cone against the
 //    tile's bound and then its triangles' cones (at most 64, a bit each); a block scan of the
 //    survivors' counts places them in the tile's candidate list in shared memory in gathered order,
