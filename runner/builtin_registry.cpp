@@ -3,6 +3,7 @@
 #include "gpu/lightassign/lightassign_algorithm.h"
 #include "gpu/metric/metric_algorithm.h"
 #include "gpu/ptsv/ptsv_algorithm.h"
+#include "gpu/softtile/softtile_algorithm.h"
 #include "reference/bruteforce/hard_shadow_bruteforce.h"
 #include "reference/embree/hard_shadow_embree.h"
 #include "reference/embree/soft_shadow_embree.h"
@@ -22,6 +23,7 @@
 #include "gpu/bruteforce/hard_shadow_bruteforce_cuda.h"
 #include "gpu/lightassign/lightassign_cuda.h"
 #include "gpu/ptsv/ptsv_cuda.h"
+#include "gpu/softtile/softtile_cuda.h"
 #endif
 
 namespace shadowcts {
@@ -44,6 +46,7 @@ const Registry& builtin_registry() {
     r.add(make_lightassign_cuda_emu());
     r.add(make_metric_cuda_emu());
     r.add(make_cuda_emu_ptsv());
+    r.add(make_softtile_cuda_emu());
     r.add(make_simd_ptsv());
     r.add(make_simd_softtile());
     r.add(make_simd_metric());
@@ -53,6 +56,7 @@ const Registry& builtin_registry() {
     r.add(make_lightassign_cuda());
     r.add(make_metric_cuda());
     r.add(make_cuda_ptsv());
+    r.add(make_softtile_cuda());
 #endif
     return r;
   }();

@@ -141,5 +141,42 @@ TEST(DeviceEmulatorComparison, LightListsAreIdenticalOnEveryDefaultFixture) {
   EXPECT_GT(compared, 0) << "no light-list case ran on both backends";
 }
 
+// Soft-shadow kernels repeat the reference's float operations one rounding at a time: the device
+// and the emulator give the same visible fractions bit for bit, and the same counters.
+TEST(DeviceEmulatorComparison, SoftKernelsAgreeBitForBitOnEveryDefaultFixture) {
+  if (const auto reason = cuda_unavailable_reason()) GTEST_SKIP() << *reason;
+  const Registry& registry = builtin_registry();
+  int compared = 0;
+  for (const std::string& fixture : default_fixtures()) {
+    const Case c = make_fixture(fixture);
+    const ViewSamples samples = generate_view_samples(c);
+    for (const auto& device : registry.algorithms()) {
+      if (device->info().backend != "cuda" ||
+          device->info().capabilities.output != OutputKind::soft_shadow)
+        continue;
+      const Algorithm* emulated = registry.find(device->info().id, "cuda-emu");
+      ASSERT_NE(emulated, nullptr) << device->info().id << " has no emulated backend";
+      for (const std::string& variant : device->info().variants) {
+        if (device->unsupported_reason(c, samples, variant) ||
+            emulated->unsupported_reason(c, samples, variant))
+          continue;
+        const PreparedScene scene = prepare_scene(c, samples);
+        const AlgorithmOutput on_device = device->run(scene, variant);
+        const AlgorithmOutput under_emulator = emulated->run(scene, variant);
+        ASSERT_EQ(on_device.visible_fraction.size(), under_emulator.visible_fraction.size());
+        std::size_t differ = 0;
+        for (std::size_t i = 0; i < on_device.visible_fraction.size(); ++i)
+          differ += on_device.visible_fraction[i] != under_emulator.visible_fraction[i];
+        EXPECT_EQ(differ, 0u) << c.name << " " << device->info().id << ":" << variant;
+        for (std::size_t k = 0; k < on_device.counters.size(); ++k)
+          EXPECT_EQ(on_device.counters[k], under_emulator.counters.at(k))
+              << c.name << " " << device->info().id << ":" << variant;
+        ++compared;
+      }
+    }
+  }
+  std::printf("soft kernels: %d case/variant pairs compared\n", compared);
+}
+
 }  // namespace
 }  // namespace shadowcts
