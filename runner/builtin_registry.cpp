@@ -1,5 +1,6 @@
 // The built-in algorithms of this build, in the order `shadowcts list` shows them.
 #include "gpu/bruteforce/hard_shadow_bruteforce_emu.h"
+#include "gpu/psv/psv_algorithm.h"
 #include "reference/bruteforce/hard_shadow_bruteforce.h"
 #include "reference/embree/hard_shadow_embree.h"
 #include "reference/embree/soft_shadow_embree.h"
@@ -36,12 +37,14 @@ const Registry& builtin_registry() {
     r.add(make_lightassign());
     // The device kernels run by the emulator: on every machine, in their own records.
     r.add(make_bruteforce_hard_shadow_cuda_emu());
+    r.add(make_psv_cuda_emu());
     r.add(make_simd_ptsv());
     r.add(make_simd_softtile());
     r.add(make_simd_metric());
     r.add(make_simd_lightassign());
 #if SHADOWCTS_HAVE_CUDA
     r.add(make_bruteforce_hard_shadow_cuda());
+    r.add(make_psv_cuda());
 #endif
     return r;
   }();
