@@ -27,15 +27,25 @@ namespace psv {
 
 constexpr int threads_per_block = 128;
 
+// Unbounded, ptxas gave the kernel 255 registers (sm_90; 40 KB cumulative stack, nearly all of it
+// the receiver half-space rule's expansions): 8 resident warps per SM for a latency-bound
+// traversal. Bounded to 8 blocks of 128 per SM (64 registers), as the brute-force kernel is; not
+// yet measured on a device.
+#if SHADOWCTS_EMULATED
+#define SHADOWCTS_PSV_LAUNCH_BOUNDS
+#else
+#define SHADOWCTS_PSV_LAUNCH_BOUNDS __launch_bounds__(threads_per_block, 8)
+#endif
+
 // Slots of the totals the kernel adds up.
 enum Total : int { total_overflows, total_switches, total_exact, total_count };
 enum Maximum : int { maximum_high_water, maximum_count };
 
-__global__ void psv_query(QueryContext context, PsvDeviceQuery query, std::uint32_t stack_capacity,
-                          const glm::vec3* sample_positions, const std::uint32_t* sample_receivers,
-                          std::uint32_t sample_count, std::uint8_t* shadowed,
-                          std::uint32_t* nodes_visited, unsigned long long* totals,
-                          unsigned int* maxima) {
+__global__ void SHADOWCTS_PSV_LAUNCH_BOUNDS
+psv_query(QueryContext context, PsvDeviceQuery query, std::uint32_t stack_capacity,
+          const glm::vec3* sample_positions, const std::uint32_t* sample_receivers,
+          std::uint32_t sample_count, std::uint8_t* shadowed, std::uint32_t* nodes_visited,
+          unsigned long long* totals, unsigned int* maxima) {
   const std::uint32_t sample = blockIdx.x * blockDim.x + threadIdx.x;
   if (sample >= sample_count) return;
   QueryWork work;
