@@ -4,6 +4,7 @@
 #include "gpu/metric/metric_algorithm.h"
 #include "gpu/ptsv/ptsv_algorithm.h"
 #include "gpu/softtile/softtile_algorithm.h"
+#include "gpu/psv/psv_algorithm.h"
 #include "reference/bruteforce/hard_shadow_bruteforce.h"
 #include "reference/embree/hard_shadow_embree.h"
 #include "reference/embree/soft_shadow_embree.h"
@@ -47,6 +48,7 @@ const Registry& builtin_registry() {
     r.add(make_metric_cuda_emu());
     r.add(make_cuda_emu_ptsv());
     r.add(make_softtile_cuda_emu());
+    r.add(make_psv_cuda_emu());
     r.add(make_simd_ptsv());
     r.add(make_simd_softtile());
     r.add(make_simd_metric());
@@ -57,6 +59,7 @@ const Registry& builtin_registry() {
     r.add(make_metric_cuda());
     r.add(make_cuda_ptsv());
     r.add(make_softtile_cuda());
+    r.add(make_psv_cuda());
 #endif
     return r;
   }();

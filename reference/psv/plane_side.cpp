@@ -30,17 +30,9 @@ void store_plane(TopNode& node, const glm::dvec3& normal, double offset, int ori
 
 PlaneSide::PlaneSide(const HardShadowLight& light, const std::vector<Triangle>& triangles,
                      double scene_bound)
-    : light_(light), triangles_(triangles), scene_bound_(scene_bound) {
-  // The double-precision normal is within about 2^-48 M^2 (M: scene_bound) of the exact one per
-  // component (differences, products and one subtraction, each rounded once); times a point of
-  // size 3 M, plus the same error through the offset, that is below 2^-45 M^3. 2^-40 covers it
-  // with room. Directional edge normals are (b - a) x d: M |d|_1 instead of M^2.
-  const double m = scene_bound_;
-  const double d1 =
-      std::fabs(light.direction.x) + std::fabs(light.direction.y) + std::fabs(light.direction.z);
-  capping_extra_error_ = 0x1p-40 * m * m * m;
-  edge_extra_error_ = light.directional ? 0x1p-40 * m * m * d1 : capping_extra_error_;
-}
+    : light_(light),
+      triangles_(triangles),
+      filter_(geometry::make_plane_filter(light.directional, light.direction, scene_bound)) {}
 
 int PlaneSide::light_side(const Triangle& t) const {
   const glm::dvec3 a = vertex(t, 0), b = vertex(t, 1), c = vertex(t, 2);
@@ -87,27 +79,11 @@ void PlaneSide::make_volume_planes(std::uint32_t triangle, TopNode* first,
 }
 
 double PlaneSide::value(const TopNode& node, const glm::dvec3& p) const {
-  // Products of a float and a float-valued double are exact; three roundings remain.
-  return double(node.plane[0]) * p.x + double(node.plane[1]) * p.y + double(node.plane[2]) * p.z +
-         double(node.plane[3]);
+  return geometry::plane_value(node.plane.data(), p);
 }
 
 double PlaneSide::error_bound(const TopNode& node, bool capping, const glm::dvec3& p) const {
-  // Rounding the coefficients to float moves each by at most 2^-24 of itself, and the offset was
-  // computed as -n . L (or -n . a) with terms up to |n|_1 M: 2^-22 of those magnitudes bounds
-  // both and the evaluation's roundings; the extra term covers the double normal's own error.
-  // Below float's normal range (a scene scaled below about 2^-40: the offset is a product of
-  // three coordinates) rounding moves a coefficient by up to 2^-150 instead, whatever its size
-  // (subnormal_error). A coefficient beyond float's range is infinite, and so is the bound: the
-  // exact test decides.
-  const double a = std::fabs(node.plane[0]), b = std::fabs(node.plane[1]),
-               c = std::fabs(node.plane[2]), d = std::fabs(node.plane[3]);
-  const double magnitude =
-      a * std::fabs(p.x) + b * std::fabs(p.y) + c * std::fabs(p.z) + d + (a + b + c) * scene_bound_;
-  const double subnormal_error =
-      0x1p-149 * (std::fabs(p.x) + std::fabs(p.y) + std::fabs(p.z) + 1.0);
-  return 0x1p-22 * magnitude + subnormal_error +
-         (capping ? capping_extra_error_ : edge_extra_error_);
+  return geometry::plane_error_bound(filter_, node.plane.data(), capping, p);
 }
 
 int PlaneSide::side(const TopTree& tree, std::uint32_t node, const glm::dvec3& p) const {

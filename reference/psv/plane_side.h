@@ -16,6 +16,7 @@
 
 #include "reference/psv/top_tree.h"
 #include "shadowcts/case.h"
+#include "shadowcts/geometry/plane_filter.h"
 #include "shadowcts/hard_shadow_inputs.h"
 
 namespace shadowcts::psv {
@@ -44,6 +45,8 @@ class PlaneSide {
 
   const HardShadowLight& light() const { return light_; }
   const std::vector<Triangle>& triangles() const { return triangles_; }
+  // The float filter's constants (shared with the GPU port, shadowcts/geometry/plane_filter.h).
+  const geometry::PlaneFilter& filter() const { return filter_; }
   // Number of side() calls the float filter could not decide.
   std::uint64_t exact_fallbacks() const { return exact_fallbacks_.load(); }
 
@@ -52,8 +55,7 @@ class PlaneSide {
 
   HardShadowLight light_;
   const std::vector<Triangle>& triangles_;
-  double scene_bound_;
-  double edge_extra_error_, capping_extra_error_;
+  geometry::PlaneFilter filter_;
   mutable std::atomic<std::uint64_t> exact_fallbacks_{0};
 };
 

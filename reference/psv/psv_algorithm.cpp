@@ -9,36 +9,12 @@
 namespace shadowcts {
 namespace {
 
-psv::PsvOptions variant_options(const std::string& variant) {
-  psv::PsvOptions options;
-  if (variant == "stack") {
-    options.query = psv::QueryKind::stack;
-  } else if (variant == "stack32") {
-    options.query = psv::QueryKind::stack;
-    options.stack_capacity = 32;
-  } else if (variant == "depth") {
-    options.query = psv::QueryKind::depth;
-  } else if (variant == "stackless") {
-    options.query = psv::QueryKind::stackless;
-  } else if (variant == "hybrid") {
-    options.query = psv::QueryKind::hybrid;
-  } else if (variant == "hybrid4") {
-    // The smallest stack of the paper's Figure 9 sweep (4 to 48): on the built-in cases a stack
-    // of 12 never fills (high water 8), so only this variant runs the stackless switch.
-    options.query = psv::QueryKind::hybrid;
-    options.stack_capacity = 4;
-  } else {
-    throw std::invalid_argument("psv: unknown variant '" + variant + "'");
-  }
-  return options;
-}
-
 class PsvAlgorithm final : public Algorithm {
  public:
   PsvAlgorithm() {
     info_.id = "psv";
     info_.backend = "reference";
-    info_.variants = {"stack", "stack32", "depth", "stackless", "hybrid", "hybrid4"};
+    info_.variants = psv::psv_variants();
     info_.summary =
         "partitioned shadow volumes: TOP tree with exact plane sides; PSV, D-PSV, D-Stackless "
         "and D-Hybrid queries (Mora 2016)";
@@ -57,7 +33,7 @@ class PsvAlgorithm final : public Algorithm {
   AlgorithmOutput run(const PreparedScene& scene, const std::string& variant) const override {
     const Case& c = scene.source;
     const ViewSamples& samples = scene.view_samples;
-    psv::PsvOptions options = variant_options(variant);
+    psv::PsvOptions options = psv::psv_variant_options(variant);
     options.seed = c.parameters.seed;
     psv::PsvResult result = psv::psv_hard_shadows(c, samples, options);
     AlgorithmOutput output;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 #include <tbb/blocked_range.h>
@@ -39,19 +40,74 @@ double coordinate_bound(const Case& c, const ViewSamples& samples) {
 
 }  // namespace
 
-PsvResult psv_hard_shadows(const Case& c, const ViewSamples& samples, const PsvOptions& options) {
-  const HardShadowLight light = hard_shadow_light(c);
+PsvOptions psv_variant_options(const std::string& variant) {
+  PsvOptions options;
+  if (variant == "stack") {
+    options.query = QueryKind::stack;
+  } else if (variant == "stack32") {
+    options.query = QueryKind::stack;
+    options.stack_capacity = 32;
+  } else if (variant == "depth") {
+    options.query = QueryKind::depth;
+  } else if (variant == "stackless") {
+    options.query = QueryKind::stackless;
+  } else if (variant == "hybrid") {
+    options.query = QueryKind::hybrid;
+  } else if (variant == "hybrid4") {
+    // The smallest stack of the paper's Figure 9 sweep (4 to 48): on the built-in cases a stack
+    // of 12 never fills (high water 8), so only this variant runs the stackless switch.
+    options.query = QueryKind::hybrid;
+    options.stack_capacity = 4;
+  } else {
+    throw std::invalid_argument("psv: unknown variant '" + variant + "'");
+  }
+  return options;
+}
+
+std::vector<std::string> psv_variants() {
+  return {"stack", "stack32", "depth", "stackless", "hybrid", "hybrid4"};
+}
+
+PsvBuild build_psv(const Case& c, const ViewSamples& samples, std::uint64_t seed) {
+  PsvBuild build;
+  build.light = hard_shadow_light(c);
   check_receivers(c, samples);
+  build.planes =
+      std::make_unique<PlaneSide>(build.light, c.triangles, coordinate_bound(c, samples));
+  const std::vector<std::uint32_t> order =
+      insertion_order(c, *build.planes,
+                      culling_clear_of_segment_starts(c, samples, build.light,
+                                                      meshes_safe_for_face_culling(c, samples)),
+                      seed, build.statistics);
+  build.tree = build_top_tree(c, *build.planes, order, build.statistics);
+  return build;
+}
+
+Counters psv_counters(const PsvBuild& build, const PsvQueryTotals& totals,
+                      const PsvOptions& options, std::uint64_t exact_plane_tests) {
+  const bool uses_stack = options.query != QueryKind::stackless;
+  return {{"triangles_inserted", build.statistics.volumes},
+          {"triangles_culled_front_facing", build.statistics.culled_front_facing},
+          {"triangles_culled_flat", build.statistics.culled_flat},
+          {"triangles_dropped_in_shadow", build.statistics.dropped_in_shadow},
+          {"tree_nodes", build.tree.nodes.size()},
+          {"tree_height", build.statistics.height},
+          {"queries", totals.queries},
+          {"nodes_visited_total", totals.nodes_visited_total},
+          {"nodes_visited_max", totals.nodes_visited_max},
+          {"stack_capacity", uses_stack ? options.stack_capacity : 0},
+          {"stack_high_water", totals.stack_high_water},
+          {"stack_overflows", totals.stack_overflows},
+          {"hybrid_switches", totals.hybrid_switches},
+          {"exact_plane_tests", exact_plane_tests}};
+}
+
+PsvResult psv_hard_shadows(const Case& c, const ViewSamples& samples, const PsvOptions& options) {
   PhaseClock clock;
-  const PlaneSide planes(light, c.triangles, coordinate_bound(c, samples));
-  BuildStatistics build;
-  const std::vector<std::uint32_t> order = insertion_order(
-      c, planes,
-      culling_clear_of_segment_starts(c, samples, light, meshes_safe_for_face_culling(c, samples)),
-      options.seed, build);
-  const TopTree tree = build_top_tree(c, planes, order, build);
+  const PsvBuild build = build_psv(c, samples, options.seed);
+  const HardShadowLight& light = build.light;
   const bool depth_test = options.query != QueryKind::stack;
-  const QueryContext context(tree, planes, depth_test);
+  const QueryContext context(build.tree, *build.planes, depth_test);
   clock.lap(build_phase);
 
   PsvResult result;
@@ -113,21 +169,14 @@ PsvResult psv_hard_shadows(const Case& c, const ViewSamples& samples, const PsvO
   });
   clock.lap(query_phase);
   result.phase_ms = clock.times();
-  const bool uses_stack = options.query != QueryKind::stackless;
-  result.counters = {{"triangles_inserted", build.volumes},
-                     {"triangles_culled_front_facing", build.culled_front_facing},
-                     {"triangles_culled_flat", build.culled_flat},
-                     {"triangles_dropped_in_shadow", build.dropped_in_shadow},
-                     {"tree_nodes", tree.nodes.size()},
-                     {"tree_height", build.height},
-                     {"queries", queries.load()},
-                     {"nodes_visited_total", visited_total.load()},
-                     {"nodes_visited_max", visited_max.load()},
-                     {"stack_capacity", uses_stack ? options.stack_capacity : 0},
-                     {"stack_high_water", high_water.load()},
-                     {"stack_overflows", overflows.load()},
-                     {"hybrid_switches", switches.load()},
-                     {"exact_plane_tests", planes.exact_fallbacks()}};
+  PsvQueryTotals totals;
+  totals.queries = queries.load();
+  totals.nodes_visited_total = visited_total.load();
+  totals.nodes_visited_max = visited_max.load();
+  totals.stack_high_water = high_water.load();
+  totals.stack_overflows = overflows.load();
+  totals.hybrid_switches = switches.load();
+  result.counters = psv_counters(build, totals, options, build.planes->exact_fallbacks());
   return result;
 }
 

@@ -2,10 +2,16 @@
 // Hard shadows of a case with partitioned shadow volumes: builds the TOP tree once, then locates
 // every regular view sample with one of the four queries of Mora 2016.
 #include <cstdint>
+#include <memory>
+#include <string>
 #include <vector>
 
+#include "reference/psv/plane_side.h"
+#include "reference/psv/top_tree.h"
+#include "reference/psv/top_tree_build.h"
 #include "shadowcts/algorithm.h"
 #include "shadowcts/case.h"
+#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/view_samples.h"
 
 namespace shadowcts::psv {
@@ -38,6 +44,31 @@ struct PsvResult {
   // "build" (insertion order, TOP tree, query context) and "query" (the per-sample queries).
   PhaseTimes phase_ms;
 };
+
+// The options of a registered variant name (psv_variants()); throws std::invalid_argument for
+// another name. Every backend of psv registers the same variants.
+PsvOptions psv_variant_options(const std::string& variant);
+std::vector<std::string> psv_variants();
+
+// The build phase: the light, the plane tests, the insertion order and the TOP tree. The GPU port
+// queries this same tree (uploaded), so both backends share it.
+struct PsvBuild {
+  HardShadowLight light;
+  std::unique_ptr<PlaneSide> planes;  // refers to c.triangles
+  BuildStatistics statistics;
+  TopTree tree;
+};
+// Throws InputError when the case has no point or directional light.
+PsvBuild build_psv(const Case& c, const ViewSamples& samples, std::uint64_t seed);
+
+// What the queries of all samples add up to (sums and maxima: independent of the partitioning).
+struct PsvQueryTotals {
+  std::uint64_t queries = 0, nodes_visited_total = 0, nodes_visited_max = 0, stack_high_water = 0,
+                stack_overflows = 0, hybrid_switches = 0;
+};
+// PsvResult::counters in their order; exact_plane_tests: of the build and the queries.
+Counters psv_counters(const PsvBuild& build, const PsvQueryTotals& totals,
+                      const PsvOptions& options, std::uint64_t exact_plane_tests);
 
 // A stack query that overflows its stack has no answer; that sample is counted in
 // stack_overflows and answered again by the stackless query (its nodes count too), so the mask is

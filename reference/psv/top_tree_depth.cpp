@@ -5,6 +5,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "shadowcts/geometry/plane_filter.h"
+
 namespace shadowcts::psv {
 namespace {
 
@@ -86,14 +88,8 @@ float triangle_light_depth(const HardShadowLight& light, const Triangle& t) {
 }
 
 double sample_light_depth(const HardShadowLight& light, const glm::dvec3& p) {
-  if (light.directional) {
-    const double error =
-        0x1p-50 * (std::fabs(light.direction.x * p.x) + std::fabs(light.direction.y * p.y) +
-                   std::fabs(light.direction.z * p.z));
-    return -glm::dot(light.direction, p) + error;
-  }
-  // Differences, squares, sum and root: a relative error far below 2^-48.
-  return glm::length(p - light.position) * (1.0 + 0x1p-48);
+  return geometry::sample_light_depth(light.directional,
+                                      light.directional ? light.direction : light.position, p);
 }
 
 }  // namespace shadowcts::psv

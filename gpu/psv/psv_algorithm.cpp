@@ -1,0 +1,20 @@
+// The emulated backend (`cuda-emu`); the device one is in psv_algorithm_cuda.cpp (CUDA builds).
+#include "gpu/psv/psv_algorithm.h"
+
+#include "gpu/psv/psv_backend.h"
+#include "gpu/psv/psv_kernels.h"
+
+namespace shadowcts {
+
+std::unique_ptr<Algorithm> make_psv_cuda_emu() {
+  gpu_psv::PsvKernelBackend backend;
+  backend.backend = "cuda-emu";
+  backend.summary =
+      "the cuda backend's psv query kernel EMULATED on the host (gpu/emulator: a fiber per CUDA "
+      "thread, no GPU involved) on the reference's TOP tree; PSV, D-PSV, D-Stackless, D-Hybrid";
+  backend.run_kernel = run_psv_query_kernel_emulated;
+  backend.emulated = true;
+  return gpu_psv::make_psv_kernel_algorithm(std::move(backend));
+}
+
+}  // namespace shadowcts

@@ -1,0 +1,106 @@
+#include "gpu/psv/psv_shadows.h"
+
+#include <cstring>
+#include <stdexcept>
+
+#include "shadowcts/phase_clock.h"
+
+namespace shadowcts::gpu_psv {
+namespace {
+
+PsvDeviceQuery device_query(psv::QueryKind kind) {
+  switch (kind) {
+    case psv::QueryKind::stack:
+      return PsvDeviceQuery::stack;
+    case psv::QueryKind::depth:
+      return PsvDeviceQuery::depth;
+    case psv::QueryKind::stackless:
+      return PsvDeviceQuery::stackless;
+    case psv::QueryKind::hybrid:
+      return PsvDeviceQuery::hybrid;
+  }
+  throw std::invalid_argument("psv: unknown query kind");
+}
+
+}  // namespace
+
+PsvQueryInput psv_query_input(const Case& c, const ViewSamples& samples, const psv::PsvBuild& build,
+                              const psv::PsvOptions& options,
+                              std::vector<std::size_t>& regular_samples) {
+  static_assert(sizeof(PsvDeviceNode) == sizeof(psv::TopNode));
+  PsvQueryInput input;
+  const psv::TopTree& tree = build.tree;
+  input.nodes.resize(tree.nodes.size());
+  for (std::size_t i = 0; i < tree.nodes.size(); ++i) {
+    const psv::TopNode& n = tree.nodes[i];
+    PsvDeviceNode& d = input.nodes[i];
+    for (int k = 0; k < 4; ++k) d.plane[k] = n.plane[std::size_t(k)];
+    d.positive = n.positive;
+    d.intersection = n.intersection;
+    d.wedge = n.wedge;
+    d.volume_word = n.volume_word;
+  }
+  input.sources.resize(tree.sources.size());
+  for (std::size_t v = 0; v < tree.sources.size(); ++v) {
+    const psv::VolumeSource& s = tree.sources[v];
+    PsvDeviceSource& d = input.sources[v];
+    for (std::size_t k = 0; k < 3; ++k) {
+      d.edge[k][0] = s.edge[k][0];
+      d.edge[k][1] = s.edge[k][1];
+    }
+    for (std::size_t k = 0; k < 4; ++k) d.orientation[k] = s.orientation[k];
+  }
+  input.root = tree.root;
+  input.triangles.reserve(c.triangles.size());
+  for (const Triangle& t : c.triangles) input.triangles.push_back({t.v0, t.v1, t.v2});
+  for (std::size_t i = 0; i < samples.samples.size(); ++i) {
+    const ViewSample& sample = samples.samples[i];
+    if (sample.sample_class != SampleClass::regular) continue;
+    regular_samples.push_back(i);
+    input.sample_positions.push_back(sample.position);
+    input.sample_receivers.push_back(sample.receiver);  // no_receiver is psv_no_node
+  }
+  input.directional_light = build.light.directional;
+  input.light = build.light.directional ? build.light.direction : build.light.position;
+  input.filter = build.planes->filter();
+  input.query = device_query(options.query);
+  input.stack_capacity = options.stack_capacity;
+  if (options.stack_capacity > psv_max_stack_capacity)
+    throw std::invalid_argument("psv: the device stack holds at most 32 nodes");
+  return input;
+}
+
+psv::PsvResult psv_hard_shadows(const Case& c, const ViewSamples& samples,
+                                const psv::PsvOptions& options, QueryKernel kernel) {
+  static_assert(no_receiver == psv_no_node);
+  PhaseClock clock;
+  const psv::PsvBuild build = psv::build_psv(c, samples, options.seed);
+  // The build's exact plane tests, before any query adds to the counter.
+  const std::uint64_t build_exact_tests = build.planes->exact_fallbacks();
+  std::vector<std::size_t> regular_samples;
+  const PsvQueryInput input = psv_query_input(c, samples, build, options, regular_samples);
+  clock.lap(build_phase);
+
+  const PsvQueryResult queried = kernel(input);
+  psv::PsvResult result;
+  result.shadowed.assign(samples.samples.size(), 0);
+  result.nodes_visited.assign(samples.samples.size(), 0);
+  for (std::size_t i = 0; i < regular_samples.size(); ++i) {
+    result.shadowed[regular_samples[i]] = queried.shadowed[i];
+    result.nodes_visited[regular_samples[i]] = queried.nodes_visited[i];
+  }
+  clock.lap(query_phase);
+  result.phase_ms = clock.times();
+  psv::PsvQueryTotals totals;
+  totals.queries = regular_samples.size();
+  totals.nodes_visited_total = queried.nodes_visited_total;
+  totals.nodes_visited_max = queried.nodes_visited_max;
+  totals.stack_high_water = queried.stack_high_water;
+  totals.stack_overflows = queried.stack_overflows;
+  totals.hybrid_switches = queried.hybrid_switches;
+  result.counters =
+      psv::psv_counters(build, totals, options, build_exact_tests + queried.exact_plane_tests);
+  return result;
+}
+
+}  // namespace shadowcts::gpu_psv
