@@ -29,6 +29,9 @@ fi
 build_dir="${SHADOWCTS_BUILD_DIR:-build}"
 jobs="${SHADOWCTS_JOBS:-$(nproc)}"
 launcher=()
+# Paths inside the checkout enter ccache's hashes relative to the build folder, so a clone at
+# another path (CI's) reuses what any earlier build of the same sources compiled.
+export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$PWD}"
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_CUDA_COMPILER_LAUNCHER=ccache)
 cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release "${launcher[@]}"
 targets=()

@@ -21,6 +21,10 @@ jobs="${SHADOWCTS_JOBS:-$(nproc)}"
 build="${WORK}/cmake"
 
 launcher=()
+# As in ci/setup.sh: a clone at another path (CI's) reuses the cache; with -g the object's
+# compilation folder is then the first build's, which only a debugger would notice.
+export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$root}"
+export CCACHE_NOHASHDIR="${CCACHE_NOHASHDIR:-1}"
 command -v ccache >/dev/null && launcher=(-DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 # RelWithDebInfo with empty per-type flags: the optimization level comes from $CFLAGS (as
 # OSS-Fuzz wants), and NDEBUG stays undefined so assertions fire under the fuzzer.

@@ -17,6 +17,7 @@
 #include "shadowcts/host_device.h"
 
 namespace shadowcts::geometry {
+SHADOWCTS_GEOMETRY_ABI_BEGIN
 
 enum class CasterDecision : std::uint8_t {
   passes,  // does not shadow the sample
@@ -84,4 +85,5 @@ SHADOWCTS_HD inline CasterDecision decide_caster(const RaySpace& ray_space, cons
              : CasterDecision::passes;
 }
 
+SHADOWCTS_GEOMETRY_ABI_END
 }  // namespace shadowcts::geometry

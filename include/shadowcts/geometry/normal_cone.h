@@ -17,6 +17,7 @@
 #include "shadowcts/host_device.h"
 
 namespace shadowcts {
+SHADOWCTS_GEOMETRY_ABI_BEGIN
 
 struct NormalCone {
   glm::dvec3 axis{0.0, 0.0, 1.0};  // unit
@@ -158,4 +159,5 @@ SHADOWCTS_HD inline bool light_behind_cone(const NormalCone& cone, const glm::ve
 }
 
 }  // namespace geometry
+SHADOWCTS_GEOMETRY_ABI_END
 }  // namespace shadowcts

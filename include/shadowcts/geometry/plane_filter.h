@@ -14,6 +14,7 @@
 #include "shadowcts/host_device.h"
 
 namespace shadowcts::geometry {
+SHADOWCTS_GEOMETRY_ABI_BEGIN
 
 struct PlaneFilter {
   double scene_bound = 0.0;  // M: >= every |coordinate| of triangles, light and query points
@@ -94,4 +95,5 @@ SHADOWCTS_HD inline double sample_light_depth(bool directional, const glm::dvec3
   return rounded_mul(sqrt(length2), 1.0 + 0x1p-48);
 }
 
+SHADOWCTS_GEOMETRY_ABI_END
 }  // namespace shadowcts::geometry

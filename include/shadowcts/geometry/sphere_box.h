@@ -15,6 +15,7 @@
 #include "shadowcts/host_device.h"
 
 namespace shadowcts::geometry {
+SHADOWCTS_GEOMETRY_ABI_BEGIN
 
 inline constexpr double sphere_box_error_scale = 16.0 * 0x1p-53;
 inline constexpr double sphere_box_underflow_guard = 0x1p-1000;
@@ -69,4 +70,5 @@ SHADOWCTS_HD inline bool sphere_meets_box(const glm::vec3& centre, float range,
   return sphere_meets_box_exact(centre, range, low, high);
 }
 
+SHADOWCTS_GEOMETRY_ABI_END
 }  // namespace shadowcts::geometry
