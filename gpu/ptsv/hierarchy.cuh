@@ -185,7 +185,7 @@ inline DeviceHierarchy build_hierarchy(const DeviceArray<std::uint32_t>& keys,
       level.index.set(0, 0u);
       level.first_sample.set(0, 0u);
       level.first_child.set(0, 0u);
-    } else {
+    } else if (n != 0) {  // a grid of no blocks is an invalid launch on a device
       SHADOWCTS_LAUNCH(node_starts, launches.blocks(n), threads_per_block, 0)
       (h.sorted_keys.data(), flags.data(), level.node_of.data(), n, shift, level.index.data(),
        level.first_sample.data());
@@ -205,9 +205,11 @@ inline DeviceHierarchy build_hierarchy(const DeviceArray<std::uint32_t>& keys,
         after_launch("link_children");
       }
       level.first_child.set(level.count, below.count);
-      SHADOWCTS_LAUNCH(inner_bounds, launches.blocks(level.count), threads_per_block, 0)
-      (level.first_child.data(), level.count, below.box.data(), level.box.data());
-      after_launch("inner_bounds");
+      if (level.count != 0) {
+        SHADOWCTS_LAUNCH(inner_bounds, launches.blocks(level.count), threads_per_block, 0)
+        (level.first_child.data(), level.count, below.box.data(), level.box.data());
+        after_launch("inner_bounds");
+      }
     } else if (level.count != 0) {
       SHADOWCTS_LAUNCH(leaf_bounds, launches.blocks(level.count), threads_per_block, 0)
       (level.first_sample.data(), level.count, h.sorted_samples.data(), samples.data(),
