@@ -130,6 +130,9 @@ int main(int argc, char** argv) {
   run->add_option("--oracle", oracle, "Hard-shadow oracle: auto, exact or embree")
       ->check(CLI::IsMember({"auto", "exact", "embree"}))
       ->capture_default_str();
+  run->add_option("--truth-cache", options.truth_cache_dir,
+                  "Keep oracle truths in this folder and reuse them for the same build and "
+                  "inputs (repeated runs, ports judged on the same cases)");
 
   std::string gbuffer_case, gbuffer_fixture, gbuffer_out;
   CLI::App* gbuffer = app.add_subcommand(

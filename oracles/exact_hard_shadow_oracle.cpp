@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include <tbb/blocked_range.h>
@@ -65,6 +66,29 @@ class ExactLazyExponents final : public LazyRobustExponents {
   mutable std::vector<std::atomic<std::int8_t>> cache_;
 };
 
+// ExactLazyExponents, built by the first resolve.
+class DeferredExactExponents final : public LazyRobustExponents {
+ public:
+  DeferredExactExponents(const Case& c, const ViewSamples& samples) : case_(c), samples_(samples) {}
+
+  void resolve(const std::vector<std::size_t>& samples,
+               std::vector<std::int8_t>& out) const override {
+    std::call_once(built_, [&] {
+      run_with_thread_limit(case_.parameters.threads, [&] {
+        exponents_ =
+            std::make_unique<const ExactLazyExponents>(case_, samples_, hard_shadow_light(case_));
+      });
+    });
+    exponents_->resolve(samples, out);
+  }
+
+ private:
+  const Case& case_;
+  const ViewSamples& samples_;
+  mutable std::once_flag built_;
+  mutable std::unique_ptr<const ExactLazyExponents> exponents_;
+};
+
 }  // namespace
 
 HardShadowTruth exact_hard_shadow_oracle(const Case& c, const ViewSamples& samples) {
@@ -113,6 +137,11 @@ HardShadowTruth exact_hard_shadow_oracle_with_exponents(const Case& c, const Vie
   HardShadowTruth truth = exact_hard_shadow_oracle(c, samples);
   resolve_robust_exponents(truth);
   return truth;
+}
+
+std::shared_ptr<const LazyRobustExponents> exact_robust_exponents_on_demand(
+    const Case& c, const ViewSamples& samples) {
+  return std::make_shared<const DeferredExactExponents>(c, samples);
 }
 
 }  // namespace shadowcts

@@ -1,6 +1,7 @@
 #include "hard_shadow_evaluation.h"
 
 #include <chrono>
+#include <functional>
 #include <iomanip>
 #include <sstream>
 
@@ -19,10 +20,19 @@ constexpr std::uint64_t exact_oracle_triangle_limit = 4'000'000;
 class HardShadowEvaluation : public CaseEvaluation {
  public:
   HardShadowEvaluation(const Case& c, const ViewSamples& samples, bool exact,
-                       const std::filesystem::path& out_dir, const std::string& image_folder)
+                       const std::filesystem::path& out_dir, const std::string& image_folder,
+                       const TruthCache* cache)
       : samples_(samples), out_dir_(out_dir) {
     const auto start = std::chrono::steady_clock::now();
-    truth_ = exact ? exact_hard_shadow_oracle(c, samples) : embree_hard_shadow_oracle(c, samples);
+    const std::function<HardShadowTruth()> compute = [&] {
+      return exact ? exact_hard_shadow_oracle(c, samples) : embree_hard_shadow_oracle(c, samples);
+    };
+    TruthCacheUse cache_use;
+    truth_ = cache
+                 ? cache->get(exact ? "hard.exact" : "hard.embree", c, samples, compute, cache_use)
+                 : compute();
+    // The exact oracle's exponents stay on demand; the fast oracle has none (hard_shadow_oracle.h).
+    if (cache_use.hit && exact) truth_.lazy = exact_robust_exponents_on_demand(c, samples);
     oracle_.time_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     oracle_.method = truth_.method;
@@ -49,6 +59,7 @@ class HardShadowEvaluation : public CaseEvaluation {
                        {"ambiguous", ambiguous},
                        {"ambiguous_fraction", ambiguous_fraction},
                        {"mask_image", write_oracle_images(out_dir, image_folder, samples, truth_)}};
+    record_truth_cache_use({cache_use}, oracle_);
   }
 
   void judge(const AlgorithmOutput& output, RunRecord& record) const override {
@@ -95,12 +106,10 @@ class HardShadowEvaluation : public CaseEvaluation {
 
 }  // namespace
 
-std::unique_ptr<CaseEvaluation> evaluate_hard_shadows(const Case& hard_case,
-                                                      const ViewSamples& samples,
-                                                      OracleChoice choice,
-                                                      const std::filesystem::path& out_dir,
-                                                      const std::string& image_folder,
-                                                      std::vector<std::string>& left_out) {
+std::unique_ptr<CaseEvaluation> evaluate_hard_shadows(
+    const Case& hard_case, const ViewSamples& samples, OracleChoice choice,
+    const std::filesystem::path& out_dir, const std::string& image_folder,
+    std::vector<std::string>& left_out, const TruthCache* cache) {
   const bool exact =
       choice == OracleChoice::exact || (choice == OracleChoice::automatic &&
                                         hard_case.triangles.size() <= exact_oracle_triangle_limit);
@@ -111,7 +120,8 @@ std::unique_ptr<CaseEvaluation> evaluate_hard_shadows(const Case& hard_case,
             : "exact hard-shadow oracle: " + std::to_string(hard_case.triangles.size()) +
                   " triangles exceed its limit of " + std::to_string(exact_oracle_triangle_limit) +
                   "; the fast oracle's band is estimated");
-  return std::make_unique<HardShadowEvaluation>(hard_case, samples, exact, out_dir, image_folder);
+  return std::make_unique<HardShadowEvaluation>(hard_case, samples, exact, out_dir, image_folder,
+                                                cache);
 }
 
 }  // namespace shadowcts

@@ -8,17 +8,17 @@
 #include "shadowcts/case.h"
 #include "shadowcts/runner.h"
 #include "shadowcts/view_samples.h"
+#include "truth_cache.h"
 
 namespace shadowcts {
 
 // Computes the hard-shadow truth of `hard_case` (its light is point or directional) with the
 // exact oracle, or the fast one above its size limit or on request (noted in `left_out`), and
-// writes the oracle's mask image under images/<image_folder>/.
-std::unique_ptr<CaseEvaluation> evaluate_hard_shadows(const Case& hard_case,
-                                                      const ViewSamples& samples,
-                                                      OracleChoice choice,
-                                                      const std::filesystem::path& out_dir,
-                                                      const std::string& image_folder,
-                                                      std::vector<std::string>& left_out);
+// writes the oracle's mask image under images/<image_folder>/. With a cache, the truth comes from
+// it when it holds this case's (truth_cache.h).
+std::unique_ptr<CaseEvaluation> evaluate_hard_shadows(
+    const Case& hard_case, const ViewSamples& samples, OracleChoice choice,
+    const std::filesystem::path& out_dir, const std::string& image_folder,
+    std::vector<std::string>& left_out, const TruthCache* cache);
 
 }  // namespace shadowcts

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <sstream>
 
 #include "heat_map.h"
@@ -17,11 +18,21 @@ namespace {
 class LightAssignmentEvaluation : public CaseEvaluation {
  public:
   LightAssignmentEvaluation(const Case& c, const ViewSamples& samples,
-                            const std::filesystem::path& out_dir, const std::string& image_folder)
+                            const std::filesystem::path& out_dir, const std::string& image_folder,
+                            const TruthCache* cache)
       : case_(c), samples_(samples), out_dir_(out_dir) {
     const auto start = std::chrono::steady_clock::now();
-    plain_ = exact_light_assignment_oracle(c, samples, false);
-    with_normals_ = exact_light_assignment_oracle(c, samples, true);
+    std::vector<TruthCacheUse> cache_uses(2);
+    auto truth = [&](bool normal_rule, TruthCacheUse& use) {
+      const std::function<LightAssignmentTruth()> compute = [&] {
+        return exact_light_assignment_oracle(c, samples, normal_rule);
+      };
+      return cache ? cache->get(normal_rule ? "lights.normal_rule" : "lights.plain", c, samples,
+                                compute, use)
+                   : compute();
+    };
+    plain_ = truth(false, cache_uses[0]);
+    with_normals_ = truth(true, cache_uses[1]);
     oracle_.time_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     oracle_.method = plain_.method;
@@ -47,6 +58,7 @@ class LightAssignmentEvaluation : public CaseEvaluation {
                        {"ambiguous_pairs", plain_.ambiguous_lights.size()},
                        {"heat_map_full_scale", scale_},
                        {"lights_image", stem + ".png"}};
+    record_truth_cache_use(cache_uses, oracle_);
   }
 
   void judge(const AlgorithmOutput& output, RunRecord& record) const override {
@@ -106,8 +118,9 @@ class LightAssignmentEvaluation : public CaseEvaluation {
 
 std::unique_ptr<CaseEvaluation> evaluate_light_assignment(const Case& c, const ViewSamples& samples,
                                                           const std::filesystem::path& out_dir,
-                                                          const std::string& image_folder) {
-  return std::make_unique<LightAssignmentEvaluation>(c, samples, out_dir, image_folder);
+                                                          const std::string& image_folder,
+                                                          const TruthCache* cache) {
+  return std::make_unique<LightAssignmentEvaluation>(c, samples, out_dir, image_folder, cache);
 }
 
 }  // namespace shadowcts

@@ -42,6 +42,7 @@
 #include "shadowcts/phase_progress.h"
 #include "shadowcts/registry.h"
 #include "soft_shadow_evaluation.h"
+#include "truth_cache.h"
 
 namespace shadowcts {
 namespace {
@@ -448,14 +449,15 @@ bool same_results(const AlgorithmOutput& a, const AlgorithmOutput& b) {
 std::unique_ptr<CaseEvaluation> evaluate(OutputKind kind, const Case& c, const ViewSamples& samples,
                                          OracleChoice choice, const std::filesystem::path& out_dir,
                                          const std::string& image_folder,
-                                         std::vector<std::string>& left_out) {
+                                         std::vector<std::string>& left_out,
+                                         const TruthCache* cache) {
   switch (kind) {
     case OutputKind::hard_shadow:
-      return evaluate_hard_shadows(c, samples, choice, out_dir, image_folder, left_out);
+      return evaluate_hard_shadows(c, samples, choice, out_dir, image_folder, left_out, cache);
     case OutputKind::soft_shadow:
-      return evaluate_soft_shadows(c, samples, choice, out_dir, image_folder, left_out);
+      return evaluate_soft_shadows(c, samples, choice, out_dir, image_folder, left_out, cache);
     case OutputKind::light_lists:
-      return evaluate_light_assignment(c, samples, out_dir, image_folder);
+      return evaluate_light_assignment(c, samples, out_dir, image_folder, cache);
   }
   throw std::logic_error("no evaluation for " + output_kind_name(kind) + " outputs");
 }
@@ -533,6 +535,9 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
                                     ? *options.threads
                                     : std::uint32_t(tbb::info::default_concurrency());
   tbb::global_control thread_limit(tbb::global_control::max_allowed_parallelism, threads);
+
+  std::optional<TruthCache> truth_cache;
+  if (!options.truth_cache_dir.empty()) truth_cache.emplace(options.truth_cache_dir);
 
   StagedOutput staged(target);
   const std::filesystem::path& out_dir = staged.dir();
@@ -612,9 +617,9 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
     std::map<OutputKind, std::unique_ptr<CaseEvaluation>> evaluations;
     for (OutputKind kind : kinds) {
       progress.show(step + output_kind_name(kind) + " oracle");
-      evaluations[kind] =
-          evaluate(kind, kind == OutputKind::hard_shadow ? hard_case : c, samples, options.oracle,
-                   out_dir, image_folders[case_index], summary.left_out);
+      evaluations[kind] = evaluate(kind, kind == OutputKind::hard_shadow ? hard_case : c, samples,
+                                   options.oracle, out_dir, image_folders[case_index],
+                                   summary.left_out, truth_cache ? &*truth_cache : nullptr);
       const OracleSummary& o = evaluations[kind]->oracle();
       summary.oracles[output_kind_name(kind)] =
           nlohmann::ordered_json{{"method", o.method}, {"exact", o.exact}, {"time_ms", o.time_ms}};

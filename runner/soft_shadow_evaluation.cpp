@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <sstream>
 
 #include "image_paths.h"
@@ -67,11 +68,19 @@ RgbImage error_image(const ViewSamples& samples, const SoftShadowTruth& truth,
 class SoftShadowEvaluation : public CaseEvaluation {
  public:
   SoftShadowEvaluation(const Case& c, const ViewSamples& samples, bool exact,
-                       const std::filesystem::path& out_dir, const std::string& image_folder)
+                       const std::filesystem::path& out_dir, const std::string& image_folder,
+                       const TruthCache* cache)
       : samples_(samples), out_dir_(out_dir) {
     const auto start = std::chrono::steady_clock::now();
-    truth_ = exact ? exact_soft_shadow_oracle(c, samples)
+    const std::function<SoftShadowTruth()> compute = [&] {
+      return exact ? exact_soft_shadow_oracle(c, samples)
                    : sampled_soft_shadow_oracle(c, samples, sampled_rays_per_sample);
+    };
+    TruthCacheUse cache_use;
+    truth_ = cache ? cache->get(exact ? "soft.exact"
+                                      : "soft.sampled" + std::to_string(sampled_rays_per_sample),
+                                c, samples, compute, cache_use)
+                   : compute();
     oracle_.time_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     oracle_.method = truth_.method;
@@ -98,6 +107,7 @@ class SoftShadowEvaluation : public CaseEvaluation {
                        {"ambiguous", compared - robust},
                        {"max_error_bound", max_bound},
                        {"visibility_image", stem + ".png"}};
+    record_truth_cache_use({cache_use}, oracle_);
   }
 
   void judge(const AlgorithmOutput& output, RunRecord& record) const override {
@@ -153,7 +163,8 @@ std::unique_ptr<CaseEvaluation> evaluate_soft_shadows(const Case& c, const ViewS
                                                       OracleChoice choice,
                                                       const std::filesystem::path& out_dir,
                                                       const std::string& image_folder,
-                                                      std::vector<std::string>& left_out) {
+                                                      std::vector<std::string>& left_out,
+                                                      const TruthCache* cache) {
   const std::size_t regular = samples.count(SampleClass::regular);
   const bool exact = choice == OracleChoice::exact ||
                      (choice == OracleChoice::automatic && regular <= exact_oracle_sample_limit);
@@ -164,7 +175,7 @@ std::unique_ptr<CaseEvaluation> evaluate_soft_shadows(const Case& c, const ViewS
                             : std::to_string(regular) + " samples exceed its limit of " +
                                   std::to_string(exact_oracle_sample_limit)) +
                        "; figures carry the sampled oracle's error bound");
-  return std::make_unique<SoftShadowEvaluation>(c, samples, exact, out_dir, image_folder);
+  return std::make_unique<SoftShadowEvaluation>(c, samples, exact, out_dir, image_folder, cache);
 }
 
 }  // namespace shadowcts

@@ -8,17 +8,19 @@
 #include "shadowcts/case.h"
 #include "shadowcts/runner.h"
 #include "shadowcts/view_samples.h"
+#include "truth_cache.h"
 
 namespace shadowcts {
 
 // Computes the sun-disk visibility truth of `c` with the exact oracle, or the sampled one above
 // its size limit or on request (noted in `left_out`), and writes the oracle's visibility image
-// under images/<image_folder>/.
+// under images/<image_folder>/. With a cache, the truth comes from it when it holds this case's.
 // Runs are judged against the error budget their algorithm declares for the variant.
 std::unique_ptr<CaseEvaluation> evaluate_soft_shadows(const Case& c, const ViewSamples& samples,
                                                       OracleChoice choice,
                                                       const std::filesystem::path& out_dir,
                                                       const std::string& image_folder,
-                                                      std::vector<std::string>& left_out);
+                                                      std::vector<std::string>& left_out,
+                                                      const TruthCache* cache);
 
 }  // namespace shadowcts

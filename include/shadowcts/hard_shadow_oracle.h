@@ -9,6 +9,8 @@
 //
 // Both run on Case::parameters.threads threads (0: all) and give the same result for any
 // thread count. A case without a point or directional light throws InputError.
+#include <memory>
+
 #include "shadowcts/case.h"
 #include "shadowcts/hard_shadow_truth.h"
 #include "shadowcts/view_samples.h"
@@ -24,6 +26,11 @@ namespace shadowcts {
 HardShadowTruth exact_hard_shadow_oracle(const Case& c, const ViewSamples& samples);
 // The same with every robust_exponent computed (the whole mismatch-curve data; slower).
 HardShadowTruth exact_hard_shadow_oracle_with_exponents(const Case& c, const ViewSamples& samples);
+// The exact oracle's exponents on demand for a truth obtained earlier (the runner's truth cache):
+// the candidate tree is built on the first resolve only, so a cached truth costs nothing until an
+// implementation answers differently. Same lifetime rule for `c` and `samples` as truth.lazy.
+std::shared_ptr<const LazyRobustExponents> exact_robust_exponents_on_demand(
+    const Case& c, const ViewSamples& samples);
 
 // Embree 3 occlusion rays in robust mode. The band is estimated: the 14 moves are traced by
 // Embree (moved origins rounded to float) at the run's tau only, so robust_exponent records only

@@ -29,6 +29,9 @@ struct RunOptions {
   std::optional<std::uint32_t> repeats;  // timed repeats after one untimed warm-up run
   std::optional<std::uint32_t> threads;
   OracleChoice oracle = OracleChoice::automatic;
+  // Keep oracle truths in this folder and take them from it for the same build and inputs
+  // (runner/truth_cache.h); empty: no cache.
+  std::string truth_cache_dir;
   // Run only the cases at positions shard_index, shard_index + shard_count, ... of the case list.
   std::uint32_t shard_index = 0;
   std::uint32_t shard_count = 1;
