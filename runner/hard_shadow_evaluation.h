@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -14,11 +15,12 @@ namespace shadowcts {
 // Computes the hard-shadow truth of `hard_case` (its light is point or directional) with the
 // exact oracle, or the fast one above its size limit or on request (noted in `left_out`), and
 // writes the oracle's mask image under images/<image_folder>/.
-std::unique_ptr<CaseEvaluation> evaluate_hard_shadows(const Case& hard_case,
-                                                      const ViewSamples& samples,
-                                                      OracleChoice choice,
-                                                      const std::filesystem::path& out_dir,
-                                                      const std::string& image_folder,
-                                                      std::vector<std::string>& left_out);
+// Samples marked in `receiver_ambiguous` (per sample; empty: none), whose receiver the suite
+// could not tell apart within the band, are counted ambiguous and never judged.
+std::unique_ptr<CaseEvaluation> evaluate_hard_shadows(
+    const Case& hard_case, const ViewSamples& samples,
+    const std::vector<std::uint8_t>& receiver_ambiguous, OracleChoice choice,
+    const std::filesystem::path& out_dir, const std::string& image_folder,
+    std::vector<std::string>& left_out);
 
 }  // namespace shadowcts
