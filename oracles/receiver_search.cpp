@@ -48,17 +48,19 @@ class TriangleBoxTree {
   template <class Visitor>
   void visit(const glm::dvec3& p, double h, Visitor&& visit) const {
     if (nodes_.empty()) return;
-    std::vector<std::uint32_t> stack{0};
-    while (!stack.empty()) {
-      const Node& node = nodes_[stack.back()];
-      stack.pop_back();
+    // Median splits keep the depth near log2(n): 128 entries hold any case validate() accepts.
+    std::array<std::uint32_t, 128> stack;
+    std::size_t depth = 0;
+    stack[depth++] = 0;
+    while (depth > 0) {
+      const Node& node = nodes_[stack[--depth]];
       if (!box_within(node.box, p, h)) continue;
       if (node.count) {
         for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
           if (box_within(items_[i].box, p, h)) visit(items_[i].triangle);
       } else {
-        stack.push_back(node.right);
-        stack.push_back(node.left);
+        stack[depth++] = node.right;
+        stack[depth++] = node.left;
       }
     }
   }

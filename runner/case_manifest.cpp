@@ -537,10 +537,10 @@ std::string read_gbuffer(const std::string& path, const ManifestObject& manifest
   format.reversed_z = gbuffer.boolean("reversed_z").value_or(false);
   if (gbuffer.has("row_0_ndc_y")) {
     const Json& row = gbuffer.raw("row_0_ndc_y");
-    if (!row.is_number_integer() || (row.get<int>() != 1 && row.get<int>() != -1))
+    if (!row.is_number_integer() || (row.get<std::int64_t>() != 1 && row.get<std::int64_t>() != -1))
       throw InputError(path, gbuffer.element("row_0_ndc_y"),
                        "must be 1 or -1, is " + describe(row));
-    format.row_0_ndc_y = row.get<int>();
+    format.row_0_ndc_y = int(row.get<std::int64_t>());
   }
   gbuffer.require("inverse_view_projection");
   const std::string matrix_element = gbuffer.element("inverse_view_projection");

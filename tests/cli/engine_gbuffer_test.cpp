@@ -414,7 +414,12 @@ TEST(EngineGBuffer, WithoutIdsTheReceiverIsFoundAndSharedEdgesAreAmbiguous) {
       std::size_t surely_within = 0, maybe_within = 0;
       std::uint32_t nearest = 0;
       for (std::uint32_t t = 0; t < e.c.triangles.size(); ++t) {
-        if (area2(e.c.triangles[t]) == 0.0) continue;
+        const Triangle& tri = e.c.triangles[t];
+        bool far = false;  // a cheap reject: the triangle's box is farther than 2 tau
+        for (int k = 0; k < 3; ++k)
+          far = far || std::min({tri.v0[k], tri.v1[k], tri.v2[k]}) - s.position[k] > 2 * e.tau ||
+                s.position[k] - std::max({tri.v0[k], tri.v1[k], tri.v2[k]}) > 2 * e.tau;
+        if (far || area2(tri) == 0.0) continue;
         const double d = point_triangle_distance(glm::dvec3(s.position), e.c.triangles[t]);
         if (d <= 0.999 * e.tau) ++surely_within;
         if (d <= 1.001 * std::sqrt(3.0) * e.tau) {
@@ -498,10 +503,10 @@ TEST(EngineGBuffer, BadInputExitsTwoNamingFileChannelAndPixel) {
       Channel ch{in->spec().channelnames[std::size_t(c)], {}, {}};
       if (in->spec().channelformat(c) == OIIO::TypeDesc::UINT) {
         ch.uints.resize(std::size_t(w) * h);
-        in->read_image(0, 0, c, c + 1, OIIO::TypeDesc::UINT, ch.uints.data());
+        EXPECT_TRUE(in->read_image(0, 0, c, c + 1, OIIO::TypeDesc::UINT, ch.uints.data()));
       } else {
         ch.floats.resize(std::size_t(w) * h);
-        in->read_image(0, 0, c, c + 1, OIIO::TypeDesc::FLOAT, ch.floats.data());
+        EXPECT_TRUE(in->read_image(0, 0, c, c + 1, OIIO::TypeDesc::FLOAT, ch.floats.data()));
       }
       channels.push_back(std::move(ch));
     }
@@ -614,8 +619,11 @@ TEST(EngineGBuffer, BadInputExitsTwoNamingFileChannelAndPixel) {
     expect_refused(
         {"triangle id out of range", {"bad.exr", "channel id, " + pixel, "out of range"}}, m);
     // No ids, and a sample far from every triangle: nothing to be its receiver.
+    // Moved 5 % of the way back towards the eye: the camera ray there meets no triangle.
     c.pop_back();
-    c[1].floats[first] += 1.0f;
+    const glm::dvec3 p(e.samples.samples[first].position), eye(e.c.camera.position);
+    const glm::vec3 off(p + 0.05 * (eye - p));
+    for (int k = 0; k < 3; ++k) c[std::size_t(k)].floats[first] = off[k];
     write_exr(e.dir / "export" / "bad.exr", w, h, c);
     m["gbuffer"] = {{"file", "bad.exr"}, {"receivers", "search"}};
     expect_refused({"no receiver", {"bad.exr", "channels P.X P.Y P.Z, " + pixel, "no triangle"}},
@@ -643,7 +651,6 @@ TEST(EngineGBuffer, BadInputExitsTwoNamingFileChannelAndPixel) {
     mask[first] = 2.0f;
     write_mask(e.dir / "export" / "mask_bad.exr", w, h, mask);
     json m = good;
-    std::ofstream(e.dir / "export" / "bad.json") << m.dump(2);
     m["result"] = {{"mask", "mask_bad.exr"}};
     std::ofstream(e.dir / "export" / "bad2.json") << m.dump(2);
     fs::remove_all(e.dir / "out");
