@@ -15,7 +15,10 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "shadowcts/case.h"
+#include "shadowcts/depth_reconstruction.h"
 #include "shadowcts/errors.h"
+#include "shadowcts/scene_file.h"
 
 namespace shadowcts {
 namespace {
@@ -282,7 +285,8 @@ void check_resolution(const std::string& path, const OIIO::ImageSpec& spec, std:
   }
 }
 
-ViewSamples read_pixels(const std::string& path, OIIO::ImageInput& input);
+ViewSamples read_pixels(const std::string& path, OIIO::ImageInput& input,
+                        const GBufferFormat& format, const Case* c);
 
 }  // namespace
 
@@ -293,60 +297,115 @@ void check_gbuffer_exr_header(const std::string& path, std::uint32_t width, std:
 
 ViewSamples read_gbuffer_exr(const std::string& path) {
   const std::unique_ptr<OIIO::ImageInput> in = open_gbuffer(path);
-  return read_pixels(path, *in);
+  return read_pixels(path, *in, GBufferFormat{}, nullptr);
 }
 
 ViewSamples read_gbuffer_exr(const std::string& path, std::uint32_t width, std::uint32_t height) {
   const std::unique_ptr<OIIO::ImageInput> in = open_gbuffer(path, Resolution{width, height});
   check_resolution(path, in->spec(), width, height);
-  return read_pixels(path, *in);
+  return read_pixels(path, *in, GBufferFormat{}, nullptr);
+}
+
+ViewSamples read_gbuffer_exr(const std::string& path, const GBufferFormat& format, const Case& c) {
+  const std::unique_ptr<OIIO::ImageInput> in =
+      open_gbuffer(path, Resolution{c.camera.width, c.camera.height});
+  check_resolution(path, in->spec(), c.camera.width, c.camera.height);
+  return read_pixels(path, *in, format, &c);
 }
 
 namespace {
 
-ViewSamples read_pixels(const std::string& path, OIIO::ImageInput& input) try {
-  OIIO::ImageInput* in = &input;
-  const OIIO::ImageSpec spec = in->spec();
+// One-channel reads: float channels converted to float (exact from HALF or FLOAT), ids kept UINT.
+class ChannelReader {
+ public:
+  ChannelReader(const std::string& path, OIIO::ImageInput& in) : path_(path), in_(in) {}
 
-  auto channel_index = [&](const std::string& name) {
-    for (int c = 0; c < spec.nchannels; ++c) {
+  int index(const std::string& name) const {
+    const OIIO::ImageSpec& spec = in_.spec();
+    for (int c = 0; c < spec.nchannels; ++c)
       if (spec.channelnames[static_cast<std::size_t>(c)] == name) return c;
-    }
     std::string present;
     for (const auto& channel : spec.channelnames) present += (present.empty() ? "" : " ") + channel;
-    throw InputError(path, "channel " + name, "is missing (channels: " + present + ")");
-  };
+    throw InputError(path_, "channel " + name, "is missing (channels: " + present + ")");
+  }
+
+  std::vector<float> floats(const std::string& name) const {
+    const int c = index(name);
+    const OIIO::TypeDesc format = in_.spec().channelformat(c);
+    if (format != OIIO::TypeDesc::FLOAT && format != OIIO::TypeDesc::HALF) {
+      throw InputError(path_, "channel " + name,
+                       "must be FLOAT or HALF, is " + std::string(format.c_str()));
+    }
+    std::vector<float> values(pixel_count());
+    if (!in_.read_image(0, 0, c, c + 1, OIIO::TypeDesc::FLOAT, values.data()))
+      throw InputError(path_, "channel " + name, "cannot be read: " + in_.geterror());
+    return values;
+  }
+
+  std::vector<std::uint32_t> uints(const std::string& name) const {
+    const int c = index(name);
+    if (in_.spec().channelformat(c) != OIIO::TypeDesc::UINT) {
+      // A float id would be normalized by the conversion and cannot hold 0xFFFFFFFF exactly.
+      throw InputError(
+          path_, "channel " + name,
+          "must be UINT (32-bit unsigned), is " + std::string(in_.spec().channelformat(c).c_str()));
+    }
+    std::vector<std::uint32_t> values(pixel_count());
+    if (!in_.read_image(0, 0, c, c + 1, OIIO::TypeDesc::UINT, values.data()))
+      throw InputError(path_, "channel " + name, "cannot be read: " + in_.geterror());
+    return values;
+  }
+
+ private:
+  std::size_t pixel_count() const {
+    return static_cast<std::size_t>(in_.spec().width) * std::size_t(in_.spec().height);
+  }
+  const std::string& path_;
+  OIIO::ImageInput& in_;
+};
+
+std::string channel_pixel(const char* channel, std::uint32_t x, std::uint32_t y) {
+  return std::string("channel ") + channel + ", " + pixel_element(x, y);
+}
+
+// Per case mesh, its triangles in load order: (mesh, primitive) -> case triangle index.
+std::vector<std::vector<std::uint32_t>> triangles_by_mesh(const Case& c) {
+  std::vector<std::vector<std::uint32_t>> by_mesh(c.meshes.size());
+  for (std::size_t t = 0; t < c.triangles.size(); ++t)
+    if (c.triangles[t].mesh < by_mesh.size())
+      by_mesh[c.triangles[t].mesh].push_back(static_cast<std::uint32_t>(t));
+  return by_mesh;
+}
+
+// `c` is needed for (mesh, primitive) ids only.
+ViewSamples read_pixels(const std::string& path, OIIO::ImageInput& input,
+                        const GBufferFormat& format, const Case* c) try {
+  const ChannelReader read(path, input);
+  const OIIO::ImageSpec spec = input.spec();
   const auto width = static_cast<std::uint32_t>(spec.width);
   const auto height = static_cast<std::uint32_t>(spec.height);
   const std::size_t pixel_count = static_cast<std::size_t>(width) * height;
 
-  // Each channel is read alone, converted to float (exact from HALF or FLOAT) or kept as UINT.
-  std::array<std::vector<float>, 6> float_channels;
-  for (std::size_t k = 0; k < float_channel_names.size(); ++k) {
-    const int c = channel_index(float_channel_names[k]);
-    const OIIO::TypeDesc format = spec.channelformat(c);
-    if (format != OIIO::TypeDesc::FLOAT && format != OIIO::TypeDesc::HALF) {
-      throw InputError(path, std::string("channel ") + float_channel_names[k],
-                       "must be FLOAT or HALF, is " + std::string(format.c_str()));
-    }
-    float_channels[k].resize(pixel_count);
-    if (!in->read_image(0, 0, c, c + 1, OIIO::TypeDesc::FLOAT, float_channels[k].data())) {
-      throw InputError(path, std::string("channel ") + float_channel_names[k],
-                       "cannot be read: " + in->geterror());
-    }
+  const bool from_depth = format.positions == GBufferPositions::depth;
+  std::array<std::vector<float>, 3> position_channels;
+  if (from_depth) {
+    position_channels[0] = read.floats("Z");
+  } else {
+    for (std::size_t k = 0; k < 3; ++k) position_channels[k] = read.floats(float_channel_names[k]);
   }
-  const int id_channel = channel_index(id_channel_name);
-  if (spec.channelformat(id_channel) != OIIO::TypeDesc::UINT) {
-    // A float id would be normalized by the conversion and cannot hold 0xFFFFFFFF exactly.
-    throw InputError(path, "channel id",
-                     "must be UINT (32-bit unsigned), is " +
-                         std::string(spec.channelformat(id_channel).c_str()));
+  std::array<std::vector<float>, 3> normal_channels;
+  for (std::size_t k = 0; k < 3; ++k) normal_channels[k] = read.floats(float_channel_names[3 + k]);
+  std::vector<std::uint32_t> ids, primitives;
+  if (format.receivers == GBufferReceivers::triangle_id) ids = read.uints(id_channel_name);
+  if (format.receivers == GBufferReceivers::mesh_primitive) {
+    ids = read.uints("mesh");
+    primitives = read.uints("primitive");
   }
-  std::vector<std::uint32_t> ids(pixel_count);
-  if (!in->read_image(0, 0, id_channel, id_channel + 1, OIIO::TypeDesc::UINT, ids.data())) {
-    throw InputError(path, "channel id", "cannot be read: " + in->geterror());
-  }
-  in->close();
+  input.close();
+
+  std::vector<std::vector<std::uint32_t>> mesh_triangles;
+  if (format.receivers == GBufferReceivers::mesh_primitive) mesh_triangles = triangles_by_mesh(*c);
+  const float cleared_depth = format.reversed_z ? 0.0f : 1.0f;
 
   ViewSamples samples;
   samples.width = width;
@@ -356,25 +415,78 @@ ViewSamples read_pixels(const std::string& path, OIIO::ImageInput& input) try {
     ViewSample& s = samples.samples[i];
     s.pixel_x = static_cast<std::uint32_t>(i % width);
     s.pixel_y = static_cast<std::uint32_t>(i / width);
-    if (ids[i] == sky_id) {
-      // Engines write anything into sky pixels (often inf): sky samples are never compared, so
-      // their geometry is zeroed rather than carried along.
+    // Engines write anything into sky pixels (often inf): sky samples are never compared, so
+    // their geometry is zeroed rather than carried along.
+    bool sky = false;
+    if (!ids.empty()) {
+      sky = ids[i] == sky_id;
+    } else if (from_depth) {
+      sky = position_channels[0][i] == cleared_depth;
+    } else {
+      for (std::size_t k = 0; k < 3; ++k) sky = sky || std::isinf(position_channels[k][i]);
+    }
+    if (sky) {
       s.sample_class = SampleClass::sky;
       s.receiver = no_receiver;
       continue;
     }
     s.sample_class = SampleClass::regular;
-    s.receiver = ids[i];
-    s.position = glm::vec3(float_channels[0][i], float_channels[1][i], float_channels[2][i]);
-    s.normal = glm::vec3(float_channels[3][i], float_channels[4][i], float_channels[5][i]);
-    if (!finite(s.position)) {
-      throw InputError(path, pixel_element(s.pixel_x, s.pixel_y), "position P is not finite");
+    if (from_depth) {
+      const float depth = position_channels[0][i];
+      if (std::isnan(depth))
+        throw InputError(path, channel_pixel("Z", s.pixel_x, s.pixel_y), "is NaN");
+      if (!(depth >= 0.0f && depth <= 1.0f))
+        throw InputError(path, channel_pixel("Z", s.pixel_x, s.pixel_y),
+                         "depth " + std::to_string(depth) + " is outside [0, 1]");
+      const auto p = world_from_depth(format, s.pixel_x, s.pixel_y, width, height, depth);
+      // The one rounding to float32: these are the positions every oracle and algorithm reads.
+      if (p) s.position = glm::vec3(*p);
+      if (!p || !finite(s.position) ||
+          std::max({std::fabs(p->x), std::fabs(p->y), std::fabs(p->z)}) > max_scene_coordinate)
+        throw InputError(path, channel_pixel("Z", s.pixel_x, s.pixel_y),
+                         "depth " + std::to_string(depth) +
+                             " reconstructs no finite point within 1e30 with "
+                             "inverse_view_projection (w = 0 or overflow; check the matrix and "
+                             "depth_range)");
+    } else {
+      s.position =
+          glm::vec3(position_channels[0][i], position_channels[1][i], position_channels[2][i]);
+      if (!finite(s.position)) {
+        throw InputError(path, "channels P.X P.Y P.Z, " + pixel_element(s.pixel_x, s.pixel_y),
+                         "position P is not finite");
+      }
     }
+    s.normal = glm::vec3(normal_channels[0][i], normal_channels[1][i], normal_channels[2][i]);
     if (!finite(s.normal)) {
-      throw InputError(path, pixel_element(s.pixel_x, s.pixel_y), "normal N is not finite");
+      throw InputError(path, "channels N.X N.Y N.Z, " + pixel_element(s.pixel_x, s.pixel_y),
+                       "normal N is not finite");
     }
     if (s.normal == glm::vec3(0.0f)) {
-      throw InputError(path, pixel_element(s.pixel_x, s.pixel_y), "normal N has zero length");
+      throw InputError(path, "channels N.X N.Y N.Z, " + pixel_element(s.pixel_x, s.pixel_y),
+                       "normal N has zero length");
+    }
+    switch (format.receivers) {
+      case GBufferReceivers::triangle_id:
+        s.receiver = ids[i];  // its range is checked against the case by classify_samples()
+        break;
+      case GBufferReceivers::mesh_primitive: {
+        if (ids[i] >= mesh_triangles.size())
+          throw InputError(path, channel_pixel("mesh", s.pixel_x, s.pixel_y),
+                           "mesh " + std::to_string(ids[i]) + " is out of range (the case has " +
+                               std::to_string(mesh_triangles.size()) + " meshes)");
+        const std::vector<std::uint32_t>& triangles = mesh_triangles[ids[i]];
+        if (primitives[i] >= triangles.size())
+          throw InputError(path, channel_pixel("primitive", s.pixel_x, s.pixel_y),
+                           "primitive " + std::to_string(primitives[i]) +
+                               " is out of range (mesh " + std::to_string(ids[i]) + " '" +
+                               c->meshes[ids[i]].name + "' has " +
+                               std::to_string(triangles.size()) + " triangles)");
+        s.receiver = triangles[primitives[i]];
+        break;
+      }
+      case GBufferReceivers::search:
+        s.receiver = no_receiver;  // found by the suite
+        break;
     }
   }
   return samples;

@@ -120,10 +120,11 @@ void classify_samples(const Case& c, ViewSamples& samples, const std::string& so
   for (ViewSample& s : samples.samples) {
     if (s.sample_class == SampleClass::sky) continue;
     if (s.receiver >= c.triangles.size())
-      throw InputError(
-          source, "pixel (" + std::to_string(s.pixel_x) + ", " + std::to_string(s.pixel_y) + ").id",
-          "receiver id " + std::to_string(s.receiver) + " out of range (" +
-              std::to_string(c.triangles.size()) + " triangles)");
+      throw InputError(source,
+                       "channel id, pixel (" + std::to_string(s.pixel_x) + ", " +
+                           std::to_string(s.pixel_y) + ")",
+                       "receiver id " + std::to_string(s.receiver) + " out of range (" +
+                           std::to_string(c.triangles.size()) + " triangles)");
     s.sample_class = classify(c, s.position, s.normal, c.triangles[s.receiver]);
   }
 }

@@ -15,6 +15,8 @@
 #include <vector>
 
 #include <glm/geometric.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/matrix.hpp>
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
 
@@ -498,9 +500,85 @@ ExternalResultFile read_result(const std::string& path, const ManifestObject& ma
   return file;
 }
 
+// "gbuffer": a file name (world positions, triangle ids), or an object saying how the engine wrote
+// it (docs/case-manifest.md).
+std::string read_gbuffer(const std::string& path, const ManifestObject& manifest,
+                         GBufferFormat& format) {
+  format = GBufferFormat{};
+  const Json& value = manifest.raw("gbuffer");
+  if (value.is_string()) return *manifest.string("gbuffer");
+  const ManifestObject gbuffer(path, value, "gbuffer",
+                               {"file", "positions", "receivers", "inverse_view_projection",
+                                "depth_range", "reversed_z", "row_0_ndc_y"});
+  gbuffer.require("file");
+  auto choice = [&](const char* key, std::initializer_list<const char*> names) -> int {
+    const auto name = gbuffer.string(key);
+    if (!name) return 0;
+    int index = 0;
+    std::string known;
+    for (const char* n : names) {
+      if (*name == n) return index;
+      known += (known.empty() ? "\"" : ", \"") + std::string(n) + "\"";
+      ++index;
+    }
+    throw InputError(path, gbuffer.element(key),
+                     "must be one of " + known + ", is \"" + *name + "\"");
+  };
+  format.positions = GBufferPositions(choice("positions", {"world", "depth"}));
+  format.receivers =
+      GBufferReceivers(choice("receivers", {"triangle_id", "mesh_primitive", "search"}));
+  const bool depth = format.positions == GBufferPositions::depth;
+  for (const char* key : {"inverse_view_projection", "depth_range", "reversed_z", "row_0_ndc_y"})
+    if (gbuffer.has(key) && !depth)
+      throw InputError(path, gbuffer.element(key), "belongs to \"positions\": \"depth\" only");
+  if (!depth) return *gbuffer.string("file");
+
+  format.depth_range = NdcDepthRange(choice("depth_range", {"zero_to_one", "minus_one_to_one"}));
+  format.reversed_z = gbuffer.boolean("reversed_z").value_or(false);
+  if (gbuffer.has("row_0_ndc_y")) {
+    const Json& row = gbuffer.raw("row_0_ndc_y");
+    if (!row.is_number_integer() || (row.get<std::int64_t>() != 1 && row.get<std::int64_t>() != -1))
+      throw InputError(path, gbuffer.element("row_0_ndc_y"),
+                       "must be 1 or -1, is " + describe(row));
+    format.row_0_ndc_y = int(row.get<std::int64_t>());
+  }
+  gbuffer.require("inverse_view_projection");
+  const std::string matrix_element = gbuffer.element("inverse_view_projection");
+  const Json& matrix = gbuffer.raw("inverse_view_projection");
+  if (!matrix.is_array() || matrix.size() != 4)
+    throw InputError(
+        path, matrix_element,
+        "must be 4 rows of 4 numbers ([[m00, m01, m02, m03], ...]), is " + describe(matrix));
+  glm::dmat4 m(0.0);  // glm: m[column][row]
+  for (std::size_t r = 0; r < 4; ++r) {
+    const std::string row_element = matrix_element + "[" + std::to_string(r) + "]";
+    if (!matrix[r].is_array() || matrix[r].size() != 4)
+      throw InputError(path, row_element, "must be a row of 4 numbers, is " + describe(matrix[r]));
+    for (std::size_t k = 0; k < 4; ++k) {
+      const Json& v = matrix[r][k];
+      const std::string element = row_element + "[" + std::to_string(k) + "]";
+      if (!v.is_number()) throw InputError(path, element, "must be a number, is " + describe(v));
+      if (!std::isfinite(v.get<double>())) throw InputError(path, element, "must be finite");
+      format.inverse_view_projection[r][k] = v.get<double>();
+      m[int(k)][int(r)] = v.get<double>();
+    }
+  }
+  const double determinant = glm::determinant(m);
+  if (!(std::isfinite(determinant) && determinant != 0.0))
+    throw InputError(path, matrix_element,
+                     "is singular (determinant " + std::to_string(determinant) +
+                         "): give the inverse of the engine's view-projection matrix");
+  return *gbuffer.string("file");
+}
+
 }  // namespace
 
 Case load_case_manifest(const std::string& path) {
+  GBufferFormat ignored;
+  return load_case_manifest(path, ignored);
+}
+
+Case load_case_manifest(const std::string& path, GBufferFormat& gbuffer_format) {
   const std::string text = read_text_file(path);
   // nlohmann parses and destroys iteratively, but nothing of a manifest nests this deep.
   check_json_nesting(text, path, "JSON");
@@ -631,8 +709,10 @@ Case load_case_manifest(const std::string& path) {
     if (name->empty()) throw InputError(path, "name", "must not be empty");
     c.name = *name;
   }
-  if (auto gbuffer = manifest.string("gbuffer")) {
-    c.gbuffer_path = resolve(manifest_folder, *gbuffer).string();
+  gbuffer_format = GBufferFormat{};
+  if (manifest.has("gbuffer")) {
+    const std::string gbuffer = read_gbuffer(path, manifest, gbuffer_format);
+    c.gbuffer_path = resolve(manifest_folder, gbuffer).string();
     std::error_code error;
     if (!std::filesystem::is_regular_file(c.gbuffer_path, error)) {
       throw InputError(

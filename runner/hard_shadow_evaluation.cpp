@@ -19,7 +19,8 @@ constexpr std::uint64_t exact_oracle_triangle_limit = 4'000'000;
 
 class HardShadowEvaluation : public CaseEvaluation {
  public:
-  HardShadowEvaluation(const Case& c, const ViewSamples& samples, bool exact,
+  HardShadowEvaluation(const Case& c, const ViewSamples& samples,
+                       const std::vector<std::uint8_t>& receiver_ambiguous, bool exact,
                        const std::filesystem::path& out_dir, const std::string& image_folder,
                        const TruthCache* cache)
       : samples_(samples), out_dir_(out_dir) {
@@ -33,6 +34,13 @@ class HardShadowEvaluation : public CaseEvaluation {
                  : compute();
     // The exact oracle's exponents stay on demand; the fast oracle has none (hard_shadow_oracle.h).
     if (cache_use.hit && exact) truth_.lazy = exact_robust_exponents_on_demand(c, samples);
+    // The answer depends on which triangle is the receiver (the half-space rule): where the
+    // engine's receiver could be either of two, no level of the band can vouch for it.
+    for (std::size_t i = 0; i < receiver_ambiguous.size(); ++i)
+      if (receiver_ambiguous[i] && truth_.band[i] != BandClass::not_compared) {
+        truth_.band[i] = BandClass::ambiguous;
+        truth_.robust_exponent[i] = ambiguous_at_every_exponent;
+      }
     oracle_.time_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     oracle_.method = truth_.method;
@@ -107,7 +115,8 @@ class HardShadowEvaluation : public CaseEvaluation {
 }  // namespace
 
 std::unique_ptr<CaseEvaluation> evaluate_hard_shadows(
-    const Case& hard_case, const ViewSamples& samples, OracleChoice choice,
+    const Case& hard_case, const ViewSamples& samples,
+    const std::vector<std::uint8_t>& receiver_ambiguous, OracleChoice choice,
     const std::filesystem::path& out_dir, const std::string& image_folder,
     std::vector<std::string>& left_out, const TruthCache* cache) {
   const bool exact =
@@ -120,8 +129,8 @@ std::unique_ptr<CaseEvaluation> evaluate_hard_shadows(
             : "exact hard-shadow oracle: " + std::to_string(hard_case.triangles.size()) +
                   " triangles exceed its limit of " + std::to_string(exact_oracle_triangle_limit) +
                   "; the fast oracle's band is estimated");
-  return std::make_unique<HardShadowEvaluation>(hard_case, samples, exact, out_dir, image_folder,
-                                                cache);
+  return std::make_unique<HardShadowEvaluation>(hard_case, samples, receiver_ambiguous, exact,
+                                                out_dir, image_folder, cache);
 }
 
 }  // namespace shadowcts

@@ -24,6 +24,7 @@ ordered_json case_json(const CaseSummary& c) {
                   {"regular", c.regular},
                   {"sky", c.sky},
                   {"back_facing", c.back_facing}};
+  if (!c.receivers.is_null()) j["samples"]["receivers"] = c.receivers;
   j["oracles"] = c.oracles;
   j["left_out"] = c.left_out;
   return j;

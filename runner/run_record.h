@@ -18,6 +18,9 @@ struct CaseSummary {
   std::uint32_t width = 0, height = 0;
   std::uint64_t regular = 0, sky = 0, back_facing = 0;
   std::string samples_from;  // "embree primary rays" or the G-buffer path
+  // Receivers the suite found in a G-buffer without ids: from, tau, unique, ambiguous; empty
+  // (null) when the samples name their receivers.
+  nlohmann::ordered_json receivers;
   // Per output kind compared ("hard", "soft", "lights"): the oracle's method, time, figures.
   nlohmann::ordered_json oracles = nlohmann::ordered_json::object();
   std::vector<std::string> left_out;  // "what: why"

@@ -25,6 +25,7 @@
 #include <tbb/info.h>
 
 #include "case_evaluation.h"
+#include "case_gbuffer.h"
 #include "hard_shadow_evaluation.h"
 #include "heat_map.h"
 #include "image_paths.h"
@@ -37,7 +38,6 @@
 #include "shadowcts/case_manifest.h"
 #include "shadowcts/errors.h"
 #include "shadowcts/fixtures.h"
-#include "shadowcts/gbuffer_exr.h"
 #include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/phase_progress.h"
 #include "shadowcts/registry.h"
@@ -74,7 +74,9 @@ std::string light_name(const Case& c) {
 
 // `selectors` receives, per case, the option that selects it again ("--fixture NAME" or
 // "--case FILE"), for the reproducer command of each record.
-std::vector<Case> load_cases(const RunOptions& options, std::vector<std::string>& selectors) {
+// `gbuffer_formats[i]`: how case i's G-buffer is laid out (manifests only).
+std::vector<Case> load_cases(const RunOptions& options, std::vector<std::string>& selectors,
+                             std::vector<GBufferFormat>& gbuffer_formats) {
   std::vector<Case> cases;
   std::vector<std::string> fixtures = options.fixtures;
   if (options.suite == "stiff") {
@@ -92,10 +94,12 @@ std::vector<Case> load_cases(const RunOptions& options, std::vector<std::string>
     if (in_shard()) {
       cases.push_back(make_fixture(name));
       selectors.push_back("--fixture " + name);
+      gbuffer_formats.emplace_back();
     }
   for (const std::string& file : options.case_files)
     if (in_shard()) {
-      cases.push_back(load_case_manifest(file));
+      gbuffer_formats.emplace_back();
+      cases.push_back(load_case_manifest(file, gbuffer_formats.back()));
       selectors.push_back("--case " + file);
     }
   for (Case& c : cases) {
@@ -447,15 +451,18 @@ bool same_results(const AlgorithmOutput& a, const AlgorithmOutput& b) {
 }
 
 std::unique_ptr<CaseEvaluation> evaluate(OutputKind kind, const Case& c, const ViewSamples& samples,
+                                         const std::vector<std::uint8_t>& receiver_ambiguous,
                                          OracleChoice choice, const std::filesystem::path& out_dir,
                                          const std::string& image_folder,
                                          std::vector<std::string>& left_out,
                                          const TruthCache* cache) {
   switch (kind) {
     case OutputKind::hard_shadow:
-      return evaluate_hard_shadows(c, samples, choice, out_dir, image_folder, left_out, cache);
+      return evaluate_hard_shadows(c, samples, receiver_ambiguous, choice, out_dir, image_folder,
+                                   left_out, cache);
     case OutputKind::soft_shadow:
-      return evaluate_soft_shadows(c, samples, choice, out_dir, image_folder, left_out, cache);
+      return evaluate_soft_shadows(c, samples, receiver_ambiguous, choice, out_dir, image_folder,
+                                   left_out, cache);
     case OutputKind::light_lists:
       return evaluate_light_assignment(c, samples, out_dir, image_folder, cache);
   }
@@ -513,7 +520,8 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
   check_selection(options, registry);
   const std::filesystem::path target = checked_out_dir(options.out_dir);
   std::vector<std::string> selectors;
-  const std::vector<Case> cases = load_cases(options, selectors);
+  std::vector<GBufferFormat> gbuffer_formats;
+  const std::vector<Case> cases = load_cases(options, selectors, gbuffer_formats);
   if (cases.empty())
     throw UsageError("the selection matches no case" +
                      (options.shard_count > 1 ? " in shard " + std::to_string(options.shard_index) +
@@ -521,12 +529,10 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
                                               : std::string()));
   // G-buffers are read now and kept until their case runs: a bad one must fail the run before
   // any case has written anything.
-  std::vector<std::optional<ViewSamples>> gbuffers(cases.size());
+  std::vector<std::optional<CaseGBuffer>> gbuffers(cases.size());
   for (std::size_t i = 0; i < cases.size(); ++i)
-    if (!cases[i].gbuffer_path.empty()) {
-      gbuffers[i] = read_gbuffer_exr(cases[i].gbuffer_path);
-      classify_samples(cases[i], *gbuffers[i], cases[i].gbuffer_path);
-    }
+    if (!cases[i].gbuffer_path.empty())
+      gbuffers[i] = load_case_gbuffer(cases[i], gbuffer_formats[i]);
   std::vector<std::string> case_names;
   for (const Case& c : cases) case_names.push_back(c.name);
   const std::vector<std::string> image_folders = case_image_folders(case_names);
@@ -561,11 +567,22 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
 
     progress.show(step + "view samples");
     ViewSamples samples;
+    std::vector<std::uint8_t> receiver_ambiguous;
+    std::string receivers_line;
     if (c.gbuffer_path.empty()) {
       samples = generate_view_samples(c);
       summary.samples_from = "embree primary rays";
     } else {
-      samples = std::move(*gbuffers[case_index]);
+      CaseGBuffer& gbuffer = *gbuffers[case_index];
+      if (gbuffer.receivers_searched) {
+        receivers_line = receiver_plan_line(gbuffer);
+        summary.receivers = {{"from", "search"},
+                             {"tau", gbuffer.tau},
+                             {"unique", gbuffer.unique_receivers},
+                             {"ambiguous", gbuffer.ambiguous_receivers}};
+      }
+      samples = std::move(gbuffer.samples);
+      receiver_ambiguous = std::move(gbuffer.receiver_ambiguous);
       gbuffers[case_index].reset();
       summary.samples_from = c.gbuffer_path;
       summary.left_out.push_back("Embree G-buffer pass: the case brings its G-buffer");
@@ -617,9 +634,10 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
     std::map<OutputKind, std::unique_ptr<CaseEvaluation>> evaluations;
     for (OutputKind kind : kinds) {
       progress.show(step + output_kind_name(kind) + " oracle");
-      evaluations[kind] = evaluate(kind, kind == OutputKind::hard_shadow ? hard_case : c, samples,
-                                   options.oracle, out_dir, image_folders[case_index],
-                                   summary.left_out, truth_cache ? &*truth_cache : nullptr);
+      evaluations[kind] =
+          evaluate(kind, kind == OutputKind::hard_shadow ? hard_case : c, samples,
+                   receiver_ambiguous, options.oracle, out_dir, image_folders[case_index],
+                   summary.left_out, truth_cache ? &*truth_cache : nullptr);
       const OracleSummary& o = evaluations[kind]->oracle();
       summary.oracles[output_kind_name(kind)] =
           nlohmann::ordered_json{{"method", o.method}, {"exact", o.exact}, {"time_ms", o.time_ms}};
@@ -631,6 +649,7 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
         << " sky, " << summary.back_facing << " back-facing; light " << summary.light;
     if (summary.ranged_lights) out << ", " << summary.ranged_lights << " ranged lights";
     out << ")\n";
+    if (!receivers_line.empty()) out << "  receivers: " << receivers_line << "\n";
     for (const auto& [kind, evaluation] : evaluations)
       out << "  oracle:   [" << output_kind_name(kind) << "] " << evaluation->oracle().plan_line
           << ", " << std::fixed << std::setprecision(1) << evaluation->oracle().time_ms << " ms\n"

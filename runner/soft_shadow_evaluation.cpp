@@ -67,7 +67,8 @@ RgbImage error_image(const ViewSamples& samples, const SoftShadowTruth& truth,
 
 class SoftShadowEvaluation : public CaseEvaluation {
  public:
-  SoftShadowEvaluation(const Case& c, const ViewSamples& samples, bool exact,
+  SoftShadowEvaluation(const Case& c, const ViewSamples& samples,
+                       const std::vector<std::uint8_t>& receiver_ambiguous, bool exact,
                        const std::filesystem::path& out_dir, const std::string& image_folder,
                        const TruthCache* cache)
       : samples_(samples), out_dir_(out_dir) {
@@ -81,6 +82,10 @@ class SoftShadowEvaluation : public CaseEvaluation {
                                       : "soft.sampled" + std::to_string(sampled_rays_per_sample),
                                 c, samples, compute, cache_use)
                    : compute();
+    // The receiver never shadows its own sample: where it could be either of two triangles, the
+    // fraction is not vouched for.
+    for (std::size_t i = 0; i < receiver_ambiguous.size(); ++i)
+      if (receiver_ambiguous[i]) truth_.robust[i] = 0;
     oracle_.time_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     oracle_.method = truth_.method;
@@ -159,12 +164,10 @@ class SoftShadowEvaluation : public CaseEvaluation {
 
 }  // namespace
 
-std::unique_ptr<CaseEvaluation> evaluate_soft_shadows(const Case& c, const ViewSamples& samples,
-                                                      OracleChoice choice,
-                                                      const std::filesystem::path& out_dir,
-                                                      const std::string& image_folder,
-                                                      std::vector<std::string>& left_out,
-                                                      const TruthCache* cache) {
+std::unique_ptr<CaseEvaluation> evaluate_soft_shadows(
+    const Case& c, const ViewSamples& samples, const std::vector<std::uint8_t>& receiver_ambiguous,
+    OracleChoice choice, const std::filesystem::path& out_dir, const std::string& image_folder,
+    std::vector<std::string>& left_out, const TruthCache* cache) {
   const std::size_t regular = samples.count(SampleClass::regular);
   const bool exact = choice == OracleChoice::exact ||
                      (choice == OracleChoice::automatic && regular <= exact_oracle_sample_limit);
@@ -175,7 +178,8 @@ std::unique_ptr<CaseEvaluation> evaluate_soft_shadows(const Case& c, const ViewS
                             : std::to_string(regular) + " samples exceed its limit of " +
                                   std::to_string(exact_oracle_sample_limit)) +
                        "; figures carry the sampled oracle's error bound");
-  return std::make_unique<SoftShadowEvaluation>(c, samples, exact, out_dir, image_folder, cache);
+  return std::make_unique<SoftShadowEvaluation>(c, samples, receiver_ambiguous, exact, out_dir,
+                                                image_folder, cache);
 }
 
 }  // namespace shadowcts

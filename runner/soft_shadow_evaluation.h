@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -16,11 +17,11 @@ namespace shadowcts {
 // its size limit or on request (noted in `left_out`), and writes the oracle's visibility image
 // under images/<image_folder>/. With a cache, the truth comes from it when it holds this case's.
 // Runs are judged against the error budget their algorithm declares for the variant.
-std::unique_ptr<CaseEvaluation> evaluate_soft_shadows(const Case& c, const ViewSamples& samples,
-                                                      OracleChoice choice,
-                                                      const std::filesystem::path& out_dir,
-                                                      const std::string& image_folder,
-                                                      std::vector<std::string>& left_out,
-                                                      const TruthCache* cache);
+// Samples marked in `receiver_ambiguous` (per sample; empty: none), whose receiver the suite
+// could not tell apart within the band, are counted ambiguous and never judged.
+std::unique_ptr<CaseEvaluation> evaluate_soft_shadows(
+    const Case& c, const ViewSamples& samples, const std::vector<std::uint8_t>& receiver_ambiguous,
+    OracleChoice choice, const std::filesystem::path& out_dir, const std::string& image_folder,
+    std::vector<std::string>& left_out, const TruthCache* cache);
 
 }  // namespace shadowcts

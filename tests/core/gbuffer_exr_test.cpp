@@ -166,7 +166,8 @@ TEST(GBufferExr, NonFinitePositionNamesThePixel) {
   samples.samples[2 * 4 + 1].position.y = std::numeric_limits<float>::quiet_NaN();
   write_gbuffer_exr(file.string(), samples);
   const std::string message = read_error(file);
-  EXPECT_NE(message.find(file.string() + ": pixel (1, 2): position P is not finite"),
+  EXPECT_NE(message.find(file.string() +
+                         ": channels P.X P.Y P.Z, pixel (1, 2): position P is not finite"),
             std::string::npos)
       << message;
 }
