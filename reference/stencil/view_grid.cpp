@@ -31,33 +31,38 @@ float float_at_least(double x) {
   return f;
 }
 
-// A convex polygon in projected coordinates: a face triangle clipped by one plane (<= 4 corners).
-struct Polygon {
-  double x[4] = {}, y[4] = {};
-  int n = 0;
-};
+using Polygon = ViewGrid::Outline::Polygon;
 
-// Whether the convex polygon meets the rectangle [lo, hi] (separating axes: the rectangle's two,
-// tested by the caller's box, and the polygon's edge normals). Long thin quads seen at an angle
-// cover far fewer cells than their boxes do.
-bool polygon_meets_rectangle(const Polygon& p, const double lo[2], const double hi[2]) {
+// The x-range of the polygon's part within the band y0 <= y <= y1 (its extremes are corners inside
+// the band or crossings of the band's edges); false when it misses the band. A cell of a row meets
+// the (convex) polygon exactly when its x-range overlaps this: long thin quads seen at an angle
+// cover far fewer cells than their boxes do, and are walked row by row, not box cell by box cell.
+// The polygon's orientation, or 0 where its area is too small against its size to trust the
+// sign (a sliver seen edge-on): such an outline contains every point.
+void set_orientation(Polygon& p) {
+  double area = 0.0, lo[2] = {infinity, infinity}, hi[2] = {-infinity, -infinity};
   for (int i = 0; i < p.n; ++i) {
     const int j = (i + 1) % p.n;
-    const double nx = p.y[j] - p.y[i], ny = p.x[i] - p.x[j];  // normal of edge i -> j
-    // The polygon's side of the edge: its farthest other corner (collapsed: the box decides).
-    double side_k = 0.0;
-    for (int k = 0; k < p.n; ++k) {
-      const double side = nx * (p.x[k] - p.x[i]) + ny * (p.y[k] - p.y[i]);
-      if (std::fabs(side) > std::fabs(side_k)) side_k = side;
-    }
-    if (side_k == 0.0) continue;
-    // The rectangle corner farthest towards the polygon's side of the edge.
-    const double cx = (nx * side_k > 0.0) ? hi[0] : lo[0];
-    const double cy = (ny * side_k > 0.0) ? hi[1] : lo[1];
-    const double side_corner = nx * (cx - p.x[i]) + ny * (cy - p.y[i]);
-    if ((side_k > 0.0 && side_corner < 0.0) || (side_k < 0.0 && side_corner > 0.0)) return false;
+    area += (p.x[i] - p.x[0]) * (p.y[j] - p.y[0]) - (p.x[j] - p.x[0]) * (p.y[i] - p.y[0]);
+    lo[0] = std::min(lo[0], p.x[i]), hi[0] = std::max(hi[0], p.x[i]);
+    lo[1] = std::min(lo[1], p.y[i]), hi[1] = std::max(hi[1], p.y[i]);
   }
-  return true;
+  const double size = std::max(hi[0] - lo[0], hi[1] - lo[1]);
+  p.orientation = std::fabs(area) > 1e-9 * size * size ? (area > 0.0 ? 1 : -1) : 0;
+}
+
+bool x_range_in_band(const Polygon& p, double y0, double y1, double& x0, double& x1) {
+  x0 = infinity, x1 = -infinity;
+  for (int i = 0; i < p.n; ++i) {
+    if (p.y[i] >= y0 && p.y[i] <= y1) x0 = std::min(x0, p.x[i]), x1 = std::max(x1, p.x[i]);
+    const int j = (i + 1) % p.n;
+    for (const double y : {y0, y1}) {
+      if (!((p.y[i] < y && p.y[j] > y) || (p.y[i] > y && p.y[j] < y))) continue;
+      const double x = p.x[i] + (y - p.y[i]) / (p.y[j] - p.y[i]) * (p.x[j] - p.x[i]);
+      x0 = std::min(x0, x), x1 = std::max(x1, x);
+    }
+  }
+  return x0 <= x1;
 }
 
 // A face triangle in camera coordinates (right, up, forward from the eye), clipped by planes
@@ -183,6 +188,7 @@ ViewGrid::ViewGrid(const Camera& camera, const ViewSamples& samples,
   const double clip_depth = mode == CountingMode::z_fail ? 0.5 * frustum.near : frustum.near / 64.0;
   const double clip_at = clip_depth * (1.0 - depth_tolerance);
 
+  outlines_.resize(faces.size());
   tbb::enumerable_thread_specific<std::vector<Listing>> listings;
   tbb::enumerable_thread_specific<std::vector<std::uint32_t>> anywhere;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, faces.size(), 1024), [&](const tbb::
@@ -247,6 +253,7 @@ ViewGrid::ViewGrid(const Camera& camera, const ViewSamples& samples,
       const double margin_extra = 64.0 * epsilon * magnified * (1.0 + magnified);
       const double margin[2] = {base_margin[0] + margin_extra, base_margin[1] + margin_extra};
       face_cells.clear();
+      outlines_[f].margin = std::max(margin[0], margin[1]);
       bool unbounded = false;
       for (int t = 0; t < (face.is_quad() ? 2 : 1) && !unbounded; ++t) {
         const int corner[3] = {0, t + 1, t + 2};
@@ -271,6 +278,8 @@ ViewGrid::ViewGrid(const Camera& camera, const ViewSamples& samples,
           }
         }
         if (polygon.n == 0) continue;
+        set_orientation(polygon);
+        outlines_[f].part[outlines_[f].parts++] = polygon;
         double p_lo[2] = {infinity, infinity}, p_hi[2] = {-infinity, -infinity};
         for (int i = 0; i < polygon.n; ++i) {
           p_lo[0] = std::min(p_lo[0], polygon.x[i]), p_hi[0] = std::max(p_hi[0], polygon.x[i]);
@@ -280,29 +289,33 @@ ViewGrid::ViewGrid(const Camera& camera, const ViewSamples& samples,
           unbounded = true;
           break;
         }
-        double cell_range[4];
-        for (int k = 0; k < 2; ++k) {
-          const double last = double(cells_) - 1.0;
-          cell_range[2 * k] =
-              std::max(std::floor((p_lo[k] - margin[k] - lo_[k]) / cell_size_[k]), 0.0);
-          cell_range[2 * k + 1] =
-              std::min(std::floor((p_hi[k] + margin[k] - lo_[k]) / cell_size_[k]), last);
-        }
-        for (double row = cell_range[2]; row <= cell_range[3]; ++row)
-          for (double column = cell_range[0]; column <= cell_range[1]; ++column) {
-            const double cell_lo[2] = {lo_[0] + column * cell_size_[0] - margin[0],
-                                       lo_[1] + row * cell_size_[1] - margin[1]};
-            const double cell_hi[2] = {cell_lo[0] + cell_size_[0] + 2.0 * margin[0],
-                                       cell_lo[1] + cell_size_[1] + 2.0 * margin[1]};
-            if (!polygon_meets_rectangle(polygon, cell_lo, cell_hi)) continue;
+        const double last = double(cells_) - 1.0;
+        const double first_row =
+            std::max(std::floor((p_lo[1] - margin[1] - lo_[1]) / cell_size_[1]), 0.0);
+        const double last_row =
+            std::min(std::floor((p_hi[1] + margin[1] - lo_[1]) / cell_size_[1]), last);
+        for (double row = first_row; row <= last_row; ++row) {
+          const double band_lo = lo_[1] + row * cell_size_[1] - margin[1];
+          const double band_hi = band_lo + cell_size_[1] + 2.0 * margin[1];
+          double x0, x1;
+          if (!x_range_in_band(polygon, band_lo, band_hi, x0, x1)) continue;
+          const double first_column =
+              std::max(std::floor((x0 - margin[0] - lo_[0]) / cell_size_[0]), 0.0);
+          const double last_column =
+              std::min(std::floor((x1 + margin[0] - lo_[0]) / cell_size_[0]), last);
+          for (double column = first_column; column <= last_column; ++column) {
+            const double cell_lo[2] = {lo_[0] + column * cell_size_[0] - margin[0], band_lo};
+            const double cell_hi[2] = {cell_lo[0] + cell_size_[0] + 2.0 * margin[0], band_hi};
             double low = lowest, high = highest;
             double key = face_key;
             if (depth_range_in_cell(camera_triangle, cell_lo, cell_hi, clip_at, low, high))
               key = std::max(key, key_of(low, high));  // both bound the crossing's depth
             face_cells.push_back({std::uint32_t(row) * cells_ + std::uint32_t(column), key});
           }
+        }
       }
       if (unbounded) {
+        outlines_[f].parts = 0;
         out_anywhere.push_back(std::uint32_t(f));
         continue;
       }
@@ -342,6 +355,29 @@ ViewGrid::ViewGrid(const Camera& camera, const ViewSamples& samples,
   for (const std::vector<std::uint32_t>& part : anywhere)
     everywhere_.insert(everywhere_.end(), part.begin(), part.end());
   std::sort(everywhere_.begin(), everywhere_.end());
+}
+
+bool ViewGrid::Outline::may_contain(double x, double y) const {
+  if (parts == 0) return true;  // not binned (everywhere, or never listed)
+  for (int k = 0; k < parts; ++k) {
+    const Polygon& p = part[k];
+    if (p.orientation == 0) return true;
+    bool inside = true;
+    for (int i = 0; i < p.n && inside; ++i) {
+      const int j = (i + 1) % p.n;
+      // The edge's normal towards the inside; the point may lie up to `margin` (per axis)
+      // outside, plus the rounding of this expression.
+      const double nx = double(p.orientation) * (p.y[i] - p.y[j]);
+      const double ny = double(p.orientation) * (p.x[j] - p.x[i]);
+      const double dx = x - p.x[i], dy = y - p.y[i];
+      const double side = nx * dx + ny * dy;
+      const double tolerance = margin * (std::fabs(nx) + std::fabs(ny)) +
+                               8.0 * epsilon * (std::fabs(nx * dx) + std::fabs(ny * dy));
+      inside = side >= -tolerance;
+    }
+    if (inside) return true;
+  }
+  return false;
 }
 
 glm::dvec3 ViewGrid::project(const glm::dvec3& world) const {

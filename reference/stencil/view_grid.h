@@ -48,9 +48,24 @@ class ViewGrid {
     const float bound = key_bound(q.z);
     const auto end = offsets_[std::size_t(cell) + 1];
     for (std::uint32_t k = offsets_[std::size_t(cell)]; k < end && keys_[k] <= bound; ++k)
-      visit(cell_faces_[k]);
+      if (outlines_[cell_faces_[k]].may_contain(q.x, q.y)) visit(cell_faces_[k]);
     for (std::uint32_t f : everywhere_) visit(f);
   }
+
+  // A listed face's projection (clipped as binned), widened by its margin: a sample whose line
+  // crosses the face projects into it. Checking it costs a few multiplications, the exact
+  // crossing test far more, and a cell lists many thin quads that miss most of its samples.
+  struct Outline {
+    struct Polygon {
+      double x[4] = {}, y[4] = {};
+      int n = 0;
+      int orientation = 0;  // sign of the area; 0: too thin to tell, contains everything
+    };
+    Polygon part[2];  // a quad's two triangles
+    int parts = 0;
+    double margin = 0.0;
+    bool may_contain(double x, double y) const;
+  };
 
   std::size_t listings() const { return cell_faces_.size(); }
   std::size_t everywhere() const { return everywhere_.size(); }
@@ -67,7 +82,8 @@ class ViewGrid {
   std::uint32_t cells_ = 1;  // per side
   std::uint32_t face_count_ = 0;
   std::vector<std::uint32_t> offsets_, cell_faces_, everywhere_;
-  std::vector<float> keys_;  // per listing, ascending within a cell
+  std::vector<float> keys_;        // per listing, ascending within a cell
+  std::vector<Outline> outlines_;  // per face (listed ones)
 };
 
 }  // namespace shadowcts::stencil
