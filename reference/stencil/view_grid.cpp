@@ -116,6 +116,8 @@ bool depth_range_in_cell(const glm::dvec3 (&triangle)[3], const double lo[2], co
   return true;
 }
 
+using Range = tbb::blocked_range<std::size_t>;
+
 struct Listing {
   std::uint32_t cell;
   float key;
@@ -191,11 +193,7 @@ ViewGrid::ViewGrid(const Camera& camera, const ViewSamples& samples,
   outlines_.resize(faces.size());
   tbb::enumerable_thread_specific<std::vector<Listing>> listings;
   tbb::enumerable_thread_specific<std::vector<std::uint32_t>> anywhere;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, faces.size(), 1024), [&](const tbb::
-                                                                                    blocked_range<
-                                                                                        std::
-                                                                                            size_t>&
-                                                                                        range) {
+  tbb::parallel_for(Range(0, faces.size(), 1024), [&](const Range& range) {
     std::vector<Listing>& out = listings.local();
     std::vector<std::uint32_t>& out_anywhere = anywhere.local();
     std::vector<std::pair<std::uint32_t, double>> face_cells;  // cell, key
@@ -343,11 +341,10 @@ ViewGrid::ViewGrid(const Camera& camera, const ViewSamples& samples,
     }
   }
   // Within a cell by key, then face: the same lists whatever the threads' partitioning.
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cell_count, 64),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      for (std::size_t c = range.begin(); c != range.end(); ++c)
-                        std::sort(sorted.begin() + offsets_[c], sorted.begin() + offsets_[c + 1]);
-                    });
+  tbb::parallel_for(Range(0, cell_count, 64), [&](const Range& range) {
+    for (std::size_t c = range.begin(); c != range.end(); ++c)
+      std::sort(sorted.begin() + offsets_[c], sorted.begin() + offsets_[c + 1]);
+  });
   keys_.resize(sorted.size());
   cell_faces_.resize(sorted.size());
   for (std::size_t k = 0; k < sorted.size(); ++k)
