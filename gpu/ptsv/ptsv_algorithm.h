@@ -7,6 +7,7 @@
 // explicit+planes, implicit (the reference's names and configurations); the keys, the nodes, the
 // counters and the mask are the reference's. Backends `cuda` (nvcc, NotSupported without a
 // device) and `cuda-emu` (the same kernels on the CUDA-subset emulator).
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -24,6 +25,10 @@ struct PtsvKernelBackend {
   // Why the kernels cannot run here (no device), or nullopt; nullptr: they always can.
   std::optional<std::string> (*unavailable_reason)() = nullptr;
   bool emulated = false;  // adds the `emulated_threads` counter to every record
+  // Capabilities::max_sample_triangle_pairs (0: no limit) and why, with the cost measured near
+  // it: the NotSupported reason above it says both.
+  std::uint64_t max_sample_triangle_pairs = 0;
+  std::string size_limit_reason;
 };
 
 std::unique_ptr<Algorithm> make_ptsv_kernel_algorithm(PtsvKernelBackend backend);

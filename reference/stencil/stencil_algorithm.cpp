@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 
 #include "reference/light_on_caster.h"
+#include "reference/stencil/crossing_reach.h"
 #include "reference/stencil/receiver_rule.h"
 #include "reference/stencil/shadow_volume.h"
 #include "reference/stencil/silhouette.h"
@@ -81,7 +82,17 @@ class StencilAlgorithm final : public Algorithm {
                           for (std::size_t f = range.begin(); f != range.end(); ++f)
                             sides[f] = eye_sides(faces[f], eye, light);
                         });
-      const ViewGrid grid(c.camera, samples, faces);
+      // Where along each sample's line a face's counted crossing can lie, for the grid's depth
+      // bounds (crossing_reach.h).
+      const double reach = sample_reach(eye, samples);
+      std::vector<CrossingReach> reaches(faces.size());
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, faces.size(), 1024),
+                        [&](const tbb::blocked_range<std::size_t>& range) {
+                          for (std::size_t f = range.begin(); f != range.end(); ++f)
+                            reaches[f] = crossing_reach(faces[f], sides[f], mode, volumes.extrusion,
+                                                        light, eye, reach);
+                        });
+      const ViewGrid grid(c.camera, samples, faces, reaches, mode);
       // Each caster triangle's cap, for subtracting a receiver's own volume.
       std::vector<std::uint32_t> cap_of_triangle(c.triangles.size(), no_triangle);
       for (std::size_t k = 0; k < occluders.caps.size(); ++k)

@@ -4,6 +4,7 @@
 // fixtures and the reference tests' big-shadow scenes (trivial accepts, where the order of the
 // volumes matters to the counters); then the same outputs for 1 and 2 threads and under a random
 // schedule. Each diff names the first difference.
+#include <algorithm>
 #include <bit>
 #include <cctype>
 #include <string>
@@ -151,6 +152,37 @@ TEST(CudaEmuPtsv, SameOutputsForOneAndTwoThreadsAndARandomSchedule) {
     options.seed = 7;
     const emu::ScopedOptions scoped(options);
     EXPECT_EQ(diff_outputs(port->run(c, samples, variant), one), "") << variant << " random";
+  }
+}
+
+// The emulated kernels declare a size limit (samples x triangles) with its measured cost: a case
+// above it is NotSupported with that reason, for every variant; the default fixtures stay far
+// below it (their conformance cases run).
+TEST(CudaEmuPtsv, CasesAboveTheSizeLimitAreNotSupportedWithTheReason) {
+  const auto port = make_cuda_emu_ptsv();
+  const std::uint64_t limit = port->info().capabilities.max_sample_triangle_pairs;
+  ASSERT_GT(limit, 0u);
+  Case c = make_fixture("gate_house.2k");
+  ViewSamples samples = generate_view_samples(c);
+  for (const std::string variant : variants)
+    EXPECT_FALSE(port->unsupported_reason(c, samples, variant)) << variant;
+  // Only the counts matter: 500k triangles and enough copies of a regular sample to pass it.
+  const std::uint64_t triangles = 500'000;
+  const std::uint64_t regular = limit / triangles + 1;
+  ASSERT_LT(regular, 5'000'000u);
+  c.triangles.resize(triangles, c.triangles.front());
+  const auto first_regular =
+      std::find_if(samples.samples.begin(), samples.samples.end(),
+                   [](const ViewSample& s) { return s.sample_class == SampleClass::regular; });
+  ASSERT_NE(first_regular, samples.samples.end());
+  samples.samples.assign(regular, *first_regular);
+  for (const std::string variant : variants) {
+    const std::optional<std::string> reason = port->unsupported_reason(c, samples, variant);
+    ASSERT_TRUE(reason) << variant;
+    EXPECT_NE(reason->find("sample x triangle pairs (limit " + std::to_string(limit) + ")"),
+              std::string::npos)
+        << *reason;
+    EXPECT_NE(reason->find("emulated kernels: ~"), std::string::npos) << *reason;
   }
 }
 
