@@ -17,6 +17,7 @@
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/intersections.h>
 
+#include "oracles/exact_double_sum.h"
 #include "shadowcts/errors.h"
 
 namespace shadowcts {
@@ -27,16 +28,6 @@ using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
 // Exact rational coordinates, for the rare moved or far points that are not doubles.
 using Rational = CGAL::Exact_rational;
 using RationalKernel = CGAL::Simple_cartesian<Rational>;
-
-// a + b, when the double sum is exact: Knuth's two-sum recovers the rounding error exactly
-// (no overflow: the inputs are far inside double's range), and the sum is exact iff it is zero.
-bool exact_double_sum(double a, double b, double& sum) {
-  sum = a + b;
-  if (!std::isfinite(sum)) return false;
-  const double b_virtual = sum - a;
-  const double a_virtual = sum - b_virtual;
-  return (a - a_virtual) + (b - b_virtual) == 0.0;
-}
 
 // The exponent e of the power of two s = 2^e used to replace the directional ray from x by the
 // segment [x, x + s d]. With i the largest |d_i|, s |d_i| >= 2 (bound + max|x|) (the factor 2

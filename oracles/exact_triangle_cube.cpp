@@ -1,28 +1,18 @@
 #include "oracles/exact_triangle_cube.h"
 
-#include <cmath>
-
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Exact_rational.h>
 #include <CGAL/Iso_cuboid_3.h>
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/intersections.h>
 
+#include "oracles/exact_double_sum.h"
+
 namespace shadowcts {
 namespace {
 
 using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
 using RationalKernel = CGAL::Simple_cartesian<CGAL::Exact_rational>;
-
-// a + b when the double sum is exact (Knuth's two-sum: the rounding error is recovered exactly,
-// and the sum is exact iff it is zero).
-bool exact_double_sum(double a, double b, double& sum) {
-  sum = a + b;
-  if (!std::isfinite(sum)) return false;
-  const double b_virtual = sum - a;
-  const double a_virtual = sum - b_virtual;
-  return (a - a_virtual) + (b - b_virtual) == 0.0;
-}
 
 template <class Kernel>
 typename Kernel::Triangle_3 kernel_triangle(const Triangle& t) {

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <concepts>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -43,6 +44,17 @@ class ByteWriter {
     put<std::uint64_t>(text.size());
     bytes_.append(text);
   }
+  // One field of a truth (each_field below lists them once for writing and reading).
+  template <class T>
+  void field(const T& value) {
+    put(value);
+  }
+  template <class T>
+  void field(const std::vector<T>& values) {
+    put_vector(values);
+  }
+  void field(const std::string& text) { put_string(text); }
+  void field(bool flag) { put<std::uint8_t>(flag); }
   std::string& bytes() { return bytes_; }
 
  private:
@@ -72,6 +84,16 @@ class ByteReader {
     if (n > bytes_.size() - at_) throw std::runtime_error("truncated");
     return std::string(take(n));
   }
+  template <class T>
+  void field(T& value) {
+    value = get<T>();
+  }
+  template <class T>
+  void field(std::vector<T>& values) {
+    values = get_vector<T>();
+  }
+  void field(std::string& text) { text = get_string(); }
+  void field(bool& flag) { flag = get<std::uint8_t>() != 0; }
   bool done() const { return at_ == bytes_.size(); }
 
  private:
@@ -161,80 +183,49 @@ std::string truth_inputs(std::string_view oracle, const Case& c, const ViewSampl
   return std::move(w.bytes());
 }
 
-void write_truth(ByteWriter& w, const HardShadowTruth& t) {
-  w.put_string(t.method);
-  w.put<std::uint8_t>(t.exact);
-  w.put(t.eps_rel);
-  w.put(t.tau);
-  w.put_vector(t.shadowed);
-  w.put_vector(t.band);
-  w.put_vector(t.robust_exponent);
+// Each truth's fields, in entry order, for ByteWriter (const truth) and ByteReader alike.
+template <class T, class Truth>
+concept truth_of = std::same_as<std::remove_const_t<T>, Truth>;
+
+template <class Io, truth_of<HardShadowTruth> T>
+void each_field(Io& io, T& t) {
+  io.field(t.method);
+  io.field(t.exact);
+  io.field(t.eps_rel);
+  io.field(t.tau);
+  io.field(t.shadowed);
+  io.field(t.band);
+  io.field(t.robust_exponent);
 }
 
-void read_truth(ByteReader& r, HardShadowTruth& t) {
-  t.method = r.get_string();
-  t.exact = r.get<std::uint8_t>() != 0;
-  t.eps_rel = r.get<double>();
-  t.tau = r.get<double>();
-  t.shadowed = r.get_vector<std::uint8_t>();
-  t.band = r.get_vector<BandClass>();
-  t.robust_exponent = r.get_vector<std::int8_t>();
+template <class Io, truth_of<SoftShadowTruth> T>
+void each_field(Io& io, T& t) {
+  io.field(t.method);
+  io.field(t.exact);
+  io.field(t.eps_rel);
+  io.field(t.tau);
+  io.field(t.visible_fraction);
+  io.field(t.error_bound);
+  io.field(t.band_sensitivity);
+  io.field(t.robust);
+  io.field(t.compared);
+  io.field(t.candidate_triangles);
+  io.field(t.fast_path_samples);
 }
 
-void write_truth(ByteWriter& w, const SoftShadowTruth& t) {
-  w.put_string(t.method);
-  w.put<std::uint8_t>(t.exact);
-  w.put(t.eps_rel);
-  w.put(t.tau);
-  w.put_vector(t.visible_fraction);
-  w.put_vector(t.error_bound);
-  w.put_vector(t.band_sensitivity);
-  w.put_vector(t.robust);
-  w.put_vector(t.compared);
-  w.put(t.candidate_triangles);
-  w.put(t.fast_path_samples);
-}
-
-void read_truth(ByteReader& r, SoftShadowTruth& t) {
-  t.method = r.get_string();
-  t.exact = r.get<std::uint8_t>() != 0;
-  t.eps_rel = r.get<double>();
-  t.tau = r.get<double>();
-  t.visible_fraction = r.get_vector<double>();
-  t.error_bound = r.get_vector<double>();
-  t.band_sensitivity = r.get_vector<double>();
-  t.robust = r.get_vector<std::uint8_t>();
-  t.compared = r.get_vector<std::uint8_t>();
-  t.candidate_triangles = r.get<std::uint64_t>();
-  t.fast_path_samples = r.get<std::uint64_t>();
-}
-
-void write_truth(ByteWriter& w, const LightAssignmentTruth& t) {
-  w.put_string(t.method);
-  w.put<std::uint8_t>(t.exact);
-  w.put<std::uint8_t>(t.normal_rule);
-  w.put(t.eps_rel);
-  w.put(t.tau);
-  w.put_vector(t.offsets);
-  w.put_vector(t.lights);
-  w.put_vector(t.ambiguous_offsets);
-  w.put_vector(t.ambiguous_lights);
-  w.put(t.candidate_pairs);
-  w.put(t.band_move_pairs);
-}
-
-void read_truth(ByteReader& r, LightAssignmentTruth& t) {
-  t.method = r.get_string();
-  t.exact = r.get<std::uint8_t>() != 0;
-  t.normal_rule = r.get<std::uint8_t>() != 0;
-  t.eps_rel = r.get<double>();
-  t.tau = r.get<double>();
-  t.offsets = r.get_vector<std::uint64_t>();
-  t.lights = r.get_vector<std::uint32_t>();
-  t.ambiguous_offsets = r.get_vector<std::uint64_t>();
-  t.ambiguous_lights = r.get_vector<std::uint32_t>();
-  t.candidate_pairs = r.get<std::uint64_t>();
-  t.band_move_pairs = r.get<std::uint64_t>();
+template <class Io, truth_of<LightAssignmentTruth> T>
+void each_field(Io& io, T& t) {
+  io.field(t.method);
+  io.field(t.exact);
+  io.field(t.normal_rule);
+  io.field(t.eps_rel);
+  io.field(t.tau);
+  io.field(t.offsets);
+  io.field(t.lights);
+  io.field(t.ambiguous_offsets);
+  io.field(t.ambiguous_lights);
+  io.field(t.candidate_pairs);
+  io.field(t.band_move_pairs);
 }
 
 // Entry layout: magic, build id, inputs, oracle time, truth, checksum of everything before it.
@@ -278,7 +269,7 @@ Truth cached_truth(const std::filesystem::path& dir, std::string_view oracle, co
       } else {
         const double computed_ms = r.get<double>();
         Truth truth;
-        read_truth(r, truth);
+        each_field(r, truth);
         if (!r.done()) throw std::runtime_error("trailing bytes");
         use.hit = true;
         use.computed_ms = computed_ms;
@@ -295,7 +286,7 @@ Truth cached_truth(const std::filesystem::path& dir, std::string_view oracle, co
   w.put_string(build_id);
   w.put_string(inputs);
   w.put(use.computed_ms);
-  write_truth(w, truth);
+  each_field(w, truth);
   w.put(fnv1a(w.bytes()));
   // A private temporary per process, then one rename: concurrent runs of the same case each
   // write a complete entry and the last rename wins.
