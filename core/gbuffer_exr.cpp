@@ -10,11 +10,12 @@
 #include <new>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <system_error>
 #include <vector>
 
-#include <OpenImageIO/imageio.h>
-
+#include "atomic_file.h"
+#include "image_codec.h"
 #include "shadowcts/case.h"
 #include "shadowcts/depth_reconstruction.h"
 #include "shadowcts/errors.h"
@@ -41,11 +42,6 @@ std::string pixel_element(std::uint32_t x, std::uint32_t y) {
 
 bool finite(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-void remove_quietly(const std::filesystem::path& path) {
-  std::error_code ignored;
-  std::filesystem::remove(path, ignored);
 }
 
 }  // namespace
@@ -82,45 +78,20 @@ void write_gbuffer_exr(const std::string& path, const ViewSamples& samples) {
                      sky ? sky_id : s.receiver};
   }
 
-  // Created by format name: the temporary's ".tmp" extension names no format.
-  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create("openexr");
-  if (!out)
-    throw InputError(path, "file", "OpenImageIO has no OpenEXR writer: " + OIIO::geterror());
-  if (!out->supports("channelformats")) {
-    throw InputError(path, "file", "this OpenEXR writer cannot mix FLOAT and UINT channels");
-  }
-  OIIO::ImageSpec spec(static_cast<int>(samples.width), static_cast<int>(samples.height), 7,
-                       OIIO::TypeDesc::FLOAT);
-  spec.channelnames.assign(float_channel_names.begin(), float_channel_names.end());
-  spec.channelnames.emplace_back(id_channel_name);
-  spec.channelformats.assign(6, OIIO::TypeDesc::FLOAT);
-  spec.channelformats.emplace_back(OIIO::TypeDesc::UINT);
-  spec.attribute("compression", "zip");  // lossless: the round trip is bit-exact
-  spec.attribute("DateTime", "");        // no write-time stamp in capDate: same samples, same bytes
-
-  const std::filesystem::path target(path);
-  const std::filesystem::path temporary(path + ".tmp");
-  if (!out->open(temporary.string(), spec)) {
-    const std::string problem = out->geterror();
-    remove_quietly(temporary);
-    throw InputError(path, "file", "cannot be written: " + problem);
-  }
-  // UNKNOWN: the buffer is in the per-channel native formats of the spec.
-  const bool written = out->write_image(OIIO::TypeDesc::UNKNOWN, pixels.data());
-  const bool closed = out->close();
-  if (!written || !closed) {
-    const std::string problem = out->geterror();
-    out.reset();
-    remove_quietly(temporary);
-    throw InputError(path, "file", "cannot be written: " + problem);
-  }
-  out.reset();
-  std::error_code error;
-  std::filesystem::rename(temporary, target, error);
-  if (error) {
-    remove_quietly(temporary);
-    throw InputError(path, "file", "cannot be renamed into place: " + error.message());
-  }
+  ImageToEncode encode;
+  encode.format = "openexr";  // zip: lossless, the round trip is bit-exact
+  encode.width = static_cast<int>(samples.width);
+  encode.height = static_cast<int>(samples.height);
+  encode.channel_names.assign(float_channel_names.begin(), float_channel_names.end());
+  encode.channel_names.emplace_back(id_channel_name);
+  encode.channel_types.assign(6, PixelType::float32);
+  encode.channel_types.push_back(PixelType::uint32);
+  encode.pixels = pixels.data();  // packed in the file's channel types
+  std::string error;
+  const std::vector<unsigned char> bytes = image_codec().encode(encode, error);
+  if (bytes.empty()) throw OutputError(path, error);
+  write_file_atomically(
+      path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 namespace {
@@ -239,19 +210,20 @@ void check_declared_size(const std::string& path, std::optional<Resolution> expe
   }
 }
 
-std::unique_ptr<OIIO::ImageInput> open_gbuffer(const std::string& path,
-                                               std::optional<Resolution> expected = {}) {
+std::unique_ptr<ImageReader> open_gbuffer(const std::string& path,
+                                          std::optional<Resolution> expected = {}) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error)) {
     throw InputError(path, "file",
                      std::filesystem::exists(path, error) ? "not a regular file" : "not found");
   }
   check_declared_size(path, expected);
-  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);
-  if (!in) throw InputError(path, "file", "cannot be read as an image: " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
-  if (std::string(in->format_name()) != "openexr") {
-    throw InputError(path, "file", std::string("is ") + in->format_name() + ", not OpenEXR");
+  std::string problem;
+  std::unique_ptr<ImageReader> in = image_codec().open(path, problem);
+  if (!in) throw InputError(path, "file", "cannot be read as an image: " + problem);
+  const ImageHeader& spec = in->header();
+  if (spec.format != "openexr") {
+    throw InputError(path, "file", "is " + spec.format + ", not OpenEXR");
   }
   if (spec.deep) throw InputError(path, "file", "deep images are not G-buffers");
   if (spec.width <= 0 || spec.height <= 0) throw InputError(path, "file", "image size is zero");
@@ -274,7 +246,7 @@ std::unique_ptr<OIIO::ImageInput> open_gbuffer(const std::string& path,
   return in;
 }
 
-void check_resolution(const std::string& path, const OIIO::ImageSpec& spec, std::uint32_t width,
+void check_resolution(const std::string& path, const ImageHeader& spec, std::uint32_t width,
                       std::uint32_t height) {
   if (static_cast<std::uint32_t>(spec.width) != width ||
       static_cast<std::uint32_t>(spec.height) != height) {
@@ -285,31 +257,31 @@ void check_resolution(const std::string& path, const OIIO::ImageSpec& spec, std:
   }
 }
 
-ViewSamples read_pixels(const std::string& path, OIIO::ImageInput& input,
-                        const GBufferFormat& format, const Case* c);
+ViewSamples read_pixels(const std::string& path, ImageReader& input, const GBufferFormat& format,
+                        const Case* c);
 
 }  // namespace
 
 void check_gbuffer_exr_header(const std::string& path, std::uint32_t width, std::uint32_t height) {
-  const std::unique_ptr<OIIO::ImageInput> in = open_gbuffer(path, Resolution{width, height});
-  check_resolution(path, in->spec(), width, height);
+  const std::unique_ptr<ImageReader> in = open_gbuffer(path, Resolution{width, height});
+  check_resolution(path, in->header(), width, height);
 }
 
 ViewSamples read_gbuffer_exr(const std::string& path) {
-  const std::unique_ptr<OIIO::ImageInput> in = open_gbuffer(path);
+  const std::unique_ptr<ImageReader> in = open_gbuffer(path);
   return read_pixels(path, *in, GBufferFormat{}, nullptr);
 }
 
 ViewSamples read_gbuffer_exr(const std::string& path, std::uint32_t width, std::uint32_t height) {
-  const std::unique_ptr<OIIO::ImageInput> in = open_gbuffer(path, Resolution{width, height});
-  check_resolution(path, in->spec(), width, height);
+  const std::unique_ptr<ImageReader> in = open_gbuffer(path, Resolution{width, height});
+  check_resolution(path, in->header(), width, height);
   return read_pixels(path, *in, GBufferFormat{}, nullptr);
 }
 
 ViewSamples read_gbuffer_exr(const std::string& path, const GBufferFormat& format, const Case& c) {
-  const std::unique_ptr<OIIO::ImageInput> in =
+  const std::unique_ptr<ImageReader> in =
       open_gbuffer(path, Resolution{c.camera.width, c.camera.height});
-  check_resolution(path, in->spec(), c.camera.width, c.camera.height);
+  check_resolution(path, in->header(), c.camera.width, c.camera.height);
   return read_pixels(path, *in, format, &c);
 }
 
@@ -318,50 +290,49 @@ namespace {
 // One-channel reads: float channels converted to float (exact from HALF or FLOAT), ids kept UINT.
 class ChannelReader {
  public:
-  ChannelReader(const std::string& path, OIIO::ImageInput& in) : path_(path), in_(in) {}
+  ChannelReader(const std::string& path, ImageReader& in) : path_(path), in_(in) {}
 
   int index(const std::string& name) const {
-    const OIIO::ImageSpec& spec = in_.spec();
-    for (int c = 0; c < spec.nchannels; ++c)
-      if (spec.channelnames[static_cast<std::size_t>(c)] == name) return c;
+    const std::vector<std::string>& names = in_.header().channel_names;
+    for (std::size_t c = 0; c < names.size(); ++c)
+      if (names[c] == name) return static_cast<int>(c);
     std::string present;
-    for (const auto& channel : spec.channelnames) present += (present.empty() ? "" : " ") + channel;
+    for (const auto& channel : names) present += (present.empty() ? "" : " ") + channel;
     throw InputError(path_, "channel " + name, "is missing (channels: " + present + ")");
   }
 
   std::vector<float> floats(const std::string& name) const {
     const int c = index(name);
-    const OIIO::TypeDesc format = in_.spec().channelformat(c);
-    if (format != OIIO::TypeDesc::FLOAT && format != OIIO::TypeDesc::HALF) {
-      throw InputError(path_, "channel " + name,
-                       "must be FLOAT or HALF, is " + std::string(format.c_str()));
+    const PixelType type = in_.header().channel_types[std::size_t(c)];
+    if (type != PixelType::float32 && type != PixelType::half) {
+      throw InputError(path_, "channel " + name, "must be FLOAT or HALF, is " + type_name(c));
     }
     std::vector<float> values(pixel_count());
-    if (!in_.read_image(0, 0, c, c + 1, OIIO::TypeDesc::FLOAT, values.data()))
-      throw InputError(path_, "channel " + name, "cannot be read: " + in_.geterror());
+    if (!in_.read_channel(c, values.data()))
+      throw InputError(path_, "channel " + name, "cannot be read: " + in_.error());
     return values;
   }
 
   std::vector<std::uint32_t> uints(const std::string& name) const {
     const int c = index(name);
-    if (in_.spec().channelformat(c) != OIIO::TypeDesc::UINT) {
+    if (in_.header().channel_types[std::size_t(c)] != PixelType::uint32) {
       // A float id would be normalized by the conversion and cannot hold 0xFFFFFFFF exactly.
-      throw InputError(
-          path_, "channel " + name,
-          "must be UINT (32-bit unsigned), is " + std::string(in_.spec().channelformat(c).c_str()));
+      throw InputError(path_, "channel " + name,
+                       "must be UINT (32-bit unsigned), is " + type_name(c));
     }
     std::vector<std::uint32_t> values(pixel_count());
-    if (!in_.read_image(0, 0, c, c + 1, OIIO::TypeDesc::UINT, values.data()))
-      throw InputError(path_, "channel " + name, "cannot be read: " + in_.geterror());
+    if (!in_.read_channel(c, values.data()))
+      throw InputError(path_, "channel " + name, "cannot be read: " + in_.error());
     return values;
   }
 
  private:
   std::size_t pixel_count() const {
-    return static_cast<std::size_t>(in_.spec().width) * std::size_t(in_.spec().height);
+    return static_cast<std::size_t>(in_.header().width) * std::size_t(in_.header().height);
   }
+  std::string type_name(int c) const { return in_.header().channel_type_names[std::size_t(c)]; }
   const std::string& path_;
-  OIIO::ImageInput& in_;
+  ImageReader& in_;
 };
 
 std::string channel_pixel(const char* channel, std::uint32_t x, std::uint32_t y) {
@@ -378,10 +349,10 @@ std::vector<std::vector<std::uint32_t>> triangles_by_mesh(const Case& c) {
 }
 
 // `c` is needed for (mesh, primitive) ids only.
-ViewSamples read_pixels(const std::string& path, OIIO::ImageInput& input,
-                        const GBufferFormat& format, const Case* c) try {
+ViewSamples read_pixels(const std::string& path, ImageReader& input, const GBufferFormat& format,
+                        const Case* c) try {
   const ChannelReader read(path, input);
-  const OIIO::ImageSpec spec = input.spec();
+  const ImageHeader spec = input.header();
   const auto width = static_cast<std::uint32_t>(spec.width);
   const auto height = static_cast<std::uint32_t>(spec.height);
   const std::size_t pixel_count = static_cast<std::size_t>(width) * height;
@@ -401,7 +372,6 @@ ViewSamples read_pixels(const std::string& path, OIIO::ImageInput& input,
     ids = read.uints("mesh");
     primitives = read.uints("primitive");
   }
-  input.close();
 
   std::vector<std::vector<std::uint32_t>> mesh_triangles;
   if (format.receivers == GBufferReceivers::mesh_primitive) mesh_triangles = triangles_by_mesh(*c);
@@ -493,8 +463,8 @@ ViewSamples read_pixels(const std::string& path, OIIO::ImageInput& input,
 } catch (const std::bad_alloc&) {
   // Within the header limits but beyond this machine's memory: still this file's problem.
   throw InputError(path, "file",
-                   "not enough memory for " + std::to_string(input.spec().width) + "x" +
-                       std::to_string(input.spec().height) + " pixels");
+                   "not enough memory for " + std::to_string(input.header().width) + "x" +
+                       std::to_string(input.header().height) + " pixels");
 }
 
 }  // namespace

@@ -52,6 +52,8 @@ for target in "${targets[@]}"; do
   fi
 done
 cp "${build}/fuzz/reproducer_round_trip" "${OUT}/"
+# OpenImageIO is loaded on first use from this module, looked for beside the program first.
+cp "${build}/libshadowcts_oiio.so" "${OUT}/"
 # EXR files are git-ignored: the G-buffer seeds are written by the project's own writer.
 "${build}/fuzz/write_gbuffer_seeds" "${OUT}/fuzz_gbuffer_exr_seed_corpus"
 # Deep-nesting JSON seeds are several hundred KB: generated, not committed.

@@ -4,14 +4,15 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include <OpenImageIO/imageio.h>
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
+#include "image_codec.h"
 #include "json_limits.h"
 #include "shadowcts/case_manifest.h"
 #include "shadowcts/errors.h"
@@ -30,11 +31,12 @@ std::string pixel_text(std::size_t i, std::uint32_t width) {
 
 // One-channel EXR of the camera's size, every pixel finite and in [0, 1].
 std::vector<float> read_unit_channel(const std::string& path, const Camera& camera) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw InputError(path, "file", "cannot be read as an image: " + OIIO::geterror());
-  if (std::string(in->format_name()) != "openexr")
-    throw InputError(path, "file", std::string("is ") + in->format_name() + ", not OpenEXR");
-  const OIIO::ImageSpec spec = in->spec();
+  std::string error;
+  const std::unique_ptr<ImageReader> in = image_codec().open(path, error);
+  if (!in) throw InputError(path, "file", "cannot be read as an image: " + error);
+  const ImageHeader& spec = in->header();
+  if (spec.format != "openexr")
+    throw InputError(path, "file", "is " + spec.format + ", not OpenEXR");
   if (spec.deep) throw InputError(path, "file", "deep images are not frame results");
   if (spec.x != spec.full_x || spec.y != spec.full_y || spec.width != spec.full_width ||
       spec.height != spec.full_height)
@@ -45,21 +47,20 @@ std::vector<float> read_unit_channel(const std::string& path, const Camera& came
                      std::to_string(spec.width) + "x" + std::to_string(spec.height) +
                          " differs from the case camera's " + std::to_string(camera.width) + "x" +
                          std::to_string(camera.height));
-  if (spec.nchannels != 1) {
+  if (spec.channel_names.size() != 1) {
     std::string names;
-    for (const auto& n : spec.channelnames) names += (names.empty() ? "" : " ") + n;
+    for (const auto& n : spec.channel_names) names += (names.empty() ? "" : " ") + n;
     throw InputError(path, "channels",
-                     "expected exactly one channel, found " + std::to_string(spec.nchannels) +
+                     "expected exactly one channel, found " +
+                         std::to_string(spec.channel_names.size()) +
                          (names.empty() ? std::string() : " (" + names + ")"));
   }
-  const std::string channel = "channel " + spec.channelnames.at(0);
-  const OIIO::TypeDesc format = spec.channelformat(0);
-  if (format != OIIO::TypeDesc::FLOAT && format != OIIO::TypeDesc::HALF)
-    throw InputError(path, channel, "must be FLOAT or HALF, is " + std::string(format.c_str()));
+  const std::string channel = "channel " + spec.channel_names[0];
+  if (spec.channel_types[0] != PixelType::float32 && spec.channel_types[0] != PixelType::half)
+    throw InputError(path, channel, "must be FLOAT or HALF, is " + spec.channel_type_names[0]);
   std::vector<float> values(std::size_t(camera.width) * camera.height);
-  if (!in->read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, values.data()))
-    throw InputError(path, channel, "cannot be read: " + in->geterror());
-  in->close();
+  if (!in->read_channel(0, values.data()))
+    throw InputError(path, channel, "cannot be read: " + in->error());
   for (std::size_t i = 0; i < values.size(); ++i)
     if (!(values[i] >= 0.0f && values[i] <= 1.0f))
       throw InputError(path, channel + ", " + pixel_text(i, camera.width),

@@ -196,7 +196,7 @@ TEST(GBufferExr, ZeroNormalNamesThePixel) {
 TEST(GBufferExr, WriteIsAllOrNothing) {
   const TempDir dir;
   const fs::path missing_folder = dir.path() / "no_such_folder" / "gbuffer.exr";
-  EXPECT_THROW(write_gbuffer_exr(missing_folder.string(), awkward_samples()), InputError);
+  EXPECT_THROW(write_gbuffer_exr(missing_folder.string(), awkward_samples()), OutputError);
   EXPECT_FALSE(fs::exists(missing_folder));
   EXPECT_FALSE(fs::exists(missing_folder.string() + ".tmp"));
 
