@@ -133,6 +133,9 @@ int main(int argc, char** argv) {
   run->add_option("--truth-cache", options.truth_cache_dir,
                   "Keep oracle truths in this folder and reuse them for the same build and "
                   "inputs (repeated runs, ports judged on the same cases)");
+  bool no_images = false;
+  run->add_flag("--no-images", no_images,
+                "Write no PNG/EXR images (CI gating on the verdicts; results and report as usual)");
 
   std::string gbuffer_case, gbuffer_fixture, gbuffer_out;
   CLI::App* gbuffer = app.add_subcommand(
@@ -228,6 +231,7 @@ int main(int argc, char** argv) {
                      : oracle == "embree" ? OracleChoice::embree
                                           : OracleChoice::automatic;
     if (!shard.empty()) parse_shard(shard, options);
+    options.images = !no_images;
     options.progress = isatty(STDERR_FILENO) != 0;
     options.progress_lines = !options.progress;
     return run_suite(options, builtin_registry(), std::cout, std::cerr);

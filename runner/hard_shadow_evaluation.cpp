@@ -21,9 +21,9 @@ class HardShadowEvaluation : public CaseEvaluation {
  public:
   HardShadowEvaluation(const Case& c, const ViewSamples& samples,
                        const std::vector<std::uint8_t>& receiver_ambiguous, bool exact,
-                       const std::filesystem::path& out_dir, const std::string& image_folder,
+                       const ImageTarget& images, const std::string& image_folder,
                        const TruthCache* cache)
-      : samples_(samples), out_dir_(out_dir) {
+      : samples_(samples), images_(images) {
     const auto start = std::chrono::steady_clock::now();
     const std::function<HardShadowTruth()> compute = [&] {
       return exact ? exact_hard_shadow_oracle(c, samples) : embree_hard_shadow_oracle(c, samples);
@@ -60,13 +60,12 @@ class HardShadowEvaluation : public CaseEvaluation {
          << ambiguous << " ambiguous (" << std::fixed << std::setprecision(2)
          << 100.0 * ambiguous_fraction << " %)";
     oracle_.plan_line = line.str();
-    oracle_.details = {{"eps_rel", truth_.eps_rel},
-                       {"tau", truth_.tau},
-                       {"robust_lit", robust_lit},
-                       {"robust_shadowed", robust_shadowed},
-                       {"ambiguous", ambiguous},
-                       {"ambiguous_fraction", ambiguous_fraction},
-                       {"mask_image", write_oracle_images(out_dir, image_folder, samples, truth_)}};
+    oracle_.details = {{"eps_rel", truth_.eps_rel}, {"tau", truth_.tau},
+                       {"robust_lit", robust_lit},  {"robust_shadowed", robust_shadowed},
+                       {"ambiguous", ambiguous},    {"ambiguous_fraction", ambiguous_fraction}};
+    if (images.enabled)
+      oracle_.details["mask_image"] =
+          write_oracle_images(images.out_dir, image_folder, samples, truth_);
     record_truth_cache_use({cache_use}, oracle_);
   }
 
@@ -103,12 +102,14 @@ class HardShadowEvaluation : public CaseEvaluation {
                       std::to_string(h.false_shadows) + ", ambiguous " +
                       std::to_string(h.ambiguous_disagreements) + "/" +
                       std::to_string(h.ambiguous) + " differ";
-    record.images = write_algorithm_images(out_dir_, record, samples_, output.shadowed, truth_);
+    if (images_.enabled)
+      record.images =
+          write_algorithm_images(images_.out_dir, record, samples_, output.shadowed, truth_);
   }
 
  private:
   const ViewSamples& samples_;
-  std::filesystem::path out_dir_;
+  ImageTarget images_;
   HardShadowTruth truth_;
 };
 
@@ -117,8 +118,8 @@ class HardShadowEvaluation : public CaseEvaluation {
 std::unique_ptr<CaseEvaluation> evaluate_hard_shadows(
     const Case& hard_case, const ViewSamples& samples,
     const std::vector<std::uint8_t>& receiver_ambiguous, OracleChoice choice,
-    const std::filesystem::path& out_dir, const std::string& image_folder,
-    std::vector<std::string>& left_out, const TruthCache* cache) {
+    const ImageTarget& images, const std::string& image_folder, std::vector<std::string>& left_out,
+    const TruthCache* cache) {
   const bool exact =
       choice == OracleChoice::exact || (choice == OracleChoice::automatic &&
                                         hard_case.triangles.size() <= exact_oracle_triangle_limit);
@@ -130,7 +131,7 @@ std::unique_ptr<CaseEvaluation> evaluate_hard_shadows(
                   " triangles exceed its limit of " + std::to_string(exact_oracle_triangle_limit) +
                   "; the fast oracle's band is estimated");
   return std::make_unique<HardShadowEvaluation>(hard_case, samples, receiver_ambiguous, exact,
-                                                out_dir, image_folder, cache);
+                                                images, image_folder, cache);
 }
 
 }  // namespace shadowcts

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "case_evaluation.h"
+#include "image_paths.h"
 #include "shadowcts/case.h"
 #include "shadowcts/runner.h"
 #include "shadowcts/view_samples.h"
@@ -22,7 +23,7 @@ namespace shadowcts {
 std::unique_ptr<CaseEvaluation> evaluate_hard_shadows(
     const Case& hard_case, const ViewSamples& samples,
     const std::vector<std::uint8_t>& receiver_ambiguous, OracleChoice choice,
-    const std::filesystem::path& out_dir, const std::string& image_folder,
-    std::vector<std::string>& left_out, const TruthCache* cache);
+    const ImageTarget& images, const std::string& image_folder, std::vector<std::string>& left_out,
+    const TruthCache* cache);
 
 }  // namespace shadowcts

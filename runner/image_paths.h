@@ -22,6 +22,13 @@ std::string case_image_stem(const std::string& image_folder);
 // "images/<record.image_folder>/<algorithm>.<variant>.<backend>".
 std::string algorithm_image_stem(const RunRecord& record);
 
+// Where a run writes its images: under out_dir, or nowhere (`run --no-images`, for CI gating that
+// reads only the verdicts: no images to encode and no OpenImageIO to load, see core/image_codec.h).
+struct ImageTarget {
+  std::filesystem::path out_dir;
+  bool enabled = true;
+};
+
 // Writes out_dir/stem.png and out_dir/stem.exr (creating folders); returns "stem.png".
 // Throws OutputError naming the file or folder that cannot be written.
 std::string write_png_and_exr(const std::filesystem::path& out_dir, const std::string& stem,

@@ -17,10 +17,9 @@ namespace {
 
 class LightAssignmentEvaluation : public CaseEvaluation {
  public:
-  LightAssignmentEvaluation(const Case& c, const ViewSamples& samples,
-                            const std::filesystem::path& out_dir, const std::string& image_folder,
-                            const TruthCache* cache)
-      : case_(c), samples_(samples), out_dir_(out_dir) {
+  LightAssignmentEvaluation(const Case& c, const ViewSamples& samples, const ImageTarget& images,
+                            const std::string& image_folder, const TruthCache* cache)
+      : case_(c), samples_(samples), images_(images) {
     const auto start = std::chrono::steady_clock::now();
     std::vector<TruthCacheUse> cache_uses(2);
     auto truth = [&](bool normal_rule, TruthCacheUse& use) {
@@ -49,15 +48,16 @@ class LightAssignmentEvaluation : public CaseEvaluation {
       exact_count[s] = std::uint32_t(plain_.set_size(s));
     scale_ =
         std::max<std::uint32_t>(1, 4 * *std::max_element(exact_count.begin(), exact_count.end()));
-    const std::string stem = case_image_stem(image_folder) + "/oracle.lights";
-    write_png_and_exr(out_dir, stem, count_heat_map(samples, exact_count, scale_));
     oracle_.details = {{"eps_rel", plain_.eps_rel},
                        {"tau", plain_.tau},
                        {"exact_minimum", plain_.exact_minimum()},
                        {"exact_minimum_normal_rule", with_normals_.exact_minimum()},
                        {"ambiguous_pairs", plain_.ambiguous_lights.size()},
-                       {"heat_map_full_scale", scale_},
-                       {"lights_image", stem + ".png"}};
+                       {"heat_map_full_scale", scale_}};
+    if (images.enabled)
+      oracle_.details["lights_image"] =
+          write_png_and_exr(images.out_dir, case_image_stem(image_folder) + "/oracle.lights",
+                            count_heat_map(samples, exact_count, scale_));
     record_truth_cache_use(cache_uses, oracle_);
   }
 
@@ -95,21 +95,22 @@ class LightAssignmentEvaluation : public CaseEvaluation {
              << cmp.unsound_listings + cmp.samples_outside_bounds << ", lighting x"
              << cmp.lighting_ratio;
     record.headline = headline.str();
-    if (!cmp.structure_error.empty()) return;  // no per-sample list lengths to draw
+    // Without a structure, no per-sample list lengths to draw.
+    if (!cmp.structure_error.empty() || !images_.enabled) return;
     const LightLists& lists = output.light_lists;
     std::vector<std::uint32_t> length(samples_.samples.size(), 0);
     for (std::size_t s = 0; s < length.size(); ++s) {
       const std::uint32_t list = lists.list_of_sample[s];
       if (list != LightLists::no_list) length[s] = lists.offsets[list + 1] - lists.offsets[list];
     }
-    record.images = {write_png_and_exr(out_dir_, algorithm_image_stem(record) + ".lights",
+    record.images = {write_png_and_exr(images_.out_dir, algorithm_image_stem(record) + ".lights",
                                        count_heat_map(samples_, length, scale_))};
   }
 
  private:
   const Case& case_;
   const ViewSamples& samples_;
-  std::filesystem::path out_dir_;
+  ImageTarget images_;
   LightAssignmentTruth plain_, with_normals_;
   std::uint32_t scale_ = 1;
 };
@@ -117,10 +118,10 @@ class LightAssignmentEvaluation : public CaseEvaluation {
 }  // namespace
 
 std::unique_ptr<CaseEvaluation> evaluate_light_assignment(const Case& c, const ViewSamples& samples,
-                                                          const std::filesystem::path& out_dir,
+                                                          const ImageTarget& images,
                                                           const std::string& image_folder,
                                                           const TruthCache* cache) {
-  return std::make_unique<LightAssignmentEvaluation>(c, samples, out_dir, image_folder, cache);
+  return std::make_unique<LightAssignmentEvaluation>(c, samples, images, image_folder, cache);
 }
 
 }  // namespace shadowcts

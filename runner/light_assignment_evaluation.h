@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "case_evaluation.h"
+#include "image_paths.h"
 #include "shadowcts/case.h"
 #include "shadowcts/view_samples.h"
 #include "truth_cache.h"
@@ -16,7 +17,7 @@ namespace shadowcts {
 // images under images/<image_folder>/. With a cache, the truths come from it when it holds this
 // case's.
 std::unique_ptr<CaseEvaluation> evaluate_light_assignment(const Case& c, const ViewSamples& samples,
-                                                          const std::filesystem::path& out_dir,
+                                                          const ImageTarget& images,
                                                           const std::string& image_folder,
                                                           const TruthCache* cache);
 

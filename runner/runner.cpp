@@ -452,19 +452,19 @@ bool same_results(const AlgorithmOutput& a, const AlgorithmOutput& b) {
 
 std::unique_ptr<CaseEvaluation> evaluate(OutputKind kind, const Case& c, const ViewSamples& samples,
                                          const std::vector<std::uint8_t>& receiver_ambiguous,
-                                         OracleChoice choice, const std::filesystem::path& out_dir,
+                                         OracleChoice choice, const ImageTarget& images,
                                          const std::string& image_folder,
                                          std::vector<std::string>& left_out,
                                          const TruthCache* cache) {
   switch (kind) {
     case OutputKind::hard_shadow:
-      return evaluate_hard_shadows(c, samples, receiver_ambiguous, choice, out_dir, image_folder,
+      return evaluate_hard_shadows(c, samples, receiver_ambiguous, choice, images, image_folder,
                                    left_out, cache);
     case OutputKind::soft_shadow:
-      return evaluate_soft_shadows(c, samples, receiver_ambiguous, choice, out_dir, image_folder,
+      return evaluate_soft_shadows(c, samples, receiver_ambiguous, choice, images, image_folder,
                                    left_out, cache);
     case OutputKind::light_lists:
-      return evaluate_light_assignment(c, samples, out_dir, image_folder, cache);
+      return evaluate_light_assignment(c, samples, images, image_folder, cache);
   }
   throw std::logic_error("no evaluation for " + output_kind_name(kind) + " outputs");
 }
@@ -547,6 +547,7 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
 
   StagedOutput staged(target);
   const std::filesystem::path& out_dir = staged.dir();
+  const ImageTarget images{out_dir, options.images};
 
   Progress progress(options.progress, options.progress_lines, options.progress_line_seconds, err);
   std::vector<CaseSummary> summaries;
@@ -629,6 +630,7 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
     if (!c.light) summary.left_out.push_back("hard-shadow oracle: the case has no shadow light");
     if (c.ranged_lights.empty())
       summary.left_out.push_back("light-assignment oracle: the case has no ranged lights");
+    if (!options.images) summary.left_out.push_back("images (PNG/EXR): --no-images asked for none");
 
     // Oracles, only for the output kinds that something planned needs.
     std::map<OutputKind, std::unique_ptr<CaseEvaluation>> evaluations;
@@ -636,7 +638,7 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
       progress.show(step + output_kind_name(kind) + " oracle");
       evaluations[kind] =
           evaluate(kind, kind == OutputKind::hard_shadow ? hard_case : c, samples,
-                   receiver_ambiguous, options.oracle, out_dir, image_folders[case_index],
+                   receiver_ambiguous, options.oracle, images, image_folders[case_index],
                    summary.left_out, truth_cache ? &*truth_cache : nullptr);
       const OracleSummary& o = evaluations[kind]->oracle();
       summary.oracles[output_kind_name(kind)] =
@@ -701,9 +703,10 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
         for (PhaseRuns& phase : record.phases) phase.median_ms = median(phase.run_ms);
         record.counters = first.counters;
         evaluations.at(record.output)->judge(first, record);
-        for (const auto& [name, per_sample] : first.per_sample_counters)
-          record.images.push_back(
-              write_counter_heat_map(out_dir, record, samples, name, per_sample));
+        if (images.enabled)
+          for (const auto& [name, per_sample] : first.per_sample_counters)
+            record.images.push_back(
+                write_counter_heat_map(out_dir, record, samples, name, per_sample));
       } catch (const OutputError&) {
         throw;  // the tool's failure to write an image, not the algorithm's: exit 3
       } catch (const std::exception& e) {
@@ -727,8 +730,9 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
   print_summary(out, records, machine, threads);
   const std::filesystem::path shown(options.out_dir);  // as the user wrote it
   out << "wrote " << (shown / "report.html").string() << ", " << (shown / "results.json").string()
-      << ", " << (shown / "junit.xml").string() << " and images under "
-      << (shown / "images").string() << "\n";
+      << ", " << (shown / "junit.xml").string()
+      << (options.images ? " and images under " + (shown / "images").string() : " (no images)")
+      << "\n";
 
   const bool any_failure = std::any_of(records.begin(), records.end(), [](const RunRecord& r) {
     return r.verdict == Verdict::fail || r.verdict == Verdict::crash;

@@ -69,9 +69,9 @@ class SoftShadowEvaluation : public CaseEvaluation {
  public:
   SoftShadowEvaluation(const Case& c, const ViewSamples& samples,
                        const std::vector<std::uint8_t>& receiver_ambiguous, bool exact,
-                       const std::filesystem::path& out_dir, const std::string& image_folder,
+                       const ImageTarget& images, const std::string& image_folder,
                        const TruthCache* cache)
-      : samples_(samples), out_dir_(out_dir) {
+      : samples_(samples), images_(images) {
     const auto start = std::chrono::steady_clock::now();
     const std::function<SoftShadowTruth()> compute = [&] {
       return exact ? exact_soft_shadow_oracle(c, samples)
@@ -101,17 +101,14 @@ class SoftShadowEvaluation : public CaseEvaluation {
     line << truth_.method << ": " << robust << " robust, " << compared - robust << " ambiguous";
     if (!truth_.exact) line << ", error bound " << max_bound;
     oracle_.plan_line = line.str();
-    const std::string stem = case_image_stem(image_folder) + "/oracle.visibility";
-    write_png_and_exr(out_dir, stem, visibility_image(samples, truth_, [&](std::size_t i) {
-                        return truth_.visible_fraction[i];
-                      }));
-    oracle_.details = {{"eps_rel", truth_.eps_rel},
-                       {"tau", truth_.tau},
-                       {"compared", compared},
-                       {"robust", robust},
-                       {"ambiguous", compared - robust},
-                       {"max_error_bound", max_bound},
-                       {"visibility_image", stem + ".png"}};
+    oracle_.details = {{"eps_rel", truth_.eps_rel},      {"tau", truth_.tau},
+                       {"compared", compared},           {"robust", robust},
+                       {"ambiguous", compared - robust}, {"max_error_bound", max_bound}};
+    if (images.enabled)
+      oracle_.details["visibility_image"] = write_png_and_exr(
+          images.out_dir, case_image_stem(image_folder) + "/oracle.visibility",
+          visibility_image(samples, truth_,
+                           [&](std::size_t i) { return truth_.visible_fraction[i]; }));
     record_truth_cache_use({cache_use}, oracle_);
   }
 
@@ -146,19 +143,20 @@ class SoftShadowEvaluation : public CaseEvaluation {
     headline << "mean |e| " << s.mean_abs_error << ", max " << s.max_abs_error << ", leaks "
              << s.umbra_leaks;
     record.headline = headline.str();
+    if (!images_.enabled) return;
     const std::string stem = algorithm_image_stem(record);
-    record.images = {write_png_and_exr(out_dir_, stem + ".visibility",
+    record.images = {write_png_and_exr(images_.out_dir, stem + ".visibility",
                                        visibility_image(samples_, truth_,
                                                         [&](std::size_t i) {
                                                           return double(output.visible_fraction[i]);
                                                         })),
-                     write_png_and_exr(out_dir_, stem + ".error",
+                     write_png_and_exr(images_.out_dir, stem + ".error",
                                        error_image(samples_, truth_, output.visible_fraction))};
   }
 
  private:
   const ViewSamples& samples_;
-  std::filesystem::path out_dir_;
+  ImageTarget images_;
   SoftShadowTruth truth_;
 };
 
@@ -166,7 +164,7 @@ class SoftShadowEvaluation : public CaseEvaluation {
 
 std::unique_ptr<CaseEvaluation> evaluate_soft_shadows(
     const Case& c, const ViewSamples& samples, const std::vector<std::uint8_t>& receiver_ambiguous,
-    OracleChoice choice, const std::filesystem::path& out_dir, const std::string& image_folder,
+    OracleChoice choice, const ImageTarget& images, const std::string& image_folder,
     std::vector<std::string>& left_out, const TruthCache* cache) {
   const std::size_t regular = samples.count(SampleClass::regular);
   const bool exact = choice == OracleChoice::exact ||
@@ -178,7 +176,7 @@ std::unique_ptr<CaseEvaluation> evaluate_soft_shadows(
                             : std::to_string(regular) + " samples exceed its limit of " +
                                   std::to_string(exact_oracle_sample_limit)) +
                        "; figures carry the sampled oracle's error bound");
-  return std::make_unique<SoftShadowEvaluation>(c, samples, receiver_ambiguous, exact, out_dir,
+  return std::make_unique<SoftShadowEvaluation>(c, samples, receiver_ambiguous, exact, images,
                                                 image_folder, cache);
 }
 

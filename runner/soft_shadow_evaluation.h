@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "case_evaluation.h"
+#include "image_paths.h"
 #include "shadowcts/case.h"
 #include "shadowcts/runner.h"
 #include "shadowcts/view_samples.h"
@@ -21,7 +22,7 @@ namespace shadowcts {
 // could not tell apart within the band, are counted ambiguous and never judged.
 std::unique_ptr<CaseEvaluation> evaluate_soft_shadows(
     const Case& c, const ViewSamples& samples, const std::vector<std::uint8_t>& receiver_ambiguous,
-    OracleChoice choice, const std::filesystem::path& out_dir, const std::string& image_folder,
+    OracleChoice choice, const ImageTarget& images, const std::string& image_folder,
     std::vector<std::string>& left_out, const TruthCache* cache);
 
 }  // namespace shadowcts

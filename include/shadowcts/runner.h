@@ -35,6 +35,9 @@ struct RunOptions {
   // Run only the cases at positions shard_index, shard_index + shard_count, ... of the case list.
   std::uint32_t shard_index = 0;
   std::uint32_t shard_count = 1;
+  // false: no PNG/EXR images (`run --no-images`): CI gating that reads only the verdicts saves
+  // encoding them and loading OpenImageIO (~0.45 s per process); the report shows no images.
+  bool images = true;
   bool progress = false;  // progress lines on stderr (the tool sets it when stderr is a terminal)
   // Otherwise a plain progress line on stderr once a minute while a long step runs (the tool sets
   // it when stderr is not a terminal: CI logs show a long case as it happens).

@@ -153,6 +153,46 @@ TEST(Runner, ThreeShardsTogetherEqualTheUnshardedRun) {
   EXPECT_EQ(merged, records_of(whole.out_dir));
 }
 
+// `run --no-images`: the same records and verdicts, no image file, no image path, and the plan
+// says what was left out.
+TEST(Tool, NoImagesKeepsEveryVerdictAndWritesNoImage) {
+  auto records_of = [](const fs::path& dir) {
+    std::map<std::string, nlohmann::json> by_name;
+    for (auto r : nlohmann::json::parse(read_file(dir / "results.json"))["results"]) {
+      r.erase("time_ms");
+      r.erase("images");
+      by_name[r["name"]] = r;
+    }
+    return by_name;
+  };
+  RunOptions with_images = small_run(fresh_dir("with_images"), 2);
+  with_images.fixtures = {"shared_edges.1k"};
+  std::ostringstream log, err;
+  ASSERT_EQ(run_suite(with_images, builtin_registry(), log, err), exit_pass);
+
+  const fs::path dir = fresh_dir("no_images");
+  const fs::path out = dir / "out";
+  ASSERT_EQ(run_tool("run --no-images --repeat 1 --fixture shared_edges.1k --algorithm bruteforce "
+                     "--algorithm embree --algorithm ptsv:twopass --algorithm shadowmap:1k --out " +
+                         out.string(),
+                     dir),
+            exit_pass)
+      << read_file(dir / "stderr.txt");
+  EXPECT_EQ(records_of(out), records_of(with_images.out_dir));
+  for (const auto& entry : fs::recursive_directory_iterator(out))
+    EXPECT_FALSE(entry.is_regular_file() &&
+                 (entry.path().extension() == ".png" || entry.path().extension() == ".exr"))
+        << entry.path();
+  const auto results = nlohmann::json::parse(read_file(out / "results.json"));
+  for (const auto& r : results["results"])
+    EXPECT_TRUE(!r.contains("images") || r["images"].empty()) << r["name"];
+  const auto& oracle = results["cases"][0]["oracles"]["hard"];
+  EXPECT_FALSE(oracle.contains("mask_image")) << oracle.dump();
+  EXPECT_NE(read_file(dir / "stdout.txt").find("left out: images (PNG/EXR): --no-images"),
+            std::string::npos);
+  EXPECT_TRUE(fs::exists(out / "report.html"));
+}
+
 TEST(Runner, UnknownAlgorithmIsAUsageErrorBeforeAnythingIsWritten) {
   const fs::path out = fresh_dir("usage") / "never";
   RunOptions o = small_run(out, 1);
