@@ -8,13 +8,13 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "oracles/light_assignment/light_volume_predicates.h"
 #include "reference/lightassign/cluster_key.h"
 #include "reference/lightassign/light_bvh.h"
 #include "reference/lightassign/light_list_builder.h"
 #include "reference/lightassign/normal_cone.h"
 #include "reference/lightassign/unique_clusters.h"
 #include "reference/lightassign/view_frustum.h"
+#include "shadowcts/geometry/sphere_box.h"
 #include "shadowcts/phase_clock.h"
 
 namespace shadowcts {
@@ -99,7 +99,9 @@ AlgorithmOutput assign_lights_clustered(const Case& c, const ViewSamples& sample
     w.nodes_tested = bvh.traverse(out.bounds[k], [&](std::uint32_t index) {
       const RangedLight& light = c.ranged_lights[index];
       ++w.light_tests;
-      if (!sphere_meets_box(light.centre, light.range, out.bounds[k])) return;
+      if (!geometry::sphere_meets_box(light.centre, light.range, out.bounds[k].min,
+                                      out.bounds[k].max))
+        return;
       if (use_cones && light_behind_cone(cones[k], out.bounds[k], glm::dvec3(light.centre))) {
         ++w.backface_culled;
         return;

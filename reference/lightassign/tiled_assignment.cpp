@@ -9,10 +9,10 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "oracles/light_assignment/light_volume_predicates.h"
 #include "reference/lightassign/light_list_builder.h"
 #include "reference/lightassign/unique_clusters.h"
 #include "reference/lightassign/view_frustum.h"
+#include "shadowcts/geometry/sphere_box.h"
 #include "shadowcts/phase_clock.h"
 
 namespace shadowcts {
@@ -141,7 +141,8 @@ AlgorithmOutput assign_lights_tiled(const Case& c, const ViewSamples& samples,
       const RangedLight& light = c.ranged_lights[candidates[e]];
       ++w.light_tests;
       if (frustum.sphere_may_meet(sub_frusta[t], glm::dvec3(light.centre), light.range) &&
-          sphere_meets_box(light.centre, light.range, out.bounds[t]))
+          geometry::sphere_meets_box(light.centre, light.range, out.bounds[t].min,
+                                     out.bounds[t].max))
         list.push_back(candidates[e]);
     }
     return w;

@@ -13,8 +13,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "shadowcts/geometry/sphere_box.h"
 #include "simd/lightassign/lightassign_kernels.h"
-#include "simd/lightassign/sphere_box.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace shadowcts::simd {
@@ -93,8 +93,8 @@ HWY_INLINE void sphere_box_filter(D d, const V cx, const V cy, const V cz, const
     distance2 = hn::Add(distance2, hn::Mul(gap, gap));
     magnitude2 = hn::Add(magnitude2, hn::Mul(b, b));
   }
-  const V error = hn::Add(hn::Mul(hn::Set(d, sphere_box_error_scale), magnitude2),
-                          hn::Set(d, sphere_box_underflow_guard));
+  const V error = hn::Add(hn::Mul(hn::Set(d, geometry::sphere_box_error_scale), magnitude2),
+                          hn::Set(d, geometry::sphere_box_underflow_guard));
   inside = mask_bits(d, hn::Lt(hn::Add(distance2, error), r2));
   outside = mask_bits(d, hn::Gt(hn::Sub(distance2, error), r2));
 }
@@ -147,7 +147,8 @@ ListWork QueryLightBvh(const LightBvhLanes& bvh, const Aabb& box,
         const std::uint32_t index = bvh.order[first + std::size_t(i)];
         bool meets = (inside >> i) & 1u;
         if (!meets && !((outside >> i) & 1u))
-          meets = sphere_meets_box_exact(bvh.lights[index].centre, bvh.lights[index].range, box);
+          meets = geometry::sphere_meets_box_exact(bvh.lights[index].centre,
+                                                   bvh.lights[index].range, box.min, box.max);
         if (meets) list.push_back(index);
       }
       continue;
@@ -232,7 +233,8 @@ ListWork CullTileCandidates(const std::vector<RangedLight>& lights, const ViewFr
       const std::uint32_t light = candidates[start + std::size_t(i)];
       bool meets = (inside >> i) & 1u;
       if (!meets && !((outside >> i) & 1u))
-        meets = sphere_meets_box_exact(lights[light].centre, lights[light].range, tile.box);
+        meets = geometry::sphere_meets_box_exact(lights[light].centre, lights[light].range,
+                                                 tile.box.min, tile.box.max);
       if (meets) list.push_back(light);
     }
   }

@@ -10,8 +10,6 @@ set(above_algorithms oracles runner cli)
 set(shares_oracle_code
   reference/embree/hard_shadow_embree.cpp
   reference/lightassign/brute_assignment.cpp
-  reference/lightassign/clustered_assignment.cpp
-  reference/lightassign/tiled_assignment.cpp
   reference/softtile/shadow_cone.cpp
   reference/softtile/softtile_algorithm.h
   reference/softtile/softtile_gather.cpp
