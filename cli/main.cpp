@@ -235,6 +235,7 @@ int main(int argc, char** argv) {
   // The worker process the parent spawns (internal).
   certify_command->add_flag("--worker", certify_worker_mode)->group("");
   certify_command->add_option("--variant", worker_options.variant)->group("");
+  certify_command->add_flag("--probe", worker_options.probe)->group("");
   certify_command->add_option("--worker-result", worker_options.result_file)->group("");
   std::string verify_dir;
   CLI::App* certify_verify = certify_command->add_subcommand(
@@ -281,6 +282,10 @@ int main(int argc, char** argv) {
     if (*certify_command) {
       if (*certify_threads_option) certify_options.threads = certify_threads;
       if (certify_worker_mode) {
+        if (worker_options.probe) {
+          worker_options.library = certify_options.library;
+          return certify_worker(worker_options, std::cout, std::cerr);
+        }
         if (certify_options.fixtures.size() != 1)
           throw UsageError("certify --worker: give exactly one --fixture");
         worker_options.library = certify_options.library;

@@ -260,6 +260,43 @@ std::string run_end_text(const WorkerRun& run, double timeout_s) {
   return "the worker did not start";
 }
 
+// Loads and validates the library in a worker process first, so that a library that crashes or
+// hangs while it is loaded or negotiates is reported as a bad library (exit 2), not a crash of
+// the certifying process. The probe's output goes to a temporary file, never to --out.
+void probe_library(const std::string& exe, const std::string& library) {
+  std::string log_name = (fs::temp_directory_path() / "shadowcts-probe-XXXXXX").string();
+  const int fd = ::mkstemp(log_name.data());
+  if (fd < 0) throw std::runtime_error("cannot create a temporary file for the probe: " + log_name);
+  ::close(fd);
+  const fs::path log(log_name);
+  const double timeout_s = 60;
+  const WorkerRun run =
+      run_worker({exe, "certify", "--worker", "--probe", "--backend", library}, log, timeout_s);
+  std::ifstream in(log);
+  std::ostringstream text;
+  text << in.rdbuf();
+  std::error_code ec;
+  fs::remove(log, ec);
+  std::string message = text.str();
+  while (!message.empty() && message.back() == '\n') message.pop_back();
+  const std::string field = SHADOWCTS_BACKEND_NEGOTIATE_SYMBOL;
+  if (run.end == WorkerRun::End::signalled)
+    throw InputError(library, field,
+                     "the library crashed while it was loaded or negotiated (signal " +
+                         std::to_string(run.code) + ", " + ::strsignal(run.code) + ")");
+  if (run.end == WorkerRun::End::timed_out)
+    throw InputError(library, field, "loading and negotiation did not finish within 60 s");
+  if (run.end == WorkerRun::End::exited && run.code == exit_bad_input) {
+    const std::string prefix = "shadowcts: bad input: ";
+    const std::size_t at = message.rfind(prefix);
+    throw UsageError(at == std::string::npos ? message : message.substr(at + prefix.size()));
+  }
+  if (run.end != WorkerRun::End::exited || run.code != 0)
+    throw InputError(
+        library, field,
+        "loading it in a worker process failed (" + run_end_text(run, timeout_s) + "): " + message);
+}
+
 struct WorkerOutcome {
   WorkerRun run;
   bool judged = false;  // the runner finished and wrote its record
@@ -602,7 +639,7 @@ void seal(ordered_json& certificate) {
 }
 
 void print_entry(std::ostream& out, const Entry& e) {
-  out << "  " << std::left << std::setw(13) << e.verdict << std::setw(28) << e.case_name
+  out << "  " << std::left << std::setw(13) << e.verdict << std::setw(28) << e.case_name << " "
       << std::setw(16) << e.variant << std::right << std::fixed << std::setprecision(2)
       << std::setw(10) << e.time_ms << " ms  " << std::defaultfloat << e.reason << "\n"
       << std::flush;
@@ -695,6 +732,7 @@ std::string certificate_content_sha256(const ordered_json& certificate) {
 
 int certify_worker(const CertifyWorkerOptions& w, std::ostream& out, std::ostream& err) {
   const PluginBackend backend(w.library);
+  if (w.probe) return exit_pass;  // loaded and validated
   std::size_t index = backend.variants().size();
   for (std::size_t k = 0; k < backend.variants().size(); ++k)
     if (backend.variants()[k].name == w.variant) index = k;
@@ -719,6 +757,8 @@ int certify_worker(const CertifyWorkerOptions& w, std::ostream& out, std::ostrea
 int certify(const CertifyOptions& options, std::ostream& out, std::ostream& err) {
   // Everything is checked before anything is written: the library, the options, the cases.
   if (options.library.empty()) throw UsageError("certify: give --backend LIBRARY");
+  const std::string exe = self_executable();
+  probe_library(exe, options.library);
   const PluginBackend backend(options.library);
   if (!(options.timeout_s > 0)) throw UsageError("--timeout: must be positive");
   const std::vector<std::string> all_cases =
@@ -736,7 +776,6 @@ int certify(const CertifyOptions& options, std::ostream& out, std::ostream& err)
     throw UsageError("shard " + std::to_string(options.shard_index) + "/" +
                      std::to_string(options.shard_count) + " holds no case");
   const fs::path target = checked_certification_dir(options.out_dir);
-  const std::string exe = self_executable();
   const ordered_json library = library_json(backend, options.library);
 
   Staging staging(target);

@@ -43,8 +43,11 @@ int certify(const CertifyOptions& options, std::ostream& out, std::ostream& err)
 struct CertifyWorkerOptions {
   std::string library, fixture, variant, out_dir, result_file;
   std::optional<std::uint32_t> threads;
+  bool probe = false;  // only load and validate the library (exit 2 naming the field when bad)
 };
 
+// `shadowcts certify --worker --probe`: loads and validates the library only (the parent does this
+// first, so that a library that crashes while loading is a bad library, not a crash of certify).
 // `shadowcts certify --worker`: one case x variant through the runner into out_dir, then the
 // output hashes of every call into result_file. Returns the runner's exit code.
 int certify_worker(const CertifyWorkerOptions& options, std::ostream& out, std::ostream& err);

@@ -1,6 +1,8 @@
 /* Deliberately bad plugin libraries for tests/certify: one library per BAD_* macro, each with one
  * defect that `shadowcts certify` must reject before writing anything (exit 2, the message
  * naming the library and the field). */
+#include <signal.h>
+
 #include "shadowcts/backend_abi.h"
 
 static int32_t run_nothing(void* context, const ShadowctsScene* scene, ShadowctsOutputs* outputs,
@@ -54,6 +56,8 @@ SHADOWCTS_BACKEND_EXPORT int32_t shadowcts_backend_negotiate(uint32_t requested_
   table->variant_count = 0;
 #elif defined(BAD_EMPTY_NAME)
   table->name = "";
+#elif defined(BAD_CRASH_IN_NEGOTIATE)
+  raise(SIGSEGV);
 #else
 #error "define one BAD_* macro"
 #endif

@@ -212,7 +212,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadLibrary{"zero_size", BAD_PLUGIN_ZERO_SIZE, "variants[0].max_triangles"},
         BadLibrary{"null_function", BAD_PLUGIN_NULL_FUNCTION, "variants[0].run"},
         BadLibrary{"no_variants", BAD_PLUGIN_NO_VARIANTS, "variant_count"},
-        BadLibrary{"empty_name", BAD_PLUGIN_EMPTY_NAME, "name: is empty"}),
+        BadLibrary{"empty_name", BAD_PLUGIN_EMPTY_NAME, "name: is empty"},
+        BadLibrary{"crash_in_negotiate", BAD_PLUGIN_CRASH_IN_NEGOTIATE,
+                   "shadowcts_backend_negotiate: the library crashed"}),
     [](const ::testing::TestParamInfo<BadLibrary>& param_info) {
       return std::string(param_info.param.name);
     });
