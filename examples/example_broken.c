@@ -5,10 +5,14 @@
  *                      edges of the closed boxes                                    -> Fail
  *   gate_house.*       a segmentation fault                                         -> Crash
  *   closed_shapes.*    never returns                                                -> Timeout
- *   foliage.*          state kept across calls: every second call in a process answers one
- *                      sample differently                                           -> Fail
+ *   foliage.*          state kept across processes: every second process (a marker file in
+ *                      $TMPDIR or /tmp alternates) answers one sample differently,
+ *                      so certify's rerun in a fresh process differs               -> Fail
  * Every other case gets the correct answers. */
+#include <fcntl.h>
 #include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -18,7 +22,28 @@ static int starts_with(const char* text, const char* prefix) {
   return strncmp(text, prefix, strlen(prefix)) == 0;
 }
 
-static unsigned calls; /* the "state kept across calls" fault */
+/* The "state kept across processes" fault: 1 on every second call of this function in any
+ * process, alternating through a marker file (created when absent, removed when present). */
+static int second_run(const char* case_name) {
+  const char* dir = getenv("TMPDIR");
+  char path[512];
+  snprintf(path, sizeof path, "%s/shadowcts_example_broken_%ld_%s", dir && *dir ? dir : "/tmp",
+           (long)getuid(), case_name);
+  const int fd = open(path, O_WRONLY | O_CREAT | O_EXCL, 0600);
+  if (fd >= 0) {
+    close(fd);
+    return 0;
+  }
+  unlink(path);
+  return 1;
+}
+
+/* Decided once per process: both calls within one worker answer alike. */
+static int flipped_process(const char* case_name) {
+  static int decided = -1;
+  if (decided < 0) decided = second_run(case_name);
+  return decided;
+}
 
 static int32_t run_broken(void* context, const ShadowctsScene* scene, ShadowctsOutputs* outputs,
                           char* message, size_t message_capacity) {
@@ -35,7 +60,7 @@ static int32_t run_broken(void* context, const ShadowctsScene* scene, ShadowctsO
       starts_with(name, "ground_blockers.") ? EXAMPLE_FAULT_EDGE_CRACK : EXAMPLE_FAULT_NONE;
   const int32_t status = example_bruteforce_run(scene, outputs, fault, message, message_capacity);
   if (status == SHADOWCTS_STATUS_OK && starts_with(name, "foliage.") && scene->sample_count > 0 &&
-      (calls++ % 2) == 1)
+      flipped_process(name))
     outputs->shadowed[scene->sample_count / 2] ^= 1;
   return status;
 }
