@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/prctl.h>
 #include <sys/utsname.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -492,6 +493,24 @@ class Staging {
   bool committed_ = false;
 };
 
+// Image paths in a run's case summary (keys ending in "image" or "images", as the report reads
+// them) are relative to that run's folder: make them relative to the certification folder.
+void prefix_image_paths(ordered_json& j, const fs::path& folder) {
+  auto ends_with = [](const std::string& text, const std::string& end) {
+    return text.size() >= end.size() &&
+           text.compare(text.size() - end.size(), end.size(), end) == 0;
+  };
+  if (!j.is_object()) return;
+  for (auto& [key, value] : j.items()) {
+    if (ends_with(key, "image") && value.is_string())
+      value = (folder / value.get<std::string>()).string();
+    else if (ends_with(key, "images") && value.is_array())
+      for (auto& path : value)
+        if (path.is_string()) path = (folder / path.get<std::string>()).string();
+    prefix_image_paths(value, folder);
+  }
+}
+
 // results.json, junit.xml and report.html of the whole certification, from the first runs'
 // folders; records of runs that died (Crash, Timeout) and of reruns that differed are added or
 // overridden here. Timeout is a Crash there (the results schema's vocabulary), its reason says
@@ -519,6 +538,7 @@ void write_run_outputs(const fs::path& dir, const std::vector<Entry>& entries,
       for (const ordered_json& r : results.at("results"))
         if (r.at("variant") == e.variant) record = r;
       if (!results.at("cases").empty()) case_summary = results.at("cases").front();
+      prefix_image_paths(case_summary, e.folder);
     }
     if (case_summary.is_null())
       case_summary = {{"name", e.case_name},
@@ -731,6 +751,10 @@ std::string certificate_content_sha256(const ordered_json& certificate) {
 }
 
 int certify_worker(const CertifyWorkerOptions& w, std::ostream& out, std::ostream& err) {
+  // A worker lives in a process group of its own (the parent kills the group on a timeout), so a
+  // Ctrl-C at the terminal does not reach it: it goes when its parent goes.
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  if (::getppid() == 1) return exit_internal_error;  // the parent is already gone
   const PluginBackend backend(w.library);
   if (w.probe) return exit_pass;  // loaded and validated
   std::size_t index = backend.variants().size();

@@ -78,7 +78,16 @@ TEST(Certify, ExamplePortPassesInShardsThatMergeAndVerify) {
   EXPECT_EQ(merged["results"][1]["case"], "closed_shapes.100");
   const ordered_json results = ordered_json::parse(read_file(dir / "merged" / "results.json"));
   EXPECT_EQ(results["results"].size(), 2u);
-  EXPECT_TRUE(fs::exists(dir / "merged" / "report.html"));
+  // Every image the merged page shows is there (the runs' paths, made relative to the folder).
+  const std::string page = read_file(dir / "merged" / "report.html");
+  std::size_t images = 0;
+  for (std::size_t at = page.find("src=\""); at != std::string::npos;
+       at = page.find("src=\"", at + 1), ++images) {
+    const std::size_t end = page.find('"', at + 5);
+    const std::string src = page.substr(at + 5, end - at - 5);
+    EXPECT_TRUE(fs::exists(dir / "merged" / src)) << src;
+  }
+  EXPECT_GE(images, 4u);
 
   // Merging a shard twice (and leaving one out) is refused, and writes nothing.
   EXPECT_EQ(run_tool("certify merge twice shard0 shard0", dir), 2);
