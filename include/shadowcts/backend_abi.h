@@ -81,11 +81,10 @@ typedef enum ShadowctsOutputKind {
 #define SHADOWCTS_LIGHT_RANGED 8u   /* light assignment: spheres and spot lights */
 #define SHADOWCTS_LIGHT_ALL_KINDS 15u
 
-/* Bits of ShadowctsVariant::flags. */
-#define SHADOWCTS_VARIANT_NEEDS_CLOSED_MESHES \
-  1u                                     /* NotSupported unless every caster mesh is closed */
-#define SHADOWCTS_VARIANT_APPROXIMATE 2u /* approximate by design: mismatches are QualityWarning \
-                                          */
+/* Bits of ShadowctsVariant::flags. NEEDS_CLOSED_MESHES: NotSupported unless every caster mesh is
+ * closed. APPROXIMATE: approximate by design, robust mismatches are QualityWarning, not Fail. */
+#define SHADOWCTS_VARIANT_NEEDS_CLOSED_MESHES 1u
+#define SHADOWCTS_VARIANT_APPROXIMATE 2u
 #define SHADOWCTS_VARIANT_ALL_FLAGS 3u
 
 /* Longest name the suite accepts (identity strings, variant names), without the terminating 0. */
