@@ -98,11 +98,12 @@ std::string joined_command(const std::vector<std::string>& args) {
   return line;
 }
 
-// A name safe for a folder: [A-Za-z0-9._-], others as '_'.
+// A name safe for a folder: [A-Za-z0-9._+-], others as '_'.
 std::string folder_name(const std::string& name) {
   std::string safe;
   for (char ch : name)
-    safe += (std::isalnum(static_cast<unsigned char>(ch)) || ch == '.' || ch == '_' || ch == '-')
+    safe += (std::isalnum(static_cast<unsigned char>(ch)) || ch == '.' || ch == '_' || ch == '-' ||
+             ch == '+')
                 ? ch
                 : '_';
   return safe.empty() || safe == "." || safe == ".." ? "_" + safe : safe;

@@ -64,10 +64,13 @@ std::uint32_t lights_of_output(std::uint32_t output) {
   }
 }
 
-// A static string of the library: non-null, non-empty, printable ASCII, at most the ABI's length;
-// `identifier`: [a-z0-9_-] only (it becomes part of record names and paths).
+// What a static string of the library may hold: printable ASCII; names: [a-z0-9_-] (they become
+// part of record names and paths); variant names also '+', as the suite's own ("explicit+planes").
+enum class Characters { printable, name, variant };
+
+// A static string of the library: non-null, non-empty, at most the ABI's length.
 std::string checked_string(const std::string& library, const std::string& field, const char* text,
-                           bool identifier) {
+                           Characters allowed) {
   if (!text) throw InputError(library, field, "is a null pointer (must be a string)");
   const std::size_t length = ::strnlen(text, SHADOWCTS_MAX_NAME_LENGTH + 1);
   if (length == 0) throw InputError(library, field, "is empty");
@@ -76,13 +79,15 @@ std::string checked_string(const std::string& library, const std::string& field,
                      "is longer than " + std::to_string(SHADOWCTS_MAX_NAME_LENGTH) + " characters");
   std::string value(text, length);
   for (char ch : value) {
-    const bool ok =
-        identifier ? (ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') || ch == '_' || ch == '-'
-                   : ch >= 0x20 && ch < 0x7f;
+    const bool name_character = (ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') || ch == '_' ||
+                                ch == '-' || (allowed == Characters::variant && ch == '+');
+    const bool ok = allowed == Characters::printable ? ch >= 0x20 && ch < 0x7f : name_character;
     if (!ok)
       throw InputError(library, field,
                        "'" + value + "' holds a character other than " +
-                           (identifier ? "a-z, 0-9, '_' and '-'" : "printable ASCII"));
+                           (allowed == Characters::printable ? "printable ASCII"
+                            : allowed == Characters::name    ? "a-z, 0-9, '_' and '-'"
+                                                             : "a-z, 0-9, '_', '-' and '+'"));
   }
   return value;
 }
@@ -153,9 +158,9 @@ PluginBackend::PluginBackend(const std::string& path) : path_(path) {
                      "the library changed it to " + std::to_string(table_.struct_size) +
                          " (the suite's table has " + std::to_string(sizeof(ShadowctsBackend)) +
                          " bytes)");
-  name_ = checked_string(path, "name", table_.name, true);
-  version_ = checked_string(path, "version", table_.version, false);
-  build_id_ = checked_string(path, "build_id", table_.build_id, false);
+  name_ = checked_string(path, "name", table_.name, Characters::name);
+  version_ = checked_string(path, "version", table_.version, Characters::printable);
+  build_id_ = checked_string(path, "build_id", table_.build_id, Characters::printable);
   if (table_.variant_count == 0) throw InputError(path, "variant_count", "is 0 (at least 1)");
   if (table_.variant_count > 1024)
     throw InputError(path, "variant_count",
@@ -165,7 +170,7 @@ PluginBackend::PluginBackend(const std::string& path) : path_(path) {
     const ShadowctsVariant& v = table_.variants[k];
     const std::string at = "variants[" + std::to_string(k) + "]";
     PluginVariantInfo info;
-    info.name = checked_string(path, at + ".name", v.name, true);
+    info.name = checked_string(path, at + ".name", v.name, Characters::variant);
     for (const PluginVariantInfo& earlier : variants_)
       if (earlier.name == info.name)
         throw InputError(path, at + ".name", "'" + info.name + "' is declared twice");

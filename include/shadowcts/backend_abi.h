@@ -190,7 +190,7 @@ typedef int32_t (*ShadowctsRunFunction)(void* context, const ShadowctsScene* sce
 
 /* One variant the port implements, with its capabilities declared up front. */
 typedef struct ShadowctsVariant {
-  const char* name;     /* non-empty, [a-z0-9_-], at most SHADOWCTS_MAX_NAME_LENGTH */
+  const char* name;     /* non-empty, [a-z0-9_+-], at most SHADOWCTS_MAX_NAME_LENGTH */
   uint32_t algorithm;   /* ShadowctsAlgorithm */
   uint32_t output_kind; /* ShadowctsOutputKind; must match the algorithm */
   uint32_t light_kinds; /* SHADOWCTS_LIGHT_* bits; non-zero, fitting the output kind */
