@@ -161,7 +161,7 @@ TEST(Certify, BrokenPortGivesFailCrashTimeoutFailAndTheRunCompletes) {
   const int code = testing::run_shell(
       "TMPDIR=\"$PWD\" exec '" SHADOWCTS_TOOL "' certify --backend '" EXAMPLE_BROKEN
       "' --fixture ground_blockers.100 --fixture gate_house.1000 --fixture closed_shapes.100 "
-      "--fixture foliage.100 --timeout 4 --threads 1 --out out\n",
+      "--fixture foliage.100 --timeout 6 --threads 1 --out out\n",
       dir);
   const std::string log = read_file(dir / "stdout.txt") + read_file(dir / "stderr.txt");
   ASSERT_EQ(code, 1) << log;
