@@ -867,13 +867,17 @@ int certify(const CertifyOptions& options, std::ostream& out, std::ostream& err)
     ++counts[e.verdict];
     good += allowed(e);
   }
+  const bool any_pass = counts.count("Pass") != 0;
   out << "\n" << entries.size() << " case x variant results:";
   for (const auto& [verdict, count] : counts) out << " " << count << " " << verdict;
   out << "\nwrote " << (fs::path(options.out_dir) / "certificate.json").string() << " beside "
       << "report.html, results.json and junit.xml"
-      << (good == entries.size() ? "" : "; the certification does not pass") << "\n";
+      << (good != entries.size() ? "; the certification does not pass"
+          : !any_pass ? "; nothing was judged (every case NotSupported): it certifies nothing"
+                      : "")
+      << "\n";
   (void)err;
-  return good == entries.size() ? exit_pass : exit_conformance_failure;
+  return good == entries.size() && any_pass ? exit_pass : exit_conformance_failure;
 }
 
 int verify_certificate(const std::string& dir, std::ostream& out) {
@@ -957,6 +961,11 @@ int verify_certificate(const std::string& dir, std::ostream& out) {
         if (!seen.count({name, v})) {
           if (++missing <= 5) reject("case " + name + " variant " + v + " is missing");
         }
+    if (std::none_of(c.at("results").begin(), c.at("results").end(),
+                     [](const ordered_json& r) { return r.value("verdict", "") == "Pass"; }))
+      reject(
+          "no case x variant is Pass: every one was NotSupported, the certificate certifies "
+          "nothing");
     if (missing > 5)
       reject(std::to_string(missing - 5) + " more case x variant results are missing");
     const ordered_json& shard = c.at("shard");

@@ -37,7 +37,7 @@ struct CertifyOptions {
 // workers' run folders under cases/, certificate.json) completely or not at all. A bad library
 // (missing, no entry point, another ABI version, nonsense capabilities, a null function) or bad
 // options throw InputError / UsageError before anything is written. Returns 0 when every case x
-// variant is Pass or declared NotSupported, 1 otherwise.
+// variant is Pass or declared NotSupported and at least one is Pass, 1 otherwise.
 int certify(const CertifyOptions& options, std::ostream& out, std::ostream& err);
 
 struct CertifyWorkerOptions {

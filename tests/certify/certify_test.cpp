@@ -188,6 +188,22 @@ TEST(Certify, BrokenPortGivesFailCrashTimeoutFailAndTheRunCompletes) {
   EXPECT_EQ(run_tool("certify verify out", dir), 1);
 }
 
+TEST(Certify, NothingJudgedCertifiesNothing) {
+  // The example declares hard shadows only; many_lights has no shadow light: NotSupported, as
+  // declared, and nothing else.
+  const fs::path dir = fresh_dir("certify_nothing");
+  EXPECT_EQ(run_tool(std::string("certify --backend '") + EXAMPLE_BRUTEFORCE_C +
+                         "' --fixture many_lights.100 --timeout 60 --threads 1 --out out",
+                     dir),
+            1);
+  const ordered_json c = read_certificate(dir / "out");
+  ASSERT_EQ(c["results"].size(), 1u);
+  EXPECT_EQ(c["results"][0]["verdict"], "NotSupported");
+  EXPECT_TRUE(c["results"][0]["declared_not_supported"].get<bool>());
+  EXPECT_EQ(run_tool("certify verify out", dir), 1);
+  EXPECT_NE(read_file(dir / "stdout.txt").find("certifies nothing"), std::string::npos);
+}
+
 struct BadLibrary {
   const char* name;
   std::string library;
