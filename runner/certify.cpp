@@ -360,7 +360,7 @@ WorkerOutcome run_case_variant(const std::string& exe, const CertifyOptions& opt
   return outcome;
 }
 
-ordered_json run_json(const WorkerOutcome& o, double timeout_s) {
+ordered_json run_json(const WorkerOutcome& o) {
   ordered_json j;
   j["end"] = o.run.end == WorkerRun::End::exited      ? "exited"
              : o.run.end == WorkerRun::End::signalled ? "signal"
@@ -372,18 +372,17 @@ ordered_json run_json(const WorkerOutcome& o, double timeout_s) {
   if (o.judged) j["verdict"] = o.record.at("verdict");
   j["output_sha256"] = o.hashes.empty() ? std::string() : o.hashes.front();
   if (!o.problem.empty()) j["problem"] = o.problem;
-  (void)timeout_s;
   return j;
 }
 
 // The verdict of one case x variant from its two runs.
 Entry decide(const std::string& case_name, const std::string& variant, const WorkerOutcome& first,
-             const std::optional<WorkerOutcome>& second, double timeout_s) {
+             const std::optional<WorkerOutcome>& second) {
   Entry e;
   e.case_name = case_name;
   e.variant = variant;
-  e.runs.push_back(run_json(first, timeout_s));
-  if (second) e.runs.push_back(run_json(*second, timeout_s));
+  e.runs.push_back(run_json(first));
+  if (second) e.runs.push_back(run_json(*second));
   auto unjudged = [&](const WorkerOutcome& o, const std::string& which) {
     e.verdict = o.run.end == WorkerRun::End::timed_out ? "Timeout" : "Crash";
     e.reason = which + o.problem;
@@ -826,7 +825,7 @@ int certify(const CertifyOptions& options, std::ostream& out, std::ostream& err)
         std::error_code ec;
         fs::remove_all(dir / "run-2" / "run", ec);
       }
-      Entry e = decide(fixture, v.name, first, second, options.timeout_s);
+      Entry e = decide(fixture, v.name, first, second);
       if (first.judged) e.folder = (rel / "run-1" / "run").string();
       if (e.record_name.empty()) {
         e.output = output_kind_name(v.output);
@@ -836,6 +835,11 @@ int certify(const CertifyOptions& options, std::ostream& out, std::ostream& err)
             e.output + "." + e.algorithm + "." + v.name + "." + backend.name() + "." + fixture;
       }
       print_entry(out, e);
+      if (e.verdict == "Crash" || e.verdict == "Timeout")
+        err << "  the worker's output: "
+            << (fs::path(options.out_dir) / rel / (first.judged ? "run-2" : "run-1") / "worker.log")
+                   .string()
+            << "\n";
       entries.push_back(std::move(e));
     }
 
@@ -876,7 +880,6 @@ int certify(const CertifyOptions& options, std::ostream& out, std::ostream& err)
           : !any_pass ? "; nothing was judged (every case NotSupported): it certifies nothing"
                       : "")
       << "\n";
-  (void)err;
   return good == entries.size() && any_pass ? exit_pass : exit_conformance_failure;
 }
 
