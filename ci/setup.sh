@@ -12,7 +12,7 @@ packages=(
   libembree-dev libcgal-dev libgmp-dev libmpfr-dev libopenmesh-dev libopenimageio-dev
   libtinygltf-dev libglm-dev libhwy-dev libtbb-dev libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev assimp-testmodels chromium clang-14 libclang-rt-14-dev
-  libboost-context-dev libthrust-dev
+  libboost-context-dev libthrust-dev libssl-dev
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -13,6 +13,7 @@
 
 #include "list_command.h"
 #include "report_command.h"
+#include "runner/certify.h"
 #include "runner/external_result.h"
 #include "runner/scene_export.h"
 #include "shadowcts/case_manifest.h"
@@ -194,6 +195,66 @@ int main(int argc, char** argv) {
       ->needs(baseline_option)
       ->capture_default_str();
 
+  CertifyOptions certify_options;
+  CertifyWorkerOptions worker_options;
+  bool certify_worker_mode = false;
+  std::string certify_shard;
+  std::uint32_t certify_threads = 0;
+  CLI::App* certify_command = app.add_subcommand(
+      "certify",
+      "Certify a port loaded from a shared library (C ABI: include/shadowcts/backend_abi.h): every "
+      "case of a profile in worker processes, twice; writes a certificate (docs/certify.md)");
+  certify_command->require_subcommand(0, 1);
+  certify_command->add_option("--backend", certify_options.library,
+                              "The port's shared library (e.g. libport.so)");
+  certify_command
+      ->add_option("--profile", certify_options.profile,
+                   "Cases: conformance (the default fixtures), stiff (the numerical traps) or all")
+      ->check(CLI::IsMember({"conformance", "stiff", "all"}))
+      ->capture_default_str();
+  certify_command->add_option(
+      "--fixture", certify_options.fixtures,
+      "Only these fixtures instead of a profile (repeatable; the certificate says \"custom\")");
+  certify_command->add_option("--out", certify_options.out_dir, "Output folder (new or empty)");
+  certify_command
+      ->add_option("--timeout", certify_options.timeout_s,
+                   "Seconds one worker process (one run of one case x variant) may take before it "
+                   "is killed and the case is a Timeout")
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            double value = 0;
+            if (CLI::detail::lexical_cast(text, value) && value >= 0.1 && value <= 86400)
+              return std::string();
+            return "must be a number of seconds in [0.1, 86400], is '" + text + "'";
+          },
+          "in [0.1, 86400]"))
+      ->capture_default_str();
+  certify_command->add_option(
+      "--shard", certify_shard,
+      "Certify only shard I of N (I/N, 0-based); join with `certify merge`");
+  auto* certify_threads_option =
+      certify_command->add_option("--threads", certify_threads, "Worker threads per process")
+          ->check(CLI::Range(1, 4096));
+  // The worker process the parent spawns (internal).
+  certify_command->add_flag("--worker", certify_worker_mode)->group("");
+  certify_command->add_option("--variant", worker_options.variant)->group("");
+  certify_command->add_flag("--probe", worker_options.probe)->group("");
+  certify_command->add_option("--worker-result", worker_options.result_file)->group("");
+  std::string verify_dir;
+  CLI::App* certify_verify = certify_command->add_subcommand(
+      "verify",
+      "Check a certificate: content hash, suite, case list, library, completeness, "
+      "statuses; exit 0 accepted, 1 rejected");
+  certify_verify->add_option("dir", verify_dir, "The certification folder")->required();
+  std::string merge_out;
+  std::vector<std::string> merge_dirs;
+  CLI::App* certify_merge = certify_command->add_subcommand(
+      "merge", "Join the shard certifications of one library into one certification folder");
+  certify_merge->add_option("out", merge_out, "Output folder (new or empty)")->required();
+  certify_merge->add_option("dirs", merge_dirs, "The shards' folders")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -218,6 +279,33 @@ int main(int argc, char** argv) {
                                            : load_case_manifest(export_case_file),
                   export_out, std::cout);
       return exit_pass;
+    }
+    if (*certify_verify) return verify_certificate(verify_dir, std::cout);
+    if (*certify_merge) return merge_certificates(merge_out, merge_dirs, std::cout);
+    if (*certify_command) {
+      if (*certify_threads_option) certify_options.threads = certify_threads;
+      if (certify_worker_mode) {
+        if (worker_options.probe) {
+          worker_options.library = certify_options.library;
+          return certify_worker(worker_options, std::cout, std::cerr);
+        }
+        if (certify_options.fixtures.size() != 1)
+          throw UsageError("certify --worker: give exactly one --fixture");
+        worker_options.library = certify_options.library;
+        worker_options.fixture = certify_options.fixtures.front();
+        worker_options.out_dir = certify_options.out_dir;
+        worker_options.threads = certify_options.threads;
+        return certify_worker(worker_options, std::cout, std::cerr);
+      }
+      if (certify_options.out_dir.empty()) throw UsageError("certify: give --out DIR");
+      if (!certify_shard.empty()) {
+        RunOptions shard_options;
+        parse_shard(certify_shard, shard_options);
+        certify_options.shard_index = shard_options.shard_index;
+        certify_options.shard_count = shard_options.shard_count;
+      }
+      certify_options.command_line.assign(argv, argv + argc);
+      return certify(certify_options, std::cout, std::cerr);
     }
     if (*check)
       return check_frame(check_case, check_out, isatty(STDERR_FILENO) != 0, std::cout, std::cerr);

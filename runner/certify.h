@@ -1,0 +1,80 @@
+#pragma once
+// `shadowcts certify`: certifies a port the suite has never seen, loaded from a shared library
+// through the C ABI (include/shadowcts/backend_abi.h). Every case x variant of a profile runs in
+// worker processes (a crash is a Crash verdict, a hang a Timeout, and the run goes on), twice, in
+// separate processes (different outputs are a Fail); the outputs are judged by the runner like a
+// registered algorithm's, and DIR/certificate.json records what was run and what came out, for
+// `shadowcts certify verify` to check. docs/certify.md.
+#include <cstdint>
+#include <filesystem>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "shadowcts/case.h"
+
+namespace shadowcts {
+
+inline constexpr const char* certificate_schema = "shadowcts.certificate/1";
+
+struct CertifyOptions {
+  std::string library;                  // the port's shared library
+  std::string profile = "conformance";  // conformance | stiff | all
+  // Instead of a whole profile: these fixtures only (the certificate says "custom"; tests and
+  // quick checks).
+  std::vector<std::string> fixtures;
+  std::string out_dir;
+  double timeout_s = 300;  // per worker process (one run of one case x variant)
+  std::uint32_t shard_index = 0, shard_count = 1;
+  std::optional<std::uint32_t> threads;
+  std::vector<std::string> command_line;  // argv, recorded in the certificate
+};
+
+// The parent: plans, runs the workers, writes DIR (results.json, junit.xml, report.html, the
+// workers' run folders under cases/, certificate.json) completely or not at all. A bad library
+// (missing, no entry point, another ABI version, nonsense capabilities, a null function) or bad
+// options throw InputError / UsageError before anything is written. Returns 0 when every case x
+// variant is Pass or declared NotSupported and at least one is Pass, 1 otherwise.
+int certify(const CertifyOptions& options, std::ostream& out, std::ostream& err);
+
+struct CertifyWorkerOptions {
+  std::string library, fixture, variant, out_dir, result_file;
+  std::optional<std::uint32_t> threads;
+  bool probe = false;  // only load and validate the library (exit 2 naming the field when bad)
+};
+
+// `shadowcts certify --worker --probe`: loads and validates the library only (the parent does this
+// first, so that a library that crashes while loading is a bad library, not a crash of certify).
+// `shadowcts certify --worker`: one case x variant through the runner into out_dir, then the
+// output hashes of every call into result_file. Returns the runner's exit code.
+int certify_worker(const CertifyWorkerOptions& options, std::ostream& out, std::ostream& err);
+
+// `shadowcts certify verify DIR`: 0 accepted, 1 rejected (each reason printed); throws
+// UsageError / InputError when DIR holds no readable certificate.
+int verify_certificate(const std::string& dir, std::ostream& out);
+
+// `shadowcts certify merge OUT DIR...`: joins shard certifications into OUT (which verify then
+// checks like one certification). Throws UsageError / InputError when the shards do not belong
+// together (another suite, library, profile or shard count; a shard twice or missing; an edited
+// shard), before anything is written.
+int merge_certificates(const std::string& out_dir, const std::vector<std::string>& dirs,
+                       std::ostream& out);
+
+// The cases of a profile, in order. Throws UsageError for an unknown profile.
+std::vector<std::string> profile_cases(const std::string& profile);
+
+// SHA-256 of what a case gives an algorithm and the oracles (geometry, meshes, lights, camera,
+// eps_rel, seed), in a fixed byte order.
+std::string case_input_sha256(const Case& c);
+
+// SHA-256 of the certificate's canonical content: the JSON without "certificate_sha256", dumped
+// compactly in its key order.
+std::string certificate_content_sha256(const nlohmann::ordered_json& certificate);
+
+// The suite's version (git describe at configure time, or the project version).
+std::string suite_version();
+
+}  // namespace shadowcts

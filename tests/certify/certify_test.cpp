@@ -1,0 +1,243 @@
+// Issue 23: `shadowcts certify` of ports loaded through the C ABI. The example port in plain C
+// passes (certified in two shards, merged, verified); the broken example gives exactly Fail,
+// Crash, Timeout and Fail while the run completes; bad libraries exit 2 naming the library and
+// the field and write nothing; verify rejects edited, incomplete and duplicated certificates.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "runner/certify.h"
+#include "tests/cli/tool_run.h"
+
+namespace shadowcts {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::ordered_json;
+using testing::fresh_dir;
+using testing::read_file;
+using testing::run_tool;
+
+ordered_json read_certificate(const fs::path& dir) {
+  return ordered_json::parse(read_file(dir / "certificate.json"));
+}
+
+void write_certificate(const fs::path& dir, const ordered_json& c) {
+  std::ofstream(dir / "certificate.json", std::ios::trunc) << c.dump(2) << "\n";
+}
+
+// The content hash recomputed, as someone who edits a certificate on purpose would.
+void reseal(ordered_json& c) {
+  c.erase("certificate_sha256");
+  c["certificate_sha256"] = certificate_content_sha256(c);
+}
+
+// Copies the certification folder (only its certificate matters to verify) to a new folder.
+fs::path copy_of(const fs::path& dir, const std::string& name) {
+  const fs::path to = fresh_dir(name);
+  fs::copy_file(dir / "certificate.json", to / "certificate.json");
+  return to;
+}
+
+TEST(Certify, ExamplePortPassesInShardsThatMergeAndVerify) {
+  const fs::path dir = fresh_dir("certify_example");
+  // Two small cases, one per light kind the example declares (point and directional).
+  const std::string common = std::string("certify --backend '") + EXAMPLE_BRUTEFORCE_C +
+                             "' --fixture ground_blockers.100 --fixture closed_shapes.100 "
+                             "--timeout 120 --threads 1";
+  ASSERT_EQ(run_tool(common + " --shard 0/2 --out shard0", dir), 0)
+      << read_file(dir / "stdout.txt") << read_file(dir / "stderr.txt");
+  ASSERT_EQ(run_tool(common + " --shard 1/2 --out shard1", dir), 0)
+      << read_file(dir / "stdout.txt") << read_file(dir / "stderr.txt");
+  for (const char* shard : {"shard0", "shard1"}) {
+    const ordered_json c = read_certificate(dir / shard);
+    ASSERT_EQ(c["results"].size(), 1u);
+    EXPECT_EQ(c["results"][0]["verdict"], "Pass") << c["results"][0].dump();
+    EXPECT_EQ(c["results"][0]["runs"].size(), 2u);
+    EXPECT_EQ(c["cases"].size(), 2u);  // the whole case list, in every shard
+    for (const char* file : {"results.json", "junit.xml", "report.html"})
+      EXPECT_TRUE(fs::exists(dir / shard / file)) << shard << "/" << file;
+  }
+  // A shard alone is incomplete.
+  EXPECT_EQ(run_tool("certify verify shard0", dir), 1);
+  EXPECT_NE(read_file(dir / "stdout.txt").find("certify merge"), std::string::npos)
+      << read_file(dir / "stdout.txt");
+
+  ASSERT_EQ(run_tool("certify merge merged shard1 shard0", dir), 0)
+      << read_file(dir / "stderr.txt");
+  ASSERT_EQ(run_tool("certify verify merged", dir), 0) << read_file(dir / "stdout.txt");
+  EXPECT_NE(read_file(dir / "stdout.txt").find("ACCEPTED"), std::string::npos);
+  const ordered_json merged = read_certificate(dir / "merged");
+  ASSERT_EQ(merged["results"].size(), 2u);
+  EXPECT_EQ(merged["results"][0]["case"], "ground_blockers.100");  // case-list order
+  EXPECT_EQ(merged["results"][1]["case"], "closed_shapes.100");
+  const ordered_json results = ordered_json::parse(read_file(dir / "merged" / "results.json"));
+  EXPECT_EQ(results["results"].size(), 2u);
+  // Every image the merged page shows is there (the runs' paths, made relative to the folder).
+  const std::string page = read_file(dir / "merged" / "report.html");
+  std::size_t images = 0;
+  for (std::size_t at = page.find("src=\""); at != std::string::npos;
+       at = page.find("src=\"", at + 1), ++images) {
+    const std::size_t end = page.find('"', at + 5);
+    const std::string src = page.substr(at + 5, end - at - 5);
+    EXPECT_TRUE(fs::exists(dir / "merged" / src)) << src;
+  }
+  EXPECT_GE(images, 4u);
+
+  // Merging a shard twice (and leaving one out) is refused, and writes nothing.
+  EXPECT_EQ(run_tool("certify merge twice shard0 shard0", dir), 2);
+  EXPECT_FALSE(fs::exists(dir / "twice"));
+
+  {
+    SCOPED_TRACE("an edited verdict");
+    const fs::path edited = copy_of(dir / "merged", "certify_edited");
+    ordered_json c = read_certificate(edited);
+    c["results"][0]["time_ms"] = 1.0;
+    write_certificate(edited, c);
+    EXPECT_EQ(run_tool("certify verify '" + edited.string() + "'", dir), 1);
+    EXPECT_NE(read_file(dir / "stdout.txt").find("edited"), std::string::npos)
+        << read_file(dir / "stdout.txt");
+  }
+  {
+    SCOPED_TRACE("a rerun's output hash changed, content hash recomputed");
+    const fs::path edited = copy_of(dir / "merged", "certify_forged");
+    ordered_json c = read_certificate(edited);
+    c["results"][1]["runs"][1]["output_sha256"] = std::string(64, '0');
+    reseal(c);
+    write_certificate(edited, c);
+    EXPECT_EQ(run_tool("certify verify '" + edited.string() + "'", dir), 1);
+    EXPECT_NE(read_file(dir / "stdout.txt").find("two runs of the same output hash"),
+              std::string::npos)
+        << read_file(dir / "stdout.txt");
+  }
+  {
+    SCOPED_TRACE("a case missing");
+    const fs::path edited = copy_of(dir / "merged", "certify_incomplete");
+    ordered_json c = read_certificate(edited);
+    c["results"].erase(c["results"].begin() + 1);
+    reseal(c);
+    write_certificate(edited, c);
+    EXPECT_EQ(run_tool("certify verify '" + edited.string() + "'", dir), 1);
+    EXPECT_NE(read_file(dir / "stdout.txt").find("closed_shapes.100 variant watertight is missing"),
+              std::string::npos)
+        << read_file(dir / "stdout.txt");
+  }
+  {
+    SCOPED_TRACE("a case twice");
+    const fs::path edited = copy_of(dir / "merged", "certify_duplicated");
+    ordered_json c = read_certificate(edited);
+    c["results"].push_back(c["results"][0]);
+    reseal(c);
+    write_certificate(edited, c);
+    EXPECT_EQ(run_tool("certify verify '" + edited.string() + "'", dir), 1);
+    EXPECT_NE(read_file(dir / "stdout.txt").find("appears more than once"), std::string::npos)
+        << read_file(dir / "stdout.txt");
+  }
+  {
+    SCOPED_TRACE("a case of the list dropped from the list and the results");
+    const fs::path edited = copy_of(dir / "merged", "certify_shortened");
+    ordered_json c = read_certificate(edited);
+    c["cases"].erase(c["cases"].begin() + 1);
+    c["results"].erase(c["results"].begin() + 1);
+    reseal(c);
+    write_certificate(edited, c);
+    EXPECT_EQ(run_tool("certify verify '" + edited.string() + "'", dir), 1);
+    EXPECT_NE(read_file(dir / "stdout.txt").find("case_list_sha256 does not match"),
+              std::string::npos)
+        << read_file(dir / "stdout.txt");
+  }
+}
+
+TEST(Certify, BrokenPortGivesFailCrashTimeoutFailAndTheRunCompletes) {
+  const fs::path dir = fresh_dir("certify_broken");
+  // example_broken.c: a leak at shared edges (ground_blockers), a segfault (gate_house), a hang
+  // (closed_shapes) and other answers in every second process (foliage).
+  // TMPDIR: where the broken example keeps its marker file between processes.
+  const int code = testing::run_shell(
+      "TMPDIR=\"$PWD\" exec '" SHADOWCTS_TOOL "' certify --backend '" EXAMPLE_BROKEN
+      "' --fixture ground_blockers.100 --fixture gate_house.1000 --fixture closed_shapes.100 "
+      "--fixture foliage.100 --timeout 6 --threads 1 --out out\n",
+      dir);
+  const std::string log = read_file(dir / "stdout.txt") + read_file(dir / "stderr.txt");
+  ASSERT_EQ(code, 1) << log;
+  const ordered_json c = read_certificate(dir / "out");
+  ASSERT_EQ(c["results"].size(), 4u) << log;
+  std::vector<std::string> verdicts;
+  for (const ordered_json& r : c["results"]) verdicts.push_back(r["verdict"]);
+  EXPECT_EQ(verdicts, (std::vector<std::string>{"Fail", "Crash", "Timeout", "Fail"})) << log;
+  EXPECT_NE(c["results"][0]["reason"].get<std::string>().find("leaks"), std::string::npos);
+  EXPECT_NE(c["results"][1]["reason"].get<std::string>().find("signal 11"), std::string::npos);
+  EXPECT_NE(c["results"][3]["reason"].get<std::string>().find(
+                "nondeterministic: the rerun in a separate process gave other outputs"),
+            std::string::npos)
+      << c["results"][3].dump();
+  EXPECT_EQ(c["results"][3]["runs"].size(), 2u);
+  // The usual outputs, with the crash and the timeout as Crash records.
+  const ordered_json results = ordered_json::parse(read_file(dir / "out" / "results.json"));
+  ASSERT_EQ(results["results"].size(), 4u);
+  EXPECT_EQ(results["results"][2]["verdict"], "Crash");
+  EXPECT_EQ(results["results"][2]["reason"].get<std::string>().rfind("Timeout", 0), 0u);
+  const std::string junit = read_file(dir / "out" / "junit.xml");
+  EXPECT_NE(junit.find("type=\"Crash\""), std::string::npos);
+  EXPECT_TRUE(fs::exists(dir / "out" / "report.html"));
+  EXPECT_EQ(run_tool("certify verify out", dir), 1);
+}
+
+TEST(Certify, NothingJudgedCertifiesNothing) {
+  // The example declares hard shadows only; many_lights has no shadow light: NotSupported, as
+  // declared, and nothing else.
+  const fs::path dir = fresh_dir("certify_nothing");
+  EXPECT_EQ(run_tool(std::string("certify --backend '") + EXAMPLE_BRUTEFORCE_C +
+                         "' --fixture many_lights.100 --timeout 60 --threads 1 --out out",
+                     dir),
+            1);
+  const ordered_json c = read_certificate(dir / "out");
+  ASSERT_EQ(c["results"].size(), 1u);
+  EXPECT_EQ(c["results"][0]["verdict"], "NotSupported");
+  EXPECT_TRUE(c["results"][0]["declared_not_supported"].get<bool>());
+  EXPECT_EQ(run_tool("certify verify out", dir), 1);
+  EXPECT_NE(read_file(dir / "stdout.txt").find("certifies nothing"), std::string::npos);
+}
+
+struct BadLibrary {
+  const char* name;
+  std::string library;
+  const char* field;  // the message names it
+};
+
+// One test for all of them: each case costs a few process starts, not a whole certification.
+TEST(Certify, EveryBadLibraryExitsTwoNamingLibraryAndFieldAndWritesNothing) {
+  const BadLibrary bad_libraries[] = {
+      {"missing_file", "/nonexistent/libport.so", "library file"},
+      {"no_entry_point", BAD_PLUGIN_NO_ENTRY_POINT, "shadowcts_backend_negotiate"},
+      {"abi_version", BAD_PLUGIN_ABI_VERSION, "abi_version"},
+      {"unknown_algorithm", BAD_PLUGIN_UNKNOWN_ALGORITHM, "variants[0].algorithm"},
+      {"zero_size", BAD_PLUGIN_ZERO_SIZE, "variants[0].max_triangles"},
+      {"null_function", BAD_PLUGIN_NULL_FUNCTION, "variants[0].run"},
+      {"no_variants", BAD_PLUGIN_NO_VARIANTS, "variant_count"},
+      {"empty_name", BAD_PLUGIN_EMPTY_NAME, "name: is empty"},
+      {"crash_in_negotiate", BAD_PLUGIN_CRASH_IN_NEGOTIATE,
+       "shadowcts_backend_negotiate: the library crashed"}};
+  for (const BadLibrary& bad : bad_libraries) {
+    SCOPED_TRACE(bad.name);
+    const fs::path dir = fresh_dir(std::string("certify_bad_") + bad.name);
+    EXPECT_EQ(run_tool("certify --backend '" + bad.library +
+                           "' --fixture ground_blockers.100 --out out --timeout 5",
+                       dir),
+              2);
+    const std::string message = read_file(dir / "stderr.txt");
+    EXPECT_NE(message.find(bad.library), std::string::npos) << message;
+    EXPECT_NE(message.find(bad.field), std::string::npos) << message;
+    EXPECT_FALSE(fs::exists(dir / "out"));
+    for (const fs::directory_entry& entry : fs::directory_iterator(dir))
+      EXPECT_NE(entry.path().filename().string().rfind("out.", 0), 0u) << entry.path();
+  }
+}
+
+}  // namespace
+}  // namespace shadowcts
