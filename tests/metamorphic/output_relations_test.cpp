@@ -1,7 +1,8 @@
 // Metamorphic relations for the soft-shadow and light-assignment outputs (issue 25), in the style
 // of metamorphic_test.cpp: exact transforms of a case and of its view samples (scaling by 2^k,
-// axis permutations and mirrors, triangle order, light order) must not change what the exact
-// oracles say, and must not change an algorithm's answer beyond what the transform allows.
+// axis permutations: rotations for light lists, a mirror too for soft shadows; triangle order,
+// light order) must not change what the exact oracles say, and must not change an algorithm's
+// answer beyond what the transform allows.
 //
 // - Light lists: the exact light sets and their band are invariant (each light renamed by the
 //   light order). Every registered light-assignment algorithm x variant x backend must list every
