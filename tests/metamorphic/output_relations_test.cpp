@@ -260,6 +260,14 @@ struct AlgorithmParam {
   std::string id, backend, variant;
 };
 
+// Readable parameter values in test logs.
+void PrintTo(const AlgorithmParam& p, std::ostream* os) {
+  *os << p.id << ":" << p.variant << " [" << p.backend << "]";
+}
+void PrintTo(const LightsParam& p, std::ostream* os) {
+  *os << p.relation << " on " << p.fixture;
+}
+
 std::string algorithm_test_name(const testing::TestParamInfo<AlgorithmParam>& param) {
   return test_name(param.param.id + "_" + param.param.variant + "_" + param.param.backend);
 }
