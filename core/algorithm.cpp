@@ -54,6 +54,10 @@ SoftErrorBudget Algorithm::soft_error_budget(const std::string&) const {
   return {};
 }
 
+double Algorithm::robust_mismatch_ceiling(const std::string&) const {
+  return 0.0;
+}
+
 AlgorithmOutput Algorithm::run(const Case& c, const ViewSamples& samples,
                                const std::string& variant) const {
   return run(prepare_scene(c, samples), variant);

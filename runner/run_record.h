@@ -40,6 +40,7 @@ struct RunRecord {
   std::string algorithm, variant, backend;
   OutputKind output = OutputKind::hard_shadow;
   bool approximate = false;     // Capabilities::approximate
+  double mismatch_ceiling = 0;  // approximate: Algorithm::robust_mismatch_ceiling(variant)
   SoftErrorBudget soft_budget;  // soft_shadow outputs: what the variant declares
   Verdict verdict = Verdict::pass;
   std::string reason;

@@ -391,6 +391,7 @@ RunRecord new_record(const Case& c, const std::string& selector, const std::stri
   record.backend = meta.backend;
   record.output = meta.capabilities.output;
   record.approximate = meta.capabilities.approximate;
+  if (record.approximate) record.mismatch_ceiling = algorithm.robust_mismatch_ceiling(variant);
   if (record.output == OutputKind::soft_shadow)
     record.soft_budget = algorithm.soft_error_budget(variant);
   // An engine's result (shadowcts check) is not in any registry: its manifest reruns it.

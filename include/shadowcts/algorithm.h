@@ -22,7 +22,8 @@ struct Capabilities {
   bool ranged_lights = false;
   bool needs_closed_meshes = false;
   // Approximate by design (shadow maps): robust mismatches are its error figures, reported as
-  // QualityWarning instead of Fail.
+  // QualityWarning instead of Fail while their rate stays within the variant's declared ceiling
+  // (Algorithm::robust_mismatch_ceiling); beyond it the verdict is Fail.
   bool approximate = false;
   // Upper bound on (regular samples x caster triangles) the algorithm is run on; 0 means none.
   // Brute force uses it so that the plan leaves it out of cases it would take minutes on.
@@ -100,6 +101,12 @@ class Algorithm {
 
   // soft_shadow outputs: the variant's declared error budget. The default claims exactness.
   virtual SoftErrorBudget soft_error_budget(const std::string& variant) const;
+
+  // Approximate hard-shadow algorithms (Capabilities::approximate): the largest robust mismatch
+  // rate (robust mismatches / robust samples, results.json's robust_mismatch_rate) the variant
+  // declares it stays within; above it the verdict is Fail, at or below it QualityWarning. The
+  // default, 0, allows no robust mismatch (an approximate algorithm must declare its ceiling).
+  virtual double robust_mismatch_ceiling(const std::string& variant) const;
 
   // The phases run() times separately for this variant, e.g. {"build", "query"}: "build" makes
   // the structure the samples are answered with (acceleration structure, hierarchy, tree,

@@ -50,7 +50,7 @@ TEST(Runner, WritesResultsJunitAndImagesAndPasses) {
   for (const auto& r : results["results"]) {
     if (r["verdict"] == "NotSupported") continue;
     if (r["algorithm"] == "shadowmap") {
-      // Approximate by design: its mismatches are figures, never a Fail.
+      // Approximate by design: its mismatches, within its declared ceiling, are figures.
       EXPECT_TRUE(r["verdict"] == "Pass" || r["verdict"] == "QualityWarning") << r.dump();
     } else {
       EXPECT_EQ(r["verdict"], "Pass") << r.dump();

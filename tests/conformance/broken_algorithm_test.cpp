@@ -8,6 +8,8 @@
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
+#include "shadowcts/fixtures.h"
+#include "shadowcts/hard_shadow_oracle.h"
 #include "shadowcts/registry.h"
 #include "shadowcts/runner.h"
 
@@ -125,6 +127,155 @@ TEST(BrokenAlgorithm, AMissingEdgeTestCastsFalseShadows) {
   const auto& r = record(results, "missing_edge");
   EXPECT_EQ(r["verdict"], "Fail");
   EXPECT_GT(r["error"]["false_shadows"].get<int>(), 0);
+}
+
+// --- Approximate algorithms: the ceiling on the robust mismatch rate. ------------------------
+
+const Algorithm& registered_shadowmap() {
+  const Algorithm* a = builtin_registry().find("shadowmap", "reference");
+  if (!a) throw std::runtime_error("no shadowmap [reference] registered");
+  return *a;
+}
+
+// The registered shadow map, broken: its answer inverted on every regular sample but every 50th.
+// Wrong on about 98 % of the robust samples; it declares the shadow map's own ceilings.
+class InvertedShadowMap : public Algorithm {
+ public:
+  InvertedShadowMap() : info_(registered_shadowmap().info()) {
+    info_.id = "inverted_shadowmap";
+    info_.backend = "test";
+  }
+  const AlgorithmInfo& info() const override { return info_; }
+  double robust_mismatch_ceiling(const std::string& variant) const override {
+    return registered_shadowmap().robust_mismatch_ceiling(variant);
+  }
+  std::vector<std::string> timed_phases(const std::string& variant) const override {
+    return registered_shadowmap().timed_phases(variant);
+  }
+  AlgorithmOutput run(const PreparedScene& scene, const std::string& variant) const override {
+    AlgorithmOutput out = registered_shadowmap().run(scene, variant);
+    std::size_t regular = 0;
+    for (std::size_t i = 0; i < out.shadowed.size(); ++i)
+      if (scene.view_samples.samples[i].sample_class == SampleClass::regular && regular++ % 50 != 0)
+        out.shadowed[i] ^= 1;
+    return out;
+  }
+
+ private:
+  AlgorithmInfo info_;
+};
+
+// An approximate algorithm wrong on exactly `wrong` robust samples (the first ones, by the exact
+// oracle), declaring `ceiling`.
+class WrongOnSomeRobustSamples : public Algorithm {
+ public:
+  WrongOnSomeRobustSamples(std::string id, std::size_t wrong, double ceiling)
+      : wrong_(wrong), ceiling_(ceiling) {
+    info_.id = std::move(id);
+    info_.backend = "test";
+    info_.variants = {"approximate"};
+    info_.capabilities.point_light = info_.capabilities.directional_light = true;
+    info_.capabilities.approximate = true;
+  }
+  const AlgorithmInfo& info() const override { return info_; }
+  double robust_mismatch_ceiling(const std::string&) const override { return ceiling_; }
+  AlgorithmOutput run(const PreparedScene& scene, const std::string&) const override {
+    const HardShadowTruth truth = exact_hard_shadow_oracle(scene.source, scene.view_samples);
+    AlgorithmOutput out;
+    out.shadowed = truth.shadowed;
+    std::size_t flipped = 0;
+    for (std::size_t i = 0; i < out.shadowed.size() && flipped < wrong_; ++i)
+      if (truth.band[i] == BandClass::robust_lit || truth.band[i] == BandClass::robust_shadowed) {
+        out.shadowed[i] ^= 1;
+        ++flipped;
+      }
+    return out;
+  }
+
+ private:
+  AlgorithmInfo info_;
+  std::size_t wrong_;
+  double ceiling_;
+};
+
+nlohmann::json run_registry(const Registry& registry, const std::string& fixture,
+                            const std::string& name, int expected_exit,
+                            std::vector<AlgorithmSelection> algorithms = {}) {
+  const fs::path out = fs::temp_directory_path() / ("shadowcts_broken_" + name);
+  fs::remove_all(out);
+  RunOptions options;
+  options.fixtures = {fixture};
+  options.algorithms = std::move(algorithms);
+  options.out_dir = out.string();
+  options.repeats = 1;
+  std::ostringstream log, err;
+  EXPECT_EQ(run_suite(options, registry, log, err), expected_exit) << log.str() << err.str();
+  std::ifstream in(out / "results.json");
+  auto results = nlohmann::json::parse(in);
+  fs::remove_all(out);
+  return results;
+}
+
+// The small point-light stiff scene (128 x 128): a cube map's case.
+const char* const approximate_fixture = "stiff.walls_on_a_floor";
+
+TEST(ApproximateCeiling, ShadowMapsDeclareACeilingBelowNinetySevenPercent) {
+  for (const std::string& variant : registered_shadowmap().info().variants) {
+    const double ceiling = registered_shadowmap().robust_mismatch_ceiling(variant);
+    EXPECT_GT(ceiling, 0.0) << variant;
+    EXPECT_LT(ceiling, 0.97) << variant;
+  }
+}
+
+// The biased maps (the 4k and 8k maps cost seconds to rasterize: 1k and 2k stand for them; the
+// unbiased map's acne makes its inversion right on a tenth of the samples, and its ceiling, like
+// every other, is checked against 0.97 above).
+TEST(ApproximateCeiling, AShadowMapWrongOnNinetySevenPercentFails) {
+  Registry registry;
+  registry.add(std::make_unique<InvertedShadowMap>());
+  const auto results =
+      run_registry(registry, approximate_fixture, "inverted_shadowmap", exit_conformance_failure,
+                   {{"inverted_shadowmap", "1k"}, {"inverted_shadowmap", "2k"}});
+  ASSERT_EQ(results["results"].size(), 2u);
+  for (const auto& r : results["results"]) {
+    EXPECT_EQ(r["verdict"], "Fail") << r["name"] << ": " << r["reason"];
+    EXPECT_GE(r["error"]["robust_mismatch_rate"].get<double>(), 0.97) << r["name"];
+    EXPECT_EQ(r["error"]["mismatch_ceiling"].get<double>(),
+              registered_shadowmap().robust_mismatch_ceiling(r["variant"].get<std::string>()));
+    EXPECT_NE(r["reason"].get<std::string>().find("above the declared ceiling"), std::string::npos)
+        << r["reason"];
+  }
+}
+
+TEST(ApproximateCeiling, AtTheCeilingQualityWarningOneMoreMismatchFail) {
+  const Case c = make_fixture(approximate_fixture);
+  const HardShadowTruth truth = exact_hard_shadow_oracle(c, generate_view_samples(c));
+  std::size_t robust = 0;
+  for (const BandClass b : truth.band)
+    robust += b == BandClass::robust_lit || b == BandClass::robust_shadowed;
+  ASSERT_GT(robust, 1000u);
+  // The shadow map's own ceiling, and the most mismatches within it (the runner's rate is the
+  // double quotient, compared with >).
+  const double ceiling = registered_shadowmap().robust_mismatch_ceiling("2k");
+  std::size_t at = std::size_t(ceiling * double(robust));
+  while (at > 0 && double(at) / double(robust) > ceiling) --at;
+  while (double(at + 1) / double(robust) <= ceiling) ++at;
+  ASSERT_GT(at, 0u);
+  Registry registry;
+  registry.add(std::make_unique<WrongOnSomeRobustSamples>("at_ceiling", at, ceiling));
+  registry.add(std::make_unique<WrongOnSomeRobustSamples>("above_ceiling", at + 1, ceiling));
+  const auto results =
+      run_registry(registry, approximate_fixture, "ceiling_line", exit_conformance_failure);
+  const auto& within = record(results, "at_ceiling");
+  EXPECT_EQ(within["verdict"], "QualityWarning") << within["reason"];
+  EXPECT_EQ(within["error"]["leaks"].get<std::size_t>() +
+                within["error"]["false_shadows"].get<std::size_t>(),
+            at);
+  const auto& beyond = record(results, "above_ceiling");
+  EXPECT_EQ(beyond["verdict"], "Fail") << beyond["reason"];
+  EXPECT_EQ(beyond["error"]["leaks"].get<std::size_t>() +
+                beyond["error"]["false_shadows"].get<std::size_t>(),
+            at + 1);
 }
 
 }  // namespace

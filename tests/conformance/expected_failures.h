@@ -46,6 +46,28 @@ inline constexpr ExpectedFailure expected_failures[] = {
     {"hard.bruteforce.float32.cuda*.stiff.light_1ulp_off_caster_face",
      "the brute-force kernel's float watertight segment test, as metric's: the crossing of the "
      "face's plane within ~1e-8 of the segment's end at L rounds past the light"},
+    // Shadow maps beyond their declared ceiling on the robust mismatch rate (measured
+    // 2026-12-02; the ceilings are in reference/shadowmap/shadowmap_algorithm.cpp). The biased
+    // maps only: the unbiased map's ceiling (0.6) covers these.
+    {"hard.shadowmap.[1248]k.reference.stiff.light_at_caster_vertex",
+     "a shadow map's blind spot: the light touches a caster, and the cube map's near plane (1e-4 "
+     "of the scene scale) clips the part of it around the light away, so the map misses the "
+     "caster that shadows most of the scene (robust mismatch rate 0.94)"},
+    {"hard.shadowmap.[1248]k.reference.stiff.light_on_caster_edge",
+     "the same near-plane blind spot: the light inside a caster's edge (rate 0.94)"},
+    {"hard.shadowmap.[1248]k.reference.stiff.light_1ulp_off_caster_edge",
+     "the same near-plane blind spot: the light a float step off a caster's edge (rate 0.92-0.94)"},
+    {"hard.shadowmap.[1248]k.reference.stiff.light_in_caster_face",
+     "the same near-plane blind spot: the light inside a caster's face (rate 0.94)"},
+    {"hard.shadowmap.[1248]k.reference.stiff.light_1ulp_off_caster_face",
+     "the same near-plane blind spot: the light a float step off a caster's face (rate "
+     "0.92-0.95)"},
+    {"hard.shadowmap.[1248]k.reference.stiff.light_1e-6_from_caster",
+     "the same near-plane blind spot: the light 1e-6 beside a caster's edge (rate 0.49-0.52)"},
+    {"hard.shadowmap.*.reference.stiff.grazing_receivers",
+     "the sun 2^-10 rad above the ground: a texel of the fitted orthographic map covers about a "
+     "thousand times its width of ground, so the depth test decides most lit ground wrongly "
+     "(rate 0.33-0.86); no resolution or bias covers a grazing light"},
 };
 
 inline const ExpectedFailure* expected_failure(const std::string& record) {

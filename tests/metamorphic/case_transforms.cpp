@@ -90,13 +90,32 @@ CaseWithSamples flip_winding(const CaseWithSamples& in) {
   return out;
 }
 
-CaseWithSamples shuffle_triangles(const CaseWithSamples& in, std::uint64_t seed) {
-  const std::size_t n = in.c.triangles.size();
-  std::vector<std::uint32_t> order(n);  // order[new] = old
+namespace {
+
+// order[new] = old, a pseudo-random permutation of n: Fisher-Yates with our own index draw
+// (std::shuffle's sequence is implementation-defined).
+std::vector<std::uint32_t> random_order(std::size_t n, std::uint64_t seed) {
+  std::vector<std::uint32_t> order(n);
   std::iota(order.begin(), order.end(), 0u);
   std::mt19937_64 random(seed);
-  // Fisher-Yates with our own index draw: std::shuffle's sequence is implementation-defined.
   for (std::size_t i = n; i > 1; --i) std::swap(order[i - 1], order[random() % i]);
+  return order;
+}
+
+}  // namespace
+
+CaseWithSamples shuffle_lights(const CaseWithSamples& in, std::uint64_t seed,
+                               std::vector<std::uint32_t>& old_index) {
+  old_index = random_order(in.c.ranged_lights.size(), seed);
+  CaseWithSamples out = in;
+  for (std::size_t k = 0; k < old_index.size(); ++k)
+    out.c.ranged_lights[k] = in.c.ranged_lights[old_index[k]];
+  return out;
+}
+
+CaseWithSamples shuffle_triangles(const CaseWithSamples& in, std::uint64_t seed) {
+  const std::size_t n = in.c.triangles.size();
+  const std::vector<std::uint32_t> order = random_order(n, seed);  // order[new] = old
   std::vector<std::uint32_t> new_index(n);
   CaseWithSamples out = in;
   for (std::size_t k = 0; k < n; ++k) {

@@ -5,6 +5,7 @@
 // scene, and a robust shadow answer must not change.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "shadowcts/case.h"
 #include "shadowcts/view_samples.h"
@@ -36,6 +37,11 @@ CaseWithSamples open_meshes(const CaseWithSamples& in);
 
 // Triangles in a pseudo-random order (deterministic for the seed); receivers remapped.
 CaseWithSamples shuffle_triangles(const CaseWithSamples& in, std::uint64_t seed);
+
+// Ranged lights in a pseudo-random order (deterministic for the seed); `old_index` receives, per
+// light of the result, its index in the input.
+CaseWithSamples shuffle_lights(const CaseWithSamples& in, std::uint64_t seed,
+                               std::vector<std::uint32_t>& old_index);
 
 // Splits every triangle that receives no sample at an exactly representable point of its longest
 // edge (the midpoint, else a quarter point, else the next edge) into two triangles sharing the
