@@ -73,10 +73,11 @@ SHADOWCTS_HD inline Expansion<1> expansion_of(double x) {
 SHADOWCTS_HD inline Expansion<2> difference(double a, double b) {
   double d = 0.0, error = 0.0;
   two_sum(a, -b, d, error);
+  // Fixed slots, no stores at a computed index: the caller's copy then stays in registers.
   Expansion<2> e;
-  e.size = 0;
-  if (error != 0.0) e.component[e.size++] = error;
-  if (d != 0.0) e.component[e.size++] = d;
+  e.component[0] = error != 0.0 ? error : d;
+  e.component[1] = d;
+  e.size = (error != 0.0) + (d != 0.0);
   return e;
 }
 
@@ -154,8 +155,9 @@ SHADOWCTS_HD inline Expansion<2 * N * M> product(const Expansion<N>& e, const Ex
 // fits wherever e fits, and the largest component approximates the value to within one ulp.
 template <int N>
 SHADOWCTS_HD inline Expansion<N> compressed(const Expansion<N>& e) {
-  Expansion<N> g = e;
-  if (e.size < 2) return g;
+  if (e.size < 2) return e;
+  // g's components are written (from the top down) before they are read: no copy of e's array.
+  Expansion<N> g;
   int bottom = e.size - 1;
   double q = e.component[e.size - 1];
   for (int i = e.size - 2; i >= 0; --i) {
