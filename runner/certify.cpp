@@ -513,8 +513,7 @@ void prefix_image_paths(ordered_json& j, const fs::path& folder) {
 
 // results.json, junit.xml and report.html of the whole certification, from the first runs'
 // folders; records of runs that died (Crash, Timeout) and of reruns that differed are added or
-// overridden here. Timeout is a Crash there (the results schema's vocabulary), its reason says
-// "Timeout".
+// overridden here.
 void write_run_outputs(const fs::path& dir, const std::vector<Entry>& entries,
                        const std::string& library) {
   ordered_json root;
@@ -569,9 +568,9 @@ void write_run_outputs(const fs::path& dir, const std::vector<Entry>& entries,
       for (auto& image : record["images"])
         image = (fs::path(e.folder) / image.get<std::string>()).string();
     }
-    const std::string verdict = e.verdict == "Timeout" ? "Crash" : e.verdict;
+    const std::string& verdict = e.verdict;
     record["verdict"] = verdict;
-    record["reason"] = e.verdict == "Timeout" ? "Timeout: " + e.reason : e.reason;
+    record["reason"] = e.reason;
     record["reproduce"] = reproduce;
     root["results"].push_back(record);
 
@@ -582,6 +581,7 @@ void write_run_outputs(const fs::path& dir, const std::vector<Entry>& entries,
                 : verdict == "Fail"           ? Verdict::fail
                 : verdict == "QualityWarning" ? Verdict::quality_warning
                 : verdict == "NotSupported"   ? Verdict::not_supported
+                : verdict == "Timeout"        ? Verdict::timeout
                                               : Verdict::crash;
     r.reason = record.at("reason").get<std::string>();
     r.reproduce = reproduce;

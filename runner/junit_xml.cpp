@@ -34,7 +34,7 @@ void write_junit_xml(const std::filesystem::path& path, const std::vector<RunRec
     double total_ms = 0;
     for (const RunRecord* r : members) {
       failures += r->verdict == Verdict::fail;
-      errors += r->verdict == Verdict::crash;
+      errors += r->verdict == Verdict::crash || r->verdict == Verdict::timeout;
       skipped += r->verdict == Verdict::not_supported;
       total_ms += r->median_ms;
     }
@@ -52,6 +52,9 @@ void write_junit_xml(const std::filesystem::path& path, const std::vector<RunRec
           break;
         case Verdict::crash:
           xml << "<error message=\"" << reason << "\" type=\"Crash\"/>";
+          break;
+        case Verdict::timeout:
+          xml << "<error message=\"" << reason << "\" type=\"Timeout\"/>";
           break;
         case Verdict::not_supported:
           xml << "<skipped message=\"NotSupported: " << reason << "\"/>";

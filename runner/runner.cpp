@@ -437,7 +437,9 @@ void check_phases(const std::vector<std::string>& declared, const AlgorithmOutpu
 
 // " (build 1.23 + query 4.56 ms)" for the phases' medians, or "".
 std::string phases_text(const RunRecord& r) {
-  if (r.phases.empty() || r.run_ms.empty() || r.verdict == Verdict::crash) return "";
+  if (r.phases.empty() || r.run_ms.empty() || r.verdict == Verdict::crash ||
+      r.verdict == Verdict::timeout)
+    return "";
   std::ostringstream text;
   text << std::fixed << std::setprecision(2);
   for (std::size_t k = 0; k < r.phases.size(); ++k)
@@ -484,20 +486,24 @@ void print_summary(std::ostream& out, const std::vector<RunRecord>& records,
     out << std::left << std::setw(34) << r.case_name << std::setw(38)
         << (r.algorithm + ":" + r.variant + " [" + r.backend + "]") << std::setw(15)
         << verdict_name(r.verdict) << std::right;
-    if (r.verdict == Verdict::crash) {
+    if (r.verdict == Verdict::crash || r.verdict == Verdict::timeout) {
       out << "   " << r.reason << "\n";
       continue;
     }
     out << std::setw(11) << std::fixed << std::setprecision(2) << r.median_ms << "   " << r.headline
         << phases_text(r) << "\n";
   }
-  std::size_t counts[5] = {};
+  std::size_t counts[6] = {};
   for (const RunRecord& r : records) ++counts[int(r.verdict)];
   out << "\n"
       << records.size() << " results: " << counts[int(Verdict::pass)] << " Pass, "
       << counts[int(Verdict::fail)] << " Fail, " << counts[int(Verdict::quality_warning)]
       << " QualityWarning, " << counts[int(Verdict::not_supported)] << " NotSupported, "
-      << counts[int(Verdict::crash)] << " Crash\n";
+      << counts[int(Verdict::crash)] << " Crash"
+      << (counts[int(Verdict::timeout)]
+              ? ", " + std::to_string(counts[int(Verdict::timeout)]) + " Timeout"
+              : std::string())
+      << "\n";
 }
 
 }  // namespace
@@ -736,7 +742,8 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
       << "\n";
 
   const bool any_failure = std::any_of(records.begin(), records.end(), [](const RunRecord& r) {
-    return r.verdict == Verdict::fail || r.verdict == Verdict::crash;
+    return r.verdict == Verdict::fail || r.verdict == Verdict::crash ||
+           r.verdict == Verdict::timeout;
   });
   return any_failure ? exit_conformance_failure : exit_pass;
 }

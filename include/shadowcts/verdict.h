@@ -4,7 +4,8 @@
 
 namespace shadowcts {
 
-enum class Verdict { pass, fail, quality_warning, not_supported, crash };
+// timeout: a run killed past its time limit (`certify`'s workers); like a crash, a failure.
+enum class Verdict { pass, fail, quality_warning, not_supported, crash, timeout };
 
 constexpr std::string_view verdict_name(Verdict v) {
   switch (v) {
@@ -18,6 +19,8 @@ constexpr std::string_view verdict_name(Verdict v) {
       return "NotSupported";
     case Verdict::crash:
       return "Crash";
+    case Verdict::timeout:
+      return "Timeout";
   }
   return "Crash";
 }
