@@ -34,7 +34,7 @@ void write_junit_xml(const std::filesystem::path& path, const std::vector<RunRec
     double total_ms = 0;
     for (const RunRecord* r : members) {
       failures += r->verdict == Verdict::fail;
-      errors += r->verdict == Verdict::crash || r->verdict == Verdict::timeout;
+      errors += did_not_finish(r->verdict);
       skipped += r->verdict == Verdict::not_supported;
       total_ms += r->median_ms;
     }

@@ -437,9 +437,7 @@ void check_phases(const std::vector<std::string>& declared, const AlgorithmOutpu
 
 // " (build 1.23 + query 4.56 ms)" for the phases' medians, or "".
 std::string phases_text(const RunRecord& r) {
-  if (r.phases.empty() || r.run_ms.empty() || r.verdict == Verdict::crash ||
-      r.verdict == Verdict::timeout)
-    return "";
+  if (r.phases.empty() || r.run_ms.empty() || did_not_finish(r.verdict)) return "";
   std::ostringstream text;
   text << std::fixed << std::setprecision(2);
   for (std::size_t k = 0; k < r.phases.size(); ++k)
@@ -486,7 +484,7 @@ void print_summary(std::ostream& out, const std::vector<RunRecord>& records,
     out << std::left << std::setw(34) << r.case_name << std::setw(38)
         << (r.algorithm + ":" + r.variant + " [" + r.backend + "]") << std::setw(15)
         << verdict_name(r.verdict) << std::right;
-    if (r.verdict == Verdict::crash || r.verdict == Verdict::timeout) {
+    if (did_not_finish(r.verdict)) {
       out << "   " << r.reason << "\n";
       continue;
     }
@@ -742,8 +740,7 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
       << "\n";
 
   const bool any_failure = std::any_of(records.begin(), records.end(), [](const RunRecord& r) {
-    return r.verdict == Verdict::fail || r.verdict == Verdict::crash ||
-           r.verdict == Verdict::timeout;
+    return r.verdict == Verdict::fail || did_not_finish(r.verdict);
   });
   return any_failure ? exit_conformance_failure : exit_pass;
 }

@@ -7,6 +7,11 @@ namespace shadowcts {
 // timeout: a run killed past its time limit (`certify`'s workers); like a crash, a failure.
 enum class Verdict { pass, fail, quality_warning, not_supported, crash, timeout };
 
+// The run did not finish: no output, no timings.
+constexpr bool did_not_finish(Verdict v) {
+  return v == Verdict::crash || v == Verdict::timeout;
+}
+
 constexpr std::string_view verdict_name(Verdict v) {
   switch (v) {
     case Verdict::pass:
