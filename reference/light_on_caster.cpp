@@ -1,31 +1,24 @@
 #include "reference/light_on_caster.h"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include "shadowcts/geometry/exact_segment_triangle.h"
+#include "shadowcts/geometry/receiver_half_space.h"
 
 namespace shadowcts {
-namespace {
-
-using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
-
-Epick::Point_3 point(const glm::vec3& v) {
-  return {double(v.x), double(v.y), double(v.z)};
-}
-
-}  // namespace
 
 std::vector<std::uint32_t> casters_containing_light(const Case& c) {
   std::vector<std::uint32_t> found;
   if (!c.light || c.light->kind != ShadowLightKind::point) return found;
-  const Epick::Point_3 light = point(c.light->position);
+  const glm::dvec3 light(c.light->position);
   for (std::size_t i = 0; i < c.triangles.size(); ++i) {
     const Triangle& t = c.triangles[i];
     if (t.mesh >= c.meshes.size() || !c.meshes[t.mesh].caster) continue;
-    const Epick::Point_3 a = point(t.v0), b = point(t.v1), d = point(t.v2);
-    if (CGAL::collinear(a, b, d) || CGAL::orientation(a, b, d, light) != CGAL::COPLANAR) continue;
-    // In the plane: inside or on every edge, each judged against the opposite vertex's side.
-    if (CGAL::coplanar_orientation(a, b, d, light) != CGAL::NEGATIVE &&
-        CGAL::coplanar_orientation(b, d, a, light) != CGAL::NEGATIVE &&
-        CGAL::coplanar_orientation(d, a, b, light) != CGAL::NEGATIVE)
+    const glm::dvec3 a(t.v0), b(t.v1), d(t.v2);
+    // Exact signs of the float inputs (shared expansions): in the plane, then in the closed
+    // triangle; zero area is no caster.
+    if (geometry::detail::projection_axis(a, b, d) < 0 ||
+        geometry::orientation(a, b, d, light) != 0)
+      continue;
+    if (geometry::detail::point_in_coplanar_triangle(light, a, b, d))
       found.push_back(std::uint32_t(i));
   }
   return found;

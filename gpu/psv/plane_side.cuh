@@ -2,9 +2,8 @@
 // The side of a query point against a node's plane (reference/psv/plane_side.h): the float plane
 // answers where its value clears the shared filter's bound (shadowcts/geometry/plane_filter.h, the
 // reference's own arithmetic), and the exact orientation of the triangle's vertices otherwise.
-// The reference decides the exact cases with CGAL; the kernel uses the shared expansion-based
-// predicate (shadowcts/geometry/exact_orientation.h), which gives the same signs, so the tree is
-// searched along the same path.
+// Both decide the exact cases with the shared expansion-based predicate
+// (shadowcts/geometry/exact_orientation.h), so the tree is searched along the same path.
 #include <cstdint>
 
 #include <glm/vec3.hpp>

@@ -5,7 +5,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "reference/psv/exact_orientation.h"
+#include "shadowcts/geometry/exact_orientation.h"
 
 namespace shadowcts::psv {
 namespace {
@@ -36,9 +36,8 @@ PlaneSide::PlaneSide(const HardShadowLight& light, const std::vector<Triangle>& 
 
 int PlaneSide::light_side(const Triangle& t) const {
   const glm::dvec3 a = vertex(t, 0), b = vertex(t, 1), c = vertex(t, 2);
-  if (!light_.directional) return orientation_sign(a, b, c, light_.position);
-  // det[b - a, c - a, d] = -det[b - a, d, c - a].
-  return -direction_orientation_sign(a, b, light_.direction, c);
+  if (!light_.directional) return geometry::orientation(a, b, c, light_.position);
+  return geometry::orientation_towards(a, b, c, light_.direction);
 }
 
 void PlaneSide::make_volume_planes(std::uint32_t triangle, TopNode* first,
@@ -56,12 +55,13 @@ void PlaneSide::make_volume_planes(std::uint32_t triangle, TopNode* first,
       // Plane through the light and the edge: n . (s - L) = det[lo - L, hi - L, s - L].
       normal = glm::cross(v[lo] - light_.position, v[hi] - light_.position);
       offset = -glm::dot(normal, light_.position);
-      third_side = orientation_sign(light_.position, v[lo], v[hi], third);
+      third_side = geometry::orientation(light_.position, v[lo], v[hi], third);
     } else {
       // Plane through the edge, parallel to the light: n . (s - lo) = det[hi - lo, d, s - lo].
       normal = glm::cross(v[hi] - v[lo], light_.direction);
       offset = -glm::dot(normal, v[lo]);
-      third_side = direction_orientation_sign(v[lo], v[hi], light_.direction, third);
+      // det[hi - lo, d, s - lo] = -det[hi - lo, s - lo, d].
+      third_side = -geometry::orientation_towards(v[lo], v[hi], third, light_.direction);
     }
     // The triangle (and so its volume) lies on the negative side.
     const int orientation = third_side > 0 ? -1 : 1;
@@ -101,10 +101,11 @@ int PlaneSide::exact_side(const TopTree& tree, std::uint32_t node, const glm::dv
   const VolumeSource& source = tree.sources[volume_of(node)];
   const std::uint32_t k = node % nodes_per_volume;
   if (k == capping_plane)
-    return source.orientation[k] * orientation_sign(vertex(t, 0), vertex(t, 1), vertex(t, 2), p);
+    return source.orientation[k] *
+           geometry::orientation(vertex(t, 0), vertex(t, 1), vertex(t, 2), p);
   const glm::dvec3 lo = vertex(t, source.edge[k][0]), hi = vertex(t, source.edge[k][1]);
-  const int sign = light_.directional ? direction_orientation_sign(lo, hi, light_.direction, p)
-                                      : orientation_sign(light_.position, lo, hi, p);
+  const int sign = light_.directional ? -geometry::orientation_towards(lo, hi, p, light_.direction)
+                                      : geometry::orientation(light_.position, lo, hi, p);
   return source.orientation[k] * sign;
 }
 

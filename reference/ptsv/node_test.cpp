@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "reference/ptsv/exact_orientation.h"
+#include "shadowcts/geometry/exact_orientation.h"
 
 namespace shadowcts::ptsv {
 
@@ -40,16 +40,18 @@ bool outside_plane_exactly(const ShadowVolume& volume, int k, const glm::vec3& p
   const ExactVolumePlanes& e = volume.exact;
   if (k == 3) {
     // n = (q - p0) x (r - p0): det[q - p0, r - p0, p - p0].
-    return e.triangle_outside *
-               orientation_towards_point(e.vertices[0], e.vertices[1], e.vertices[2], p) >
+    return e.triangle_outside * geometry::orientation(glm::dvec3(e.vertices[0]),
+                                                      glm::dvec3(e.vertices[1]),
+                                                      glm::dvec3(e.vertices[2]), glm::dvec3(p)) >
            0;
   }
   static constexpr int first[3] = {0, 1, 0}, second[3] = {1, 2, 2};
   const glm::vec3& a = e.vertices[std::size_t(first[k])];
   const glm::vec3& b = e.vertices[std::size_t(second[k])];
   // n = (b - a) x (L - a): det[b - a, L - a, p - a]; or n = (b - a) x d: -det[b - a, p - a, d].
-  const int sign = e.directional ? -orientation_towards_direction(a, b, p, e.light)
-                                 : orientation_towards_point(a, b, e.light, p);
+  const glm::dvec3 da(a), db(b), dp(p), dl(e.light);
+  const int sign = e.directional ? -geometry::orientation_towards(da, db, dp, dl)
+                                 : geometry::orientation(da, db, dl, dp);
   return e.edge_outside[std::size_t(k)] * sign > 0;
 }
 

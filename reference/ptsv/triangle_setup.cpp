@@ -11,8 +11,9 @@
 
 #include <glm/geometric.hpp>
 
-#include "reference/ptsv/exact_orientation.h"
 #include "shadowcts/errors.h"
+#include "shadowcts/geometry/camera_frame.h"
+#include "shadowcts/geometry/exact_orientation.h"
 #include "shadowcts/geometry/triangle_area.h"
 
 namespace shadowcts::ptsv {
@@ -86,8 +87,7 @@ std::vector<bool> front_face_culling_meshes(const Case& c, const ViewSamples& sa
   const std::uint32_t width = samples.width, height = samples.height;
   const std::vector<bool> safe = meshes_safe_for_face_culling(c, samples);
   std::vector<bool> culled(c.meshes.size(), false);
-  const double tan_half_fov =
-      std::tan(double(c.camera.vertical_fov_degrees) * 3.14159265358979323846 / 360.0);
+  const double tan_half_fov = camera_frame(c.camera).tan_half_fov;
   const double aspect = double(width) / double(height);
   // Radius of a ball around the eye holding the near rectangle (primary rays start there).
   const double reach = double(c.camera.near_plane) *
@@ -152,9 +152,12 @@ bool set_up_shadow_volume(const Case& c, std::size_t i, const std::vector<bool>&
       ++counts.zero_area;
       return false;
     }
-    const int winding = light.directional
-                            ? orientation_towards_direction(t.v0, t.v1, t.v2, light.direction)
-                            : orientation_towards_point(t.v0, t.v1, t.v2, light.position);
+    const int winding =
+        light.directional
+            ? geometry::orientation_towards(glm::dvec3(t.v0), glm::dvec3(t.v1), glm::dvec3(t.v2),
+                                            glm::dvec3(light.direction))
+            : geometry::orientation(glm::dvec3(t.v0), glm::dvec3(t.v1), glm::dvec3(t.v2),
+                                    glm::dvec3(light.position));
     if (winding == 0) {
       ++counts.edge_on;
       return false;

@@ -1,4 +1,4 @@
-// Triangle setup: exact orientation, canonical shared-edge planes, skipped triangles, front-face
+// Triangle setup: canonical shared-edge planes, skipped triangles, front-face
 // culling, and culling planes that never cut the volume.
 #include "reference/ptsv/triangle_setup.h"
 
@@ -7,31 +7,10 @@
 #include <gtest/gtest.h>
 
 #include "big_shadow_case.h"
-#include "reference/ptsv/exact_orientation.h"
 #include "reference/ptsv/node_test.h"
 
 namespace shadowcts::ptsv {
 namespace {
-
-TEST(ExactOrientation, SignsOfClearAndDegenerateConfigurations) {
-  const glm::vec3 a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0};
-  EXPECT_EQ(orientation_towards_point(a, b, c, {0.25f, 0.25f, 1.0f}), 1);
-  EXPECT_EQ(orientation_towards_point(a, b, c, {0.25f, 0.25f, -1.0f}), -1);
-  EXPECT_EQ(orientation_towards_point(a, b, c, {5.0f, -3.0f, 0.0f}), 0);
-  EXPECT_EQ(orientation_towards_direction(a, b, c, {0.0f, 0.0f, 1.0f}), 1);
-  EXPECT_EQ(orientation_towards_direction(a, b, c, {1.0f, 2.0f, 0.0f}), 0);
-  // Coplanar points on x + y + z = 1 far from the origin, where double rounding cannot tell:
-  // the exact expansion can.
-  const glm::vec3 p{1.0f, 0.0f, 0.0f}, q{0.0f, 1.0f, 0.0f}, r{0.0f, 0.0f, 1.0f};
-  const float big = 16777216.0f;  // 2^24
-  const glm::vec3 on_plane{big, -big + 1.0f, 0.0f};
-  EXPECT_EQ(orientation_towards_point(p, q, r, on_plane), 0);
-  const glm::vec3 above{big, -big + 2.0f, 0.0f}, below{big, -big, 0.0f};
-  EXPECT_EQ(orientation_towards_point(p, q, r, above), 1);
-  EXPECT_EQ(orientation_towards_point(p, q, r, below), -1);
-  // Swapping two vertices flips every sign.
-  EXPECT_EQ(orientation_towards_point(q, p, r, above), -1);
-}
 
 Case two_triangles_sharing_an_edge(bool directional) {
   Case c = ptsv_test::big_shadow_case(directional);
