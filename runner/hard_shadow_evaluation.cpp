@@ -17,13 +17,18 @@ namespace {
 // spend.
 constexpr std::uint64_t exact_oracle_triangle_limit = 4'000'000;
 
+// When the fast oracle judges the Embree peer, the judge and the judged share Embree: the exact
+// oracle re-decides this many of the peer's robust samples (every k-th, so the same ones every
+// run).
+constexpr std::size_t embree_spot_check_samples = 4096;
+
 class HardShadowEvaluation : public CaseEvaluation {
  public:
   HardShadowEvaluation(const Case& c, const ViewSamples& samples,
                        const std::vector<std::uint8_t>& receiver_ambiguous, bool exact,
                        const ImageTarget& images, const std::string& image_folder,
                        const TruthCache* cache)
-      : samples_(samples), images_(images) {
+      : case_(c), samples_(samples), images_(images) {
     const auto start = std::chrono::steady_clock::now();
     const std::function<HardShadowTruth()> compute = [&] {
       return exact ? exact_hard_shadow_oracle(c, samples) : embree_hard_shadow_oracle(c, samples);
@@ -59,6 +64,9 @@ class HardShadowEvaluation : public CaseEvaluation {
          << "): " << robust_lit << " robust-lit, " << robust_shadowed << " robust-shadowed, "
          << ambiguous << " ambiguous (" << std::fixed << std::setprecision(2)
          << 100.0 * ambiguous_fraction << " %)";
+    if (!exact)
+      line << "; it shares Embree with the embree peer, so the exact oracle spot-checks up to "
+           << embree_spot_check_samples << " of that peer's robust samples";
     oracle_.plan_line = line.str();
     oracle_.details = {{"eps_rel", truth_.eps_rel}, {"tau", truth_.tau},
                        {"robust_lit", robust_lit},  {"robust_shadowed", robust_shadowed},
@@ -72,6 +80,7 @@ class HardShadowEvaluation : public CaseEvaluation {
   void judge(const AlgorithmOutput& output, RunRecord& record) const override {
     const bool approximate = record.approximate;
     const HardShadowComparison h = compare_hard_shadows(output.shadowed, truth_);
+    const bool judged_by_itself = !truth_.exact && record.algorithm == "embree";
     if (record.verdict != Verdict::fail) {
       record.verdict = h.verdict;
       record.reason = h.reason;
@@ -109,6 +118,7 @@ class HardShadowEvaluation : public CaseEvaluation {
                      h.robust ? double(h.leaks + h.false_shadows) / double(h.robust) : 0.0},
                     {"mismatch_curve", curve}};
     if (approximate) record.error["mismatch_ceiling"] = record.mismatch_ceiling;
+    if (judged_by_itself) spot_check_with_exact_oracle(output, record);
     record.headline = "leaks " + std::to_string(h.leaks) + ", false shadows " +
                       std::to_string(h.false_shadows) + ", ambiguous " +
                       std::to_string(h.ambiguous_disagreements) + "/" +
@@ -119,6 +129,38 @@ class HardShadowEvaluation : public CaseEvaluation {
   }
 
  private:
+  // The exact oracle on a deterministic subset of the samples the fast oracle calls robust; a
+  // robust mismatch there fails the record like any other.
+  void spot_check_with_exact_oracle(const AlgorithmOutput& output, RunRecord& record) const {
+    std::vector<std::size_t> robust;
+    for (std::size_t i = 0; i < truth_.band.size(); ++i)
+      if (truth_.band[i] == BandClass::robust_lit || truth_.band[i] == BandClass::robust_shadowed)
+        robust.push_back(i);
+    const std::size_t step = robust.size() / embree_spot_check_samples + 1;
+    ViewSamples subset = samples_;
+    for (ViewSample& s : subset.samples) s.sample_class = SampleClass::sky;
+    for (std::size_t k = 0; k < robust.size(); k += step)
+      subset.samples[robust[k]].sample_class = samples_.samples[robust[k]].sample_class;
+    HardShadowTruth exact = exact_hard_shadow_oracle(case_, subset);
+    exact.lazy.reset();  // refers to `subset`, which ends here
+    std::uint64_t checked = 0, mismatches = 0;
+    for (std::size_t k = 0; k < robust.size(); k += step) {
+      const std::size_t i = robust[k];
+      if (exact.band[i] != BandClass::robust_lit && exact.band[i] != BandClass::robust_shadowed)
+        continue;
+      ++checked;
+      mismatches += output.shadowed[i] != exact.shadowed[i];
+    }
+    record.error["exact_spot_check"] = {{"checked", checked}, {"robust_mismatches", mismatches}};
+    if (mismatches != 0 && record.verdict != Verdict::fail && !did_not_finish(record.verdict)) {
+      record.verdict = Verdict::fail;
+      record.reason = "the exact oracle's spot check of " + std::to_string(checked) +
+                      " robust samples (the fast oracle shares Embree with this algorithm): " +
+                      std::to_string(mismatches) + " differ";
+    }
+  }
+
+  const Case& case_;
   const ViewSamples& samples_;
   ImageTarget images_;
   HardShadowTruth truth_;
@@ -141,6 +183,7 @@ std::unique_ptr<CaseEvaluation> evaluate_hard_shadows(
             : "exact hard-shadow oracle: " + std::to_string(hard_case.triangles.size()) +
                   " triangles exceed its limit of " + std::to_string(exact_oracle_triangle_limit) +
                   "; the fast oracle's band is estimated");
+
   return std::make_unique<HardShadowEvaluation>(hard_case, samples, receiver_ambiguous, exact,
                                                 images, image_folder, cache);
 }

@@ -1,17 +1,17 @@
 #include "reference/embree/hard_shadow_embree.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <span>
 #include <stdexcept>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "oracles/embree_shadow_rays.h"
-#include "reference/sample_half_space.h"
-#include "shadowcts/geometry/receiver_half_space.h"
+#include "reference/embree/shadow_ray_packets.h"
 #include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/phase_clock.h"
 #include "shadowcts/thread_limit.h"
@@ -24,22 +24,6 @@ std::string power_of_two(double x) {
   std::snprintf(text, sizeof text, "%.3g (2^%.1f)", x, std::log2(x));
   return text;
 }
-
-// The receiver half-space rule for one sample, with the shared geometry (not the oracle's): a
-// caster that Embree reports on the sample's ray counts only where it meets it strictly on the
-// light's side of the receiver's plane.
-struct SharedRule {
-  const Case* c;
-  geometry::ReceiverHalfSpace half_space;
-  glm::dvec3 position;
-
-  static bool counts(const void* state, std::uint32_t caster) {
-    const auto& rule = *static_cast<const SharedRule*>(state);
-    const Triangle& t = rule.c->triangles[caster];
-    return geometry::caster_counts(rule.half_space, rule.position, glm::dvec3(t.v0),
-                                   glm::dvec3(t.v1), glm::dvec3(t.v2));
-  }
-};
 
 class EmbreeHardShadow final : public Algorithm {
  public:
@@ -101,26 +85,31 @@ class EmbreeHardShadow final : public Algorithm {
     check_receivers(c, samples);
     AlgorithmOutput output;
     output.shadowed.assign(samples.samples.size(), 0);
-    const HardShadowLight light = hard_shadow_light(c);
     std::atomic<std::uint64_t> rays{0};
     PhaseClock clock;
     run_with_thread_limit(c.parameters.threads, [&] {
       clock.restart();
-      const EmbreeShadowRays tracer(c);
+      const ShadowRayPackets tracer(c);
       clock.lap(build_phase);
+      // Packets of consecutive regular samples: neighbouring pixels, coherent rays.
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.samples.size(), 256),
                         [&](const tbb::blocked_range<std::size_t>& range) {
+                          std::array<std::uint32_t, ShadowRayPackets::width> packet;
+                          std::size_t filled = 0;
                           std::uint64_t traced = 0;
                           for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                            const ViewSample& sample = samples.samples[i];
-                            if (sample.sample_class != SampleClass::regular) continue;
-                            ++traced;
-                            const SharedRule rule{&c, sample_half_space(c, light, sample),
-                                                  glm::dvec3(sample.position)};
-                            output.shadowed[i] = tracer.occluded(sample.position, sample.receiver,
-                                                                 {&rule, &SharedRule::counts})
-                                                     ? 1
-                                                     : 0;
+                            if (samples.samples[i].sample_class != SampleClass::regular) continue;
+                            packet[filled++] = std::uint32_t(i);
+                            if (filled == packet.size()) {
+                              tracer.trace(samples, packet, output.shadowed);
+                              traced += filled;
+                              filled = 0;
+                            }
+                          }
+                          if (filled != 0) {
+                            tracer.trace(samples, std::span(packet.data(), filled),
+                                         output.shadowed);
+                            traced += filled;
                           }
                           rays += traced;
                         });

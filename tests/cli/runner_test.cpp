@@ -94,6 +94,35 @@ TEST(Runner, PrintsPlainProgressLinesWhenStderrIsNoTerminal) {
   EXPECT_EQ(lines.find("\r"), std::string::npos);            // no terminal control characters
 }
 
+// Judged by the fast oracle, the embree peer would be judged by Embree itself: the exact oracle
+// re-decides a deterministic subset of its robust samples, and the plan says so.
+TEST(Runner, FastOracleHasTheEmbreePeerSpotCheckedByTheExactOracle) {
+  const fs::path out = fresh_dir("embree_spot_check");
+  RunOptions o = small_run(out, 2);
+  o.fixtures = {"shared_edges.1k"};
+  o.algorithms = {{"embree", ""}, {"bruteforce", ""}};
+  o.oracle = OracleChoice::embree;
+  o.images = false;
+  std::ostringstream log, err;
+  ASSERT_EQ(run_suite(o, builtin_registry(), log, err), exit_pass) << log.str() << err.str();
+  const auto results = nlohmann::json::parse(read_file(out / "results.json"));
+  EXPECT_NE(log.str().find("spot-checks up to 4096"), std::string::npos) << log.str();
+  int peers = 0;
+  for (const auto& r : results["results"]) {
+    if (r["algorithm"] != "embree") {
+      EXPECT_FALSE(r["error"].contains("exact_spot_check")) << r.dump();
+      continue;
+    }
+    ++peers;
+    EXPECT_EQ(r["verdict"], "Pass") << r.dump();
+    const auto& check = r["error"]["exact_spot_check"];
+    EXPECT_GT(check["checked"].get<int>(), 500) << r.dump();
+    EXPECT_LE(check["checked"].get<int>(), 4096);
+    EXPECT_EQ(check["robust_mismatches"], 0);
+  }
+  EXPECT_EQ(peers, 1);
+}
+
 TEST(Runner, OutputsAreIdenticalForOneAndTwoThreads) {
   const fs::path one = fresh_dir("threads1"), two = fresh_dir("threads2");
   std::ostringstream log, err;
