@@ -1,22 +1,18 @@
 #include "reference/lightassign/brute_assignment.h"
 
+#include <atomic>
 #include <vector>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
-#include "oracles/light_assignment/light_volume_predicates.h"
 #include "reference/lightassign/light_bvh.h"
 #include "reference/lightassign/light_list_builder.h"
+#include "reference/lightassign/light_volume_check.h"
 
 namespace shadowcts {
 
 AlgorithmOutput assign_lights_brute(const Case& c, const ViewSamples& samples) {
-  std::vector<ExactLightVolume> volumes(c.ranged_lights.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, volumes.size(), 1024), [&](const auto& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i)
-      volumes[i] = prepare_light_volume(c.ranged_lights[i]);
-  });
+  std::vector<LightVolumeCheck> volumes;
+  volumes.reserve(c.ranged_lights.size());
+  for (const RangedLight& light : c.ranged_lights) volumes.emplace_back(light);
   const LightBvh bvh(c.ranged_lights);
 
   // One list per regular sample, in sample order; its box is the sample itself.
@@ -32,18 +28,23 @@ AlgorithmOutput assign_lights_brute(const Case& c, const ViewSamples& samples) {
   for (std::size_t k = 0; k < regular.size(); ++k)
     out.bounds[k].min = out.bounds[k].max = samples.samples[regular[k]].position;
 
+  std::atomic<std::uint64_t> undecided{0};
   const ListWork work = build_light_lists(regular.size(), out, [&](std::size_t k, auto& list) {
     ListWork w;
-    const LightQueryPoint p{glm::dvec3(samples.samples[regular[k]].position), 0.0, {0, 0, 0}};
+    const glm::vec3& p = samples.samples[regular[k]].position;
     w.nodes_tested = bvh.traverse(out.bounds[k], [&](std::uint32_t index) {
       ++w.light_tests;
-      if (light_volume_contains(volumes[index], p)) list.push_back(index);
+      const int inside = volumes[index].contains(p);
+      if (inside != 0) list.push_back(index);
+      if (inside < 0) undecided.fetch_add(1, std::memory_order_relaxed);
     });
     return w;
   });
 
   AlgorithmOutput output;
   output.counters = light_assignment_counters(out, samples, work, 0, 0);
+  // Lights kept because rounding could not place the sample against a spot's cone.
+  output.counters.emplace_back("cone_tests_undecided", undecided.load());
   output.light_lists = std::move(out);
   return output;
 }
