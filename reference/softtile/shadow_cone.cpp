@@ -5,17 +5,30 @@
 
 #include <glm/geometric.hpp>
 
-#include "oracles/soft_shadow/light_cone_bvh.h"
-
 namespace shadowcts::softtile {
 namespace {
 
 constexpr double relative_margin = 1e-9;
 
-// Distance from x to the cone, minus what the bound's radius there covers.
-double gap(const LightCone& cone, const glm::dvec3& x, double radius) {
+// The shadow cone: apex at the tip, axis -d, half-angle a.
+struct Cone {
+  glm::dvec3 apex{0.0};
+  glm::dvec3 axis{0.0};
+  double cos_half_angle = 1.0, sin_half_angle = 0.0;
+};
+
+// Distance from x to the cone (0 inside), minus what the bound's radius there covers. In the
+// plane of the axis and x, with h the height along the axis and l the lateral distance, the cone
+// is the wedge below the ray (cos a, sin a): its nearest point is the apex when x lies in the
+// wedge's polar cone, otherwise on the ray.
+double gap(const Cone& cone, const glm::dvec3& x, double radius) {
   const double slack = relative_margin * (glm::length(x - cone.apex) + radius);
-  return distance_to_cone(cone, x) - radius - slack;
+  const glm::dvec3 v = x - cone.apex;
+  const double h = glm::dot(v, cone.axis);
+  const double l = glm::length(v - h * cone.axis);
+  const double c = cone.cos_half_angle, s = cone.sin_half_angle;
+  const double distance = h * c + l * s <= 0.0 ? glm::length(v) : std::max(0.0, l * c - h * s);
+  return distance - radius - slack;
 }
 
 }  // namespace
@@ -31,7 +44,8 @@ ShadowCone shadow_cone(const SunGeometry& sun, const glm::dvec3& centre, double 
 }
 
 bool may_shadow(const SunGeometry& sun, const ShadowCone& shadow, const TileBound& bound) {
-  const LightCone cone{shadow.tip, -sun.direction, sun.angular_radius};
+  const Cone cone{shadow.tip, -sun.direction, std::cos(sun.angular_radius),
+                  std::sin(sun.angular_radius)};
   const auto height = [&](const glm::dvec3& x) { return glm::dot(shadow.tip - x, sun.direction); };
   const double height_slack =
       relative_margin * (glm::length(shadow.tip) + glm::length(bound.a) + glm::length(bound.b) +

@@ -15,7 +15,6 @@
 #include <memory>
 #include <string>
 
-#include "oracles/soft_shadow/soft_shadow_comparison.h"
 #include "shadowcts/algorithm.h"
 
 namespace shadowcts {

@@ -6,9 +6,9 @@
 
 #include <glm/geometric.hpp>
 
-#include "oracles/soft_shadow/sun_disk_projection.h"
 #include "reference/closed_mesh_culling.h"
 #include "shadowcts/hard_shadow_inputs.h"
+#include "shadowcts/sun_disk_frame.h"
 
 namespace shadowcts::softtile {
 namespace {
