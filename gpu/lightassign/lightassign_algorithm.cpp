@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 #include <utility>
 
@@ -12,6 +11,7 @@
 #include "reference/lightassign/cluster_key.h"
 #include "reference/lightassign/light_list_builder.h"
 #include "reference/lightassign/lightassign_algorithm.h"
+#include "shadowcts/geometry/camera_frame.h"
 #include "shadowcts/phase_clock.h"
 #include "shadowcts/thread_limit.h"
 
@@ -22,14 +22,15 @@ LightAssignKernelInput lightassign_kernel_input(const PreparedScene& scene,
   const Case& c = scene.source;
   const Camera& camera = c.camera;
   LightAssignKernelInput in;
-  // ViewFrustum's frame, by its glm operations on the same inputs (the same doubles).
+  // The frame the view samples were cast in (ViewFrustum's too).
+  const CameraFrame frame = camera_frame(camera);
   LightAssignFrame& f = in.frame;
-  f.origin = glm::dvec3(camera.position);
-  f.forward = glm::normalize(glm::dvec3(camera.target) - f.origin);
-  f.right = glm::normalize(glm::cross(f.forward, glm::dvec3(camera.up)));
-  f.up = glm::cross(f.right, f.forward);
-  f.tan_half_fov = std::tan(double(camera.vertical_fov_degrees) * std::numbers::pi / 360.0);
-  f.aspect = double(camera.width) / double(camera.height);
+  f.origin = frame.origin;
+  f.forward = frame.forward;
+  f.right = frame.right;
+  f.up = frame.up;
+  f.tan_half_fov = frame.tan_half_fov;
+  f.aspect = frame.aspect;
   f.width = camera.width;
   f.height = camera.height;
 

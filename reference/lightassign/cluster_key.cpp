@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <numbers>
+
+#include "shadowcts/geometry/camera_frame.h"
 
 namespace shadowcts {
 namespace {
@@ -24,7 +25,7 @@ ClusterGrid::ClusterGrid(const Camera& camera, std::uint32_t tile_size,
   tiles_x_ = (width_ + tile_size_ - 1) / tile_size_;
   tiles_y_ = (height_ + tile_size_ - 1) / tile_size_;
   near_ = double(camera.near_plane);
-  const double tan_theta = std::tan(double(camera.vertical_fov_degrees) * std::numbers::pi / 360.0);
+  const double tan_theta = camera_frame(camera).tan_half_fov;
   base_ = 1.0 + 2.0 * tan_theta / double(tiles_y_);
   log_base_ = std::log(base_);
   const double far = std::max(double(camera.far_plane), deepest);

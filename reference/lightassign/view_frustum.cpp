@@ -3,9 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 
 #include <glm/geometric.hpp>
+
+#include "shadowcts/geometry/camera_frame.h"
 
 namespace shadowcts {
 namespace {
@@ -29,13 +30,14 @@ float round_up(double x) {
 }  // namespace
 
 ViewFrustum::ViewFrustum(const Camera& camera) {
-  // As camera_frame() in core/view_samples.cpp.
-  origin_ = glm::dvec3(camera.position);
-  forward_ = glm::normalize(glm::dvec3(camera.target) - origin_);
-  right_ = glm::normalize(glm::cross(forward_, glm::dvec3(camera.up)));
-  up_ = glm::cross(right_, forward_);
-  tan_half_fov_ = std::tan(double(camera.vertical_fov_degrees) * std::numbers::pi / 360.0);
-  aspect_ = double(camera.width) / double(camera.height);
+  // The frame the view samples were cast in.
+  const CameraFrame frame = camera_frame(camera);
+  origin_ = frame.origin;
+  forward_ = frame.forward;
+  right_ = frame.right;
+  up_ = frame.up;
+  tan_half_fov_ = frame.tan_half_fov;
+  aspect_ = frame.aspect;
   width_ = camera.width;
   height_ = camera.height;
 }

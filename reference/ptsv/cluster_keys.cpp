@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "shadowcts/geometry/camera_frame.h"
+
 namespace shadowcts::ptsv {
 namespace {
 
@@ -60,8 +62,7 @@ KeyLayoutResult make_cluster_key_layout(const Camera& camera, std::uint32_t widt
   layout.tiles_x = (width + cluster_tile_size - 1) / cluster_tile_size;
   layout.tiles_y = (height + cluster_tile_size - 1) / cluster_tile_size;
   layout.near = double(camera.near_plane);
-  const double tan_half_fov =
-      std::tan(double(camera.vertical_fov_degrees) * 3.14159265358979323846 / 360.0);
+  const double tan_half_fov = camera_frame(camera).tan_half_fov;
   layout.slice_ratio = 1.0 + 2.0 * tan_half_fov / double(layout.tiles_y);
   layout.x_bits = bits_for(layout.tiles_x);
   layout.y_bits = bits_for(layout.tiles_y);

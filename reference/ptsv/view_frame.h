@@ -13,6 +13,7 @@
 #include <glm/vec3.hpp>
 
 #include "shadowcts/case.h"
+#include "shadowcts/geometry/camera_frame.h"
 
 namespace shadowcts::ptsv {
 
@@ -23,12 +24,13 @@ struct ViewFrame {
 };
 
 inline ViewFrame make_view_frame(const Camera& cam, std::uint32_t width, std::uint32_t height) {
+  const CameraFrame camera = camera_frame(cam);
   ViewFrame f;
-  f.origin = glm::dvec3(cam.position);
-  f.forward = glm::normalize(glm::dvec3(cam.target) - f.origin);
-  f.right = glm::normalize(glm::cross(f.forward, glm::dvec3(cam.up)));
-  f.up = glm::cross(f.right, f.forward);
-  f.tan_half_fov = std::tan(double(cam.vertical_fov_degrees) * 3.14159265358979323846 / 360.0);
+  f.origin = camera.origin;
+  f.forward = camera.forward;
+  f.right = camera.right;
+  f.up = camera.up;
+  f.tan_half_fov = camera.tan_half_fov;
   f.width = width;
   f.height = height;
   f.aspect = double(width) / double(height);

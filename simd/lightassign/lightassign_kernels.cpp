@@ -13,6 +13,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "shadowcts/geometry/camera_frame.h"
 #include "shadowcts/geometry/sphere_box.h"
 #include "simd/lightassign/lightassign_kernels.h"
 
@@ -305,16 +306,13 @@ ListWork cull_tile_candidates(const std::vector<RangedLight>& lights, const View
 }
 
 ViewFrame::ViewFrame(const Camera& camera) {
-  // As ViewFrustum's constructor (reference/lightassign/view_frustum.cpp).
-  const glm::dvec3 o(camera.position);
-  const glm::dvec3 f = glm::normalize(glm::dvec3(camera.target) - o);
-  const glm::dvec3 r = glm::normalize(glm::cross(f, glm::dvec3(camera.up)));
-  const glm::dvec3 u = glm::cross(r, f);
+  // The frame the view samples were cast in (ViewFrustum's too).
+  const CameraFrame frame = camera_frame(camera);
   for (int k = 0; k < 3; ++k) {
-    origin[k] = o[k];
-    right[k] = r[k];
-    up[k] = u[k];
-    forward[k] = f[k];
+    origin[k] = frame.origin[k];
+    right[k] = frame.right[k];
+    up[k] = frame.up[k];
+    forward[k] = frame.forward[k];
   }
 }
 

@@ -12,6 +12,8 @@
 #include <tbb/combinable.h>
 #include <tbb/parallel_for.h>
 
+#include "shadowcts/geometry/camera_frame.h"
+
 namespace shadowcts::simd::ptsv {
 namespace {
 
@@ -115,8 +117,7 @@ std::vector<bool> front_face_culling_meshes(const PreparedScene& scene, const Hi
   // The rest as the reference does it.
   const std::uint32_t width = samples.width, height = samples.height;
   std::vector<bool> culled(meshes, false);
-  const double tan_half_fov =
-      std::tan(double(c.camera.vertical_fov_degrees) * 3.14159265358979323846 / 360.0);
+  const double tan_half_fov = camera_frame(c.camera).tan_half_fov;
   const double aspect = double(width) / double(height);
   const double reach = double(c.camera.near_plane) *
                        std::sqrt(1.0 + tan_half_fov * tan_half_fov * (1.0 + aspect * aspect)) *
