@@ -1,22 +1,29 @@
 // mutant_kill: runs the conformance suite on an executable whose reference algorithm carries one
-// mutant (tests/mutants/catalogue) and succeeds only if the suite catches it — some record of
-// the mutated algorithm gets Fail or Crash that the unmutated algorithm does not get. Cases run one
-// at a time, in the order given, and the first one that kills the mutant ends the run, so the
-// catalogue names its killing case.
+// mutant (tests/mutants/catalogue) and succeeds only if the suite catches it: some record of the
+// mutated algorithm gets Fail (a robust mismatch, a missing light, a soft sample over budget)
+// while the unmutated algorithm passes the same record. The unmutated verdicts come from the
+// suite's own `shadowcts` program, run on the same case in a child process: this executable
+// cannot hold the original of the mutated source next to the mutated one, and judging against a
+// list of known failures would credit a mutant with a case that nothing ever runs unmutated.
+// Cases run one at a time, in the order given, and the first one that kills the mutant ends the
+// run, so the catalogue names its killing case.
 // A mutant the listed cases cannot kill is documented with --survives "<the case it would need>":
 // then surviving passes and being killed fails (the catalogue must be updated).
-//   mutant_kill --mutant NAME --algorithm ID[:VARIANT] (--fixture NAME | --suite stiff)...
-//               [--survives WHY]
+//   mutant_kill --mutant NAME --unmutated PATH_TO_SHADOWCTS --algorithm ID[:VARIANT]
+//               (--fixture NAME | --suite stiff)... [--survives WHY]
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
-#include "expected_failures.h"
 #include "shadowcts/registry.h"
 #include "shadowcts/runner.h"
 
@@ -27,7 +34,9 @@ namespace fs = std::filesystem;
 
 struct Arguments {
   std::string mutant;
+  std::string unmutated;  // the `shadowcts` program, built from the unmutated sources
   AlgorithmSelection algorithm;
+  std::string algorithm_text;         // ID[:VARIANT] as given
   std::vector<std::string> fixtures;  // "suite:stiff" for the stiff suite
   std::string survives;               // why the cases cannot kill it; empty: they must
 };
@@ -38,10 +47,13 @@ Arguments parse(int argc, char** argv) {
     const std::string key = argv[i], value = argv[i + 1];
     if (key == "--mutant") {
       a.mutant = value;
+    } else if (key == "--unmutated") {
+      a.unmutated = value;
     } else if (key == "--algorithm") {
       const auto colon = value.find(':');
       a.algorithm = {value.substr(0, colon),
                      colon == std::string::npos ? "" : value.substr(colon + 1)};
+      a.algorithm_text = value;
     } else if (key == "--fixture") {
       a.fixtures.push_back(value);
     } else if (key == "--suite") {
@@ -52,26 +64,53 @@ Arguments parse(int argc, char** argv) {
       throw std::runtime_error("unknown argument " + key);
     }
   }
-  if (argc % 2 != 1 || a.mutant.empty() || a.algorithm.id.empty() || a.fixtures.empty())
+  if (argc % 2 != 1 || a.mutant.empty() || a.unmutated.empty() || a.algorithm.id.empty() ||
+      a.fixtures.empty())
     throw std::runtime_error(
-        "usage: mutant_kill --mutant NAME --algorithm ID[:VARIANT] (--fixture F | --suite S)...");
+        "usage: mutant_kill --mutant NAME --unmutated SHADOWCTS --algorithm ID[:VARIANT] "
+        "(--fixture F | --suite S)...");
   return a;
 }
 
-// The records of the mutated algorithm that the suite failed, as "name: reason" lines. Records
-// that fail without the mutant too (expected_failures.h) prove nothing and do not count.
-std::vector<std::string> killing_records(const fs::path& results, const AlgorithmSelection& a) {
+// Record name -> {verdict, reason} for every record of `algorithm` in a results.json.
+std::map<std::string, std::pair<std::string, std::string>> verdicts(const fs::path& results,
+                                                                    const std::string& algorithm) {
   std::ifstream in(results);
+  if (!in) throw std::runtime_error("cannot read " + results.string());
   const nlohmann::json json = nlohmann::json::parse(in);
-  std::vector<std::string> kills;
-  for (const nlohmann::json& r : json.at("results")) {
-    if (r.at("algorithm") != a.id || expected_failure(r.at("name"))) continue;
-    const std::string verdict = r.at("verdict");
-    if (verdict == "Fail" || verdict == "Crash")
-      kills.push_back(r.at("name").get<std::string>() + " " + verdict + ": " +
-                      r.value("reason", std::string()));
+  std::map<std::string, std::pair<std::string, std::string>> out;
+  for (const nlohmann::json& r : json.at("results"))
+    if (r.at("algorithm") == algorithm)
+      out[r.at("name").get<std::string>()] = {r.at("verdict").get<std::string>(),
+                                              r.value("reason", std::string())};
+  return out;
+}
+
+// Runs the unmutated `shadowcts run` on the same case and selection; returns its exit status.
+int run_unmutated(const Arguments& args, const std::string& fixture, const fs::path& out_dir) {
+  std::vector<std::string> command = {args.unmutated,      "run",      "--algorithm",
+                                      args.algorithm_text, "--repeat", "1",
+                                      "--no-images",       "--out",    out_dir.string()};
+  if (fixture.rfind("suite:", 0) == 0) {
+    command.insert(command.end(), {"--suite", fixture.substr(6)});
+  } else {
+    command.insert(command.end(), {"--fixture", fixture});
   }
-  return kills;
+  std::vector<char*> argv;
+  for (std::string& s : command) argv.push_back(s.data());
+  argv.push_back(nullptr);
+  std::cout << std::flush;
+  const pid_t child = fork();
+  if (child < 0) throw std::runtime_error("fork failed");
+  if (child == 0) {
+    // The child's own summary would interleave with this log; its results.json is what counts.
+    if (!std::freopen("/dev/null", "w", stdout)) _exit(127);
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  int status = 0;
+  if (waitpid(child, &status, 0) != child) throw std::runtime_error("waitpid failed");
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
 }  // namespace
@@ -86,23 +125,49 @@ int main(int argc, char** argv) try {
     else
       options.fixtures = {fixture};
     options.algorithms = {args.algorithm};
-    options.repeats = 1;  // the verdict is what matters here, not the time
-    options.out_dir = (out_root / fixture).string();
+    options.repeats = 1;     // the verdict is what matters here, not the time
+    options.images = false;  // nor the pictures
+    options.out_dir = (out_root / fixture / "mutated").string();
     std::ostringstream log, err;
     const int code = run_suite(options, builtin_registry(), log, err);
-    const std::vector<std::string> kills =
-        killing_records(fs::path(options.out_dir) / "results.json", args.algorithm);
-    if (code == exit_conformance_failure && !kills.empty()) {
+    if (code != exit_pass && code != exit_conformance_failure) {
+      std::cout << "ERROR " << args.mutant << " on " << fixture << " (exit " << code << ")\n"
+                << err.str();
+      return 1;
+    }
+    std::vector<std::string> kills;
+    if (code == exit_conformance_failure) {
+      // Only now is the unmutated run needed: a case without a failed record cannot kill.
+      const fs::path unmutated_dir = out_root / fixture / "unmutated";
+      const int unmutated_code = run_unmutated(args, fixture, unmutated_dir);
+      if (unmutated_code != exit_pass && unmutated_code != exit_conformance_failure) {
+        std::cout << "ERROR unmutated " << args.unmutated << " on " << fixture << " (exit "
+                  << unmutated_code << ")\n";
+        return 1;
+      }
+      const auto unmutated = verdicts(unmutated_dir / "results.json", args.algorithm.id);
+      for (const auto& [name, verdict] :
+           verdicts(fs::path(options.out_dir) / "results.json", args.algorithm.id)) {
+        if (verdict.first != "Fail") continue;
+        const auto same = unmutated.find(name);
+        if (same == unmutated.end()) {
+          std::cout << "ERROR the unmutated run has no record " << name << "\n";
+          return 1;
+        }
+        if (same->second.first == "Pass" || same->second.first == "QualityWarning")
+          kills.push_back(name + " Fail (unmutated: " + same->second.first +
+                          "): " + verdict.second);
+        else
+          std::cout << "  not a kill, fails unmutated too: " << name << " (" << same->second.first
+                    << ")\n";
+      }
+    }
+    if (!kills.empty()) {
       std::cout << "KILLED " << args.mutant << " by " << fixture << "\n";
       for (const std::string& k : kills) std::cout << "  " << k << "\n";
       if (args.survives.empty()) return 0;
       std::cout << "the catalogue says it survives (" << args.survives
                 << "): delete its survives: line\n";
-      return 1;
-    }
-    if (code != exit_pass && code != exit_conformance_failure) {
-      std::cout << "ERROR " << args.mutant << " on " << fixture << " (exit " << code << ")\n"
-                << err.str();
       return 1;
     }
     std::cout << "survived " << fixture << "\n";
