@@ -209,9 +209,20 @@ int main(int argc, char** argv) {
                               "The port's shared library (e.g. libport.so)");
   certify_command
       ->add_option("--profile", certify_options.profile,
-                   "Cases: conformance (the default fixtures), stiff (the numerical traps) or all")
-      ->check(CLI::IsMember({"conformance", "stiff", "all"}))
+                   "Cases: conformance (the default fixtures), stiff (the numerical traps), fuzz "
+                   "(the watertight, degenerate and differential generators) or all")
+      ->check(CLI::IsMember({"conformance", "stiff", "fuzz", "all"}))
       ->capture_default_str();
+  auto* fuzz_seed_option =
+      certify_command
+          ->add_option("--fuzz-seed", certify_options.fuzz.seed,
+                       "Profiles fuzz and all: the seed the fuzz cases' inputs derive from")
+          ->capture_default_str();
+  auto* fuzz_count_option = certify_command
+                                ->add_option("--fuzz-count", certify_options.fuzz.count,
+                                             "Profiles fuzz and all: cases per fuzz generator")
+                                ->check(CLI::Range(1u, 1000000u))
+                                ->capture_default_str();
   certify_command->add_option(
       "--fixture", certify_options.fixtures,
       "Only these fixtures instead of a profile (repeatable; the certificate says \"custom\")");
@@ -239,6 +250,7 @@ int main(int argc, char** argv) {
   certify_command->add_flag("--worker", certify_worker_mode)->group("");
   certify_command->add_option("--variant", worker_options.variant)->group("");
   certify_command->add_flag("--probe", worker_options.probe)->group("");
+  certify_command->add_flag("--reproduce", worker_options.reproduce)->group("");
   certify_command->add_option("--worker-result", worker_options.result_file)->group("");
   std::string verify_dir;
   CLI::App* certify_verify = certify_command->add_subcommand(
@@ -298,6 +310,12 @@ int main(int argc, char** argv) {
         return certify_worker(worker_options, std::cout, std::cerr);
       }
       if (certify_options.out_dir.empty()) throw UsageError("certify: give --out DIR");
+      if ((*fuzz_seed_option || *fuzz_count_option) &&
+          (!certify_options.fixtures.empty() ||
+           (certify_options.profile != "fuzz" && certify_options.profile != "all")))
+        throw UsageError(
+            "--fuzz-seed and --fuzz-count select the cases of the profiles fuzz and all; with "
+            "--fixture, name fuzz cases as fuzz.<generator>.<seed>.<index>");
       if (!certify_shard.empty()) {
         RunOptions shard_options;
         parse_shard(certify_shard, shard_options);

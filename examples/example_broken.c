@@ -1,6 +1,6 @@
 /* libexample_broken.so: a deliberately broken hard-shadow port, to show what certification
  * reports (tests/certify). It is the brute force of bruteforce_core.c with one fault per
- * fixture family, chosen by the case's name:
+ * fixture family, chosen by the case's name,
  *   ground_blockers.*  a crack along every triangle edge: light leaks through the shared
  *                      edges of the closed boxes                                    -> Fail
  *   gate_house.*       a segmentation fault                                         -> Crash
@@ -8,8 +8,13 @@
  *   foliage.*          state kept across processes: every second process (a marker file in
  *                      $TMPDIR or /tmp alternates) answers one sample differently,
  *                      so certify's rerun in a fresh process differs               -> Fail
+ * and one chosen by the geometry it receives, as a real port's fast path would be:
+ *   scenes whose casters' vertices all lie on the grid of 1/4096 (CAD exports; the surfaces
+ *   of the fuzz profile's watertight generator) take a "fast path" with the same crack along
+ *   every triangle edge: light leaks through their shared edges                     -> Fail
  * Every other case gets the correct answers. */
 #include <fcntl.h>
+#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -45,6 +50,24 @@ static int flipped_process(const char* case_name) {
   return decided;
 }
 
+/* 1 when the scene has a caster and every vertex of every caster is a multiple of 1/4096 in
+ * every coordinate (scaling a float by a power of two is exact). */
+static int grid_aligned_casters(const ShadowctsScene* scene) {
+  int any_caster = 0;
+  for (uint64_t t = 0; t < scene->triangle_count; ++t) {
+    if (!scene->casts[t]) continue;
+    any_caster = 1;
+    for (int k = 0; k < 3; ++k) {
+      const double coordinates[3] = {scene->x[k][t], scene->y[k][t], scene->z[k][t]};
+      for (int a = 0; a < 3; ++a) {
+        const double on_grid = coordinates[a] * 4096.0;
+        if (on_grid != floor(on_grid)) return 0;
+      }
+    }
+  }
+  return any_caster;
+}
+
 static int32_t run_broken(void* context, const ShadowctsScene* scene, ShadowctsOutputs* outputs,
                           char* message, size_t message_capacity) {
   (void)context;
@@ -56,8 +79,9 @@ static int32_t run_broken(void* context, const ShadowctsScene* scene, ShadowctsO
   if (starts_with(name, "closed_shapes.")) {
     for (;;) sleep(1);
   }
-  const ExampleFault fault =
-      starts_with(name, "ground_blockers.") ? EXAMPLE_FAULT_EDGE_CRACK : EXAMPLE_FAULT_NONE;
+  const ExampleFault fault = starts_with(name, "ground_blockers.") || grid_aligned_casters(scene)
+                                 ? EXAMPLE_FAULT_EDGE_CRACK
+                                 : EXAMPLE_FAULT_NONE;
   const int32_t status = example_bruteforce_run(scene, outputs, fault, message, message_capacity);
   if (status == SHADOWCTS_STATUS_OK && starts_with(name, "foliage.") && scene->sample_count > 0 &&
       flipped_process(name))

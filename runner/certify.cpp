@@ -21,6 +21,10 @@
 #include <thread>
 
 #include "atomic_file.h"
+#include "case_reproducer.h"
+#include "case_shrinking.h"
+#include "conformance_violation.h"
+#include "fixtures/fuzz/fuzz_fixtures.h"
 #include "junit_xml.h"
 #include "machine_info.h"
 #include "plugin_backend.h"
@@ -428,8 +432,8 @@ Entry decide(const std::string& case_name, const std::string& variant, const Wor
 // The output folder: staged beside it, moved into place when complete.
 
 const std::set<std::string>& certification_names() {
-  static const std::set<std::string> names = {"results.json", "junit.xml", "report.html",
-                                              "certificate.json", "cases"};
+  static const std::set<std::string> names = {"results.json",     "junit.xml", "report.html",
+                                              "certificate.json", "cases",     "reproducers"};
   return names;
 }
 
@@ -636,7 +640,7 @@ ordered_json case_list_json(const std::vector<std::string>& names, std::string& 
   ordered_json cases = ordered_json::array();
   std::string bytes = "shadowcts.case-list/1\n";
   for (const std::string& name : names) {
-    const std::string input = case_input_sha256(make_fixture(name));
+    const std::string input = fixture_input_sha256(name);
     cases.push_back({{"name", name}, {"input_sha256", input}});
     bytes += name + " " + input + "\n";
   }
@@ -665,8 +669,121 @@ void print_entry(std::ostream& out, const Entry& e) {
       << std::flush;
 }
 
+// `certify --worker --reproduce`: the fuzz case rebuilt from its name, checked in this process
+// against the conformance property (runner/conformance_violation.h) and, while the violation
+// stays, shrunk (runner/case_shrinking.h); the reproducer (runner/case_reproducer.h) goes to
+// out_dir, what it is to result_file. A failure that does not show in one process (a rerun that
+// differed) is written unshrunk.
+int write_fuzz_reproducer(const PluginBackend& backend, std::size_t index,
+                          const CertifyWorkerOptions& w) {
+  fuzzing::GeneratedCase generated = fuzzing::make_fuzz_case(w.fixture);
+  fuzzing::SampleCase& original = generated.sample_case;
+  if (w.threads) original.c.parameters.threads = *w.threads;
+  const auto algorithm = backend.algorithm(index);
+  const std::optional<Violation> violation = violation_on(*algorithm, w.variant, original);
+  const fuzzing::SampleCase minimal =
+      violation ? shrink_case(original, violation->sample,
+                              [&](const fuzzing::SampleCase& candidate) {
+                                return violation_on(*algorithm, w.variant, candidate).has_value();
+                              })
+                : original;
+  write_reproducer(w.out_dir, minimal.c, minimal.samples);
+  ordered_json result;
+  result["shrunk"] = violation.has_value();
+  result["violation"] = violation ? violation->what : std::string();
+  if (!violation)
+    result["note"] =
+        "not shrunk: the variant keeps the conformance property on this case within "
+        "one process";
+  result["triangles"] = minimal.c.triangles.size();
+  result["samples"] = minimal.samples.samples.size();
+  result["original_triangles"] = original.c.triangles.size();
+  result["original_samples"] = original.samples.samples.size();
+  write_file_atomically(w.result_file, result.dump(2) + "\n");
+  return exit_pass;
+}
+
+// The reproducer of a fuzz case x variant that did not pass (Fail, Crash, Timeout): shrunk by a
+// worker process (the port runs there, never in this process); when that worker dies or hangs
+// (a port that crashes crashes it too: shrinking a crash would need a process per candidate),
+// the whole case is written unshrunk here, without running the port.
+ordered_json fuzz_reproducer(const std::string& exe, const CertifyOptions& options,
+                             const fs::path& staging_dir, const fs::path& case_dir,
+                             const Entry& e) {
+  const fs::path rel = fs::path("reproducers") / folder_name(e.case_name) / folder_name(e.variant);
+  const fs::path dir = staging_dir / rel;
+  const fs::path result_file = staging_dir / case_dir / "reproducer.json";
+  std::vector<std::string> args = {exe,
+                                   "certify",
+                                   "--worker",
+                                   "--reproduce",
+                                   "--backend",
+                                   fs::absolute(options.library).string(),
+                                   "--fixture",
+                                   e.case_name,
+                                   "--variant",
+                                   e.variant,
+                                   "--out",
+                                   dir.string(),
+                                   "--worker-result",
+                                   result_file.string()};
+  if (options.threads) {
+    args.push_back("--threads");
+    args.push_back(std::to_string(*options.threads));
+  }
+  const WorkerRun run =
+      run_worker(args, staging_dir / case_dir / "reproduce.log", options.timeout_s);
+  ordered_json j;
+  j["case"] = e.case_name;
+  j["variant"] = e.variant;
+  j["verdict"] = e.verdict;
+  ordered_json what;
+  std::error_code ec;
+  if (run.end == WorkerRun::End::exited && run.code == 0 && fs::exists(result_file, ec))
+    what = read_json(result_file, "reproducer result");
+  if (what.is_null()) {
+    fs::remove_all(dir, ec);
+    const fuzzing::GeneratedCase generated = fuzzing::make_fuzz_case(e.case_name);
+    const fuzzing::SampleCase& whole = generated.sample_case;
+    write_reproducer(dir.string(), whole.c, whole.samples);
+    what["shrunk"] = false;
+    what["violation"] = "";
+    what["note"] = "not shrunk: " + run_end_text(run, options.timeout_s) + " while shrinking";
+    what["triangles"] = whole.c.triangles.size();
+    what["samples"] = whole.samples.samples.size();
+    what["original_triangles"] = whole.c.triangles.size();
+    what["original_samples"] = whole.samples.samples.size();
+  }
+  for (auto& [key, value] : what.items()) j[key] = value;
+  j["folder"] = rel.string();
+  j["manifest"] = (rel / "case.json").string();
+  return j;
+}
+
+void print_reproducer(std::ostream& out, const std::string& out_dir, const ordered_json& r) {
+  out << "    reproducer: " << (fs::path(out_dir) / r.at("manifest").get<std::string>()).string()
+      << " (" << r.at("triangles").get<std::size_t>() << " triangles, "
+      << r.at("samples").get<std::size_t>() << " samples"
+      << (r.at("shrunk").get<bool>()
+              ? ", shrunk from " + std::to_string(r.at("original_triangles").get<std::size_t>()) +
+                    " triangles and " +
+                    std::to_string(r.at("original_samples").get<std::size_t>()) + " samples"
+              : "; " + r.value("note", std::string()))
+      << ")\n"
+      << std::flush;
+}
+
+// A fuzz case where the exact oracle calls every sample ambiguous, or that has no sample to
+// compare (all back-facing), judges nothing: its generator made it so, not the port (the oracle
+// decides it, never the port's answers). Allowed like a declared NotSupported; the reason says it.
+bool fuzz_case_with_nothing_to_judge(const Entry& e) {
+  return e.verdict == "NotSupported" && fuzzing::is_fuzz_case_name(e.case_name) &&
+         e.reason.rfind("no robust sample to judge", 0) == 0;
+}
+
 bool allowed(const Entry& e) {
-  return e.verdict == "Pass" || (e.verdict == "NotSupported" && e.declared_not_supported);
+  return e.verdict == "Pass" || (e.verdict == "NotSupported" && e.declared_not_supported) ||
+         fuzz_case_with_nothing_to_judge(e);
 }
 
 }  // namespace
@@ -689,18 +806,21 @@ static std::string suite_sha() {
 #endif
 }
 
-std::vector<std::string> profile_cases(const std::string& profile) {
+std::vector<std::string> profile_cases(const std::string& profile, const FuzzSelection& fuzz) {
   if (profile == "conformance") return default_fixtures();
   if (profile == "stiff") return stiff_fixtures();
+  if (profile == "fuzz") return fuzzing::fuzz_case_names(fuzz.seed, fuzz.count);
   if (profile == "all") {
     std::vector<std::string> all = default_fixtures();
     for (const std::string& s : stiff_fixtures()) all.push_back(s);
+    for (const std::string& s : fuzzing::fuzz_case_names(fuzz.seed, fuzz.count)) all.push_back(s);
     return all;
   }
-  throw UsageError("--profile " + profile + ": unknown profile (known: conformance, stiff, all)");
+  throw UsageError("--profile " + profile +
+                   ": unknown profile (known: conformance, stiff, fuzz, all)");
 }
 
-std::string case_input_sha256(const Case& c) {
+std::string case_input_sha256(const Case& c, const ViewSamples* given_samples) {
   std::string b = "shadowcts.case-input/1\n";
   put_text(b, c.name);
   put_u64(b, c.meshes.size());
@@ -741,7 +861,28 @@ std::string case_input_sha256(const Case& c) {
   put_double(b, c.parameters.eps_rel);
   put_u64(b, c.parameters.seed);
   put_text(b, c.gbuffer_path);
+  // Only cases that place their samples themselves hash them (the hashes of the other fixtures
+  // stay what they were).
+  if (given_samples) {
+    b += "samples";
+    put_u32(b, given_samples->width);
+    put_u32(b, given_samples->height);
+    for (const ViewSample& s : given_samples->samples) {
+      put_vec3(b, s.position);
+      put_vec3(b, s.normal);
+      put_u32(b, s.receiver);
+      put_u32(b, s.pixel_x);
+      put_u32(b, s.pixel_y);
+      b += char(s.sample_class);
+    }
+  }
   return sha256_hex(b);
+}
+
+std::string fixture_input_sha256(const std::string& name) {
+  if (!fuzzing::is_fuzz_case_name(name)) return case_input_sha256(make_fixture(name));
+  const fuzzing::GeneratedCase generated = fuzzing::make_fuzz_case(name);
+  return case_input_sha256(generated.sample_case.c, &generated.sample_case.samples);
 }
 
 std::string certificate_content_sha256(const ordered_json& certificate) {
@@ -762,6 +903,7 @@ int certify_worker(const CertifyWorkerOptions& w, std::ostream& out, std::ostrea
     if (backend.variants()[k].name == w.variant) index = k;
   if (index == backend.variants().size())
     throw UsageError("--variant " + w.variant + ": the library declares no such variant");
+  if (w.reproduce) return write_fuzz_reproducer(backend, index, w);
   Registry registry;
   auto algorithm = backend.algorithm(index);
   const PluginAlgorithm* plugin = algorithm.get();
@@ -785,8 +927,9 @@ int certify(const CertifyOptions& options, std::ostream& out, std::ostream& err)
   probe_library(exe, options.library);
   const PluginBackend backend(options.library);
   if (!(options.timeout_s > 0)) throw UsageError("--timeout: must be positive");
+  if (options.fuzz.count == 0) throw UsageError("--fuzz-count: must be at least 1");
   const std::vector<std::string> all_cases =
-      options.fixtures.empty() ? profile_cases(options.profile) : options.fixtures;
+      options.fixtures.empty() ? profile_cases(options.profile, options.fuzz) : options.fixtures;
   for (std::size_t i = 0; i < all_cases.size(); ++i)
     for (std::size_t j = 0; j < i; ++j)
       if (all_cases[i] == all_cases[j])
@@ -812,6 +955,7 @@ int certify(const CertifyOptions& options, std::ostream& out, std::ostream& err)
       << ", each run twice in worker processes (timeout " << options.timeout_s << " s)\n"
       << std::flush;
   std::vector<Entry> entries;
+  ordered_json reproducers = ordered_json::array();
   for (const std::string& fixture : cases)
     for (const PluginVariantInfo& v : backend.variants()) {
       const fs::path rel = fs::path("cases") / folder_name(fixture) / folder_name(v.name);
@@ -840,6 +984,11 @@ int certify(const CertifyOptions& options, std::ostream& out, std::ostream& err)
             << (fs::path(options.out_dir) / rel / (first.judged ? "run-2" : "run-1") / "worker.log")
                    .string()
             << "\n";
+      if (fuzzing::is_fuzz_case_name(fixture) &&
+          (e.verdict == "Fail" || e.verdict == "Crash" || e.verdict == "Timeout")) {
+        reproducers.push_back(fuzz_reproducer(exe, options, staging.dir(), rel, e));
+        print_reproducer(out, options.out_dir, reproducers.back());
+      }
       entries.push_back(std::move(e));
     }
 
@@ -855,12 +1004,17 @@ int certify(const CertifyOptions& options, std::ostream& out, std::ostream& err)
   certificate["machine"] = machine_json();
   certificate["library"] = library;
   certificate["profile"] = options.fixtures.empty() ? options.profile : "custom";
+  if (options.fixtures.empty() && (options.profile == "fuzz" || options.profile == "all"))
+    certificate["fuzz"] = {{"seed", options.fuzz.seed},
+                           {"count", options.fuzz.count},
+                           {"generators", fuzzing::fuzz_generator_names()}};
   certificate["case_list_sha256"] = list_sha256;
   certificate["cases"] = case_list;
   certificate["shard"] = {{"index", options.shard_index}, {"count", options.shard_count}};
   certificate["timeout_s"] = options.timeout_s;
   certificate["results"] = ordered_json::array();
   for (const Entry& e : entries) certificate["results"].push_back(entry_json(e));
+  certificate["reproducers"] = reproducers;
   seal(certificate);
   write_file_atomically(staging.dir() / "certificate.json", certificate.dump(2) + "\n");
   staging.commit();
@@ -876,6 +1030,10 @@ int certify(const CertifyOptions& options, std::ostream& out, std::ostream& err)
   for (const auto& [verdict, count] : counts) out << " " << count << " " << verdict;
   out << "\nwrote " << (fs::path(options.out_dir) / "certificate.json").string() << " beside "
       << "report.html, results.json and junit.xml"
+      << (reproducers.empty() ? std::string()
+                              : ", and " + std::to_string(reproducers.size()) +
+                                    " reproducer(s) of failing fuzz cases under " +
+                                    (fs::path(options.out_dir) / "reproducers").string())
       << (good != entries.size() ? "; the certification does not pass"
           : !any_pass ? "; nothing was judged (every case NotSupported): it certifies nothing"
                       : "")
@@ -910,10 +1068,22 @@ int verify_certificate(const std::string& dir, std::ostream& out) {
     std::vector<std::string> names;
     for (const ordered_json& k : c.at("cases")) names.push_back(k.at("name").get<std::string>());
     if (profile != "custom") {
-      const std::vector<std::string> expected = profile_cases(profile);
+      // The fuzz profile's cases follow from the seed and count the certificate records.
+      FuzzSelection fuzz;
+      if (profile == "fuzz" || profile == "all") {
+        fuzz.seed = c.at("fuzz").at("seed").get<std::uint64_t>();
+        fuzz.count = c.at("fuzz").at("count").get<std::uint32_t>();
+        if (c.at("fuzz").at("generators") != ordered_json(fuzzing::fuzz_generator_names()))
+          reject("the fuzz generators are not this suite's");
+      }
+      const std::vector<std::string> expected = profile_cases(profile, fuzz);
       if (names != expected)
         reject("the case list is not the " + profile + " profile's " +
-               std::to_string(expected.size()) + " cases in order");
+               std::to_string(expected.size()) + " cases in order" +
+               (profile == "fuzz" || profile == "all"
+                    ? " for fuzz seed " + std::to_string(fuzz.seed) + " and count " +
+                          std::to_string(fuzz.count)
+                    : std::string()));
     } else {
       out << "note: a custom case selection, not a whole profile\n";
     }
@@ -988,7 +1158,7 @@ int verify_certificate(const std::string& dir, std::ostream& out) {
   }
   out << "ACCEPTED " << file.string() << ": " << c.at("library").at("name").get<std::string>()
       << " " << c.at("library").at("version").get<std::string>() << ", " << c.at("results").size()
-      << " case x variant results, all Pass or declared NotSupported\n";
+      << " case x variant results, all Pass or NotSupported as allowed\n";
   return exit_pass;
 }
 
@@ -1034,16 +1204,24 @@ int merge_certificates(const std::string& out_dir, const std::vector<std::string
   for (const ordered_json& v : first.at("library").at("variants"))
     variant_order.emplace(v.at("name").get<std::string>(), variant_order.size());
   std::vector<std::pair<std::pair<std::size_t, std::size_t>, Entry>> ordered;
+  std::vector<std::pair<std::size_t, ordered_json>> reproducers;
   ordered_json command_lines = ordered_json::array();
   for (std::size_t k = 0; k < shards.size(); ++k) {
     command_lines.push_back(shards[k].at("command_line"));
-    std::error_code ec;
-    for (const fs::directory_entry& entry :
-         fs::directory_iterator(fs::path(dirs[k]) / "cases", ec)) {
-      const fs::path to = staging.dir() / "cases" / entry.path().filename();
-      if (fs::exists(to)) throw InputError(entry.path().string(), "cases", "is in two shards");
-      fs::copy(entry.path(), to, fs::copy_options::recursive, ec);
-      if (ec) throw OutputError(to.string(), "cannot copy: " + ec.message());
+    for (const char* folder : {"cases", "reproducers"}) {
+      std::error_code ec;
+      fs::create_directories(staging.dir() / folder, ec);
+      for (const fs::directory_entry& entry :
+           fs::directory_iterator(fs::path(dirs[k]) / folder, ec)) {
+        const fs::path to = staging.dir() / folder / entry.path().filename();
+        if (fs::exists(to)) throw InputError(entry.path().string(), folder, "is in two shards");
+        fs::copy(entry.path(), to, fs::copy_options::recursive, ec);
+        if (ec) throw OutputError(to.string(), "cannot copy: " + ec.message());
+      }
+    }
+    for (const ordered_json& r : shards[k].value("reproducers", ordered_json::array())) {
+      const auto c = case_order.find(r.at("case").get<std::string>());
+      reproducers.push_back({c == case_order.end() ? case_order.size() : c->second, r});
     }
     for (const ordered_json& r : shards[k].at("results")) {
       Entry e = entry_from_json(r);
@@ -1066,6 +1244,10 @@ int merge_certificates(const std::string& out_dir, const std::vector<std::string
   merged["shard"] = {{"index", 0}, {"count", 1}, {"merged_from", count}};
   merged["results"] = ordered_json::array();
   for (const Entry& e : entries) merged["results"].push_back(entry_json(e));
+  std::stable_sort(reproducers.begin(), reproducers.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  merged["reproducers"] = ordered_json::array();
+  for (const auto& [position, r] : reproducers) merged["reproducers"].push_back(r);
   seal(merged);
   write_file_atomically(staging.dir() / "certificate.json", merged.dump(2) + "\n");
   staging.commit();

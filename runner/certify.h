@@ -15,14 +15,23 @@
 #include <nlohmann/json.hpp>
 
 #include "shadowcts/case.h"
+#include "shadowcts/view_samples.h"
 
 namespace shadowcts {
 
 inline constexpr const char* certificate_schema = "shadowcts.certificate/1";
 
+// The fuzz profile's cases: fuzz.<generator>.<seed>.<index> for the watertight, degenerate and
+// differential generators and every index below `count` (fixtures/fuzz/fuzz_fixtures.h).
+struct FuzzSelection {
+  std::uint64_t seed = 1;
+  std::uint32_t count = 32;  // per generator
+};
+
 struct CertifyOptions {
   std::string library;                  // the port's shared library
-  std::string profile = "conformance";  // conformance | stiff | all
+  std::string profile = "conformance";  // conformance | stiff | fuzz | all
+  FuzzSelection fuzz;                   // for the profiles fuzz and all
   // Instead of a whole profile: these fixtures only (the certificate says "custom"; tests and
   // quick checks).
   std::vector<std::string> fixtures;
@@ -44,12 +53,17 @@ struct CertifyWorkerOptions {
   std::string library, fixture, variant, out_dir, result_file;
   std::optional<std::uint32_t> threads;
   bool probe = false;  // only load and validate the library (exit 2 naming the field when bad)
+  // Write a reproducer of the fuzz case `fixture` into out_dir instead of running the runner:
+  // shrunk while the variant still violates the conformance property in this process.
+  bool reproduce = false;
 };
 
 // `shadowcts certify --worker --probe`: loads and validates the library only (the parent does this
 // first, so that a library that crashes while loading is a bad library, not a crash of certify).
 // `shadowcts certify --worker`: one case x variant through the runner into out_dir, then the
 // output hashes of every call into result_file. Returns the runner's exit code.
+// `shadowcts certify --worker --reproduce`: the minimal reproducer of a failing fuzz case into
+// out_dir, what it is into result_file; 0 when written.
 int certify_worker(const CertifyWorkerOptions& options, std::ostream& out, std::ostream& err);
 
 // `shadowcts certify verify DIR`: 0 accepted, 1 rejected (each reason printed); throws
@@ -63,12 +77,16 @@ int verify_certificate(const std::string& dir, std::ostream& out);
 int merge_certificates(const std::string& out_dir, const std::vector<std::string>& dirs,
                        std::ostream& out);
 
-// The cases of a profile, in order. Throws UsageError for an unknown profile.
-std::vector<std::string> profile_cases(const std::string& profile);
+// The cases of a profile, in order (`all`: conformance, stiff, then fuzz). Throws UsageError for
+// an unknown profile.
+std::vector<std::string> profile_cases(const std::string& profile, const FuzzSelection& fuzz = {});
 
 // SHA-256 of what a case gives an algorithm and the oracles (geometry, meshes, lights, camera,
-// eps_rel, seed), in a fixed byte order.
-std::string case_input_sha256(const Case& c);
+// eps_rel, seed, and the view samples where the case places them itself), in a fixed byte order.
+std::string case_input_sha256(const Case& c, const ViewSamples* given_samples = nullptr);
+
+// case_input_sha256 of a fixture by name (a fuzz case with its samples).
+std::string fixture_input_sha256(const std::string& name);
 
 // SHA-256 of the certificate's canonical content: the JSON without "certificate_sha256", dumped
 // compactly in its key order.

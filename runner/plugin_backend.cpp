@@ -364,6 +364,11 @@ AlgorithmOutput PluginAlgorithm::run(const PreparedScene& scene, const std::stri
   std::vector<std::uint8_t> shadowed;
   std::vector<float> visible;
   std::vector<std::uint32_t> offsets, list_lights, list_of_sample;
+  // The ABI promises a non-null array for the variant's output kind, also for a case without
+  // regular samples (every sample back-facing or sky): storage reserved, so data() is not null.
+  shadowed.reserve(std::max<std::size_t>(n, 1));
+  visible.reserve(std::max<std::size_t>(n, 1));
+  list_of_sample.reserve(std::max<std::size_t>(n, 1));
   std::vector<float> bounds;
   std::vector<ShadowctsCounter> counters(64);
   ShadowctsOutputs o{};

@@ -26,6 +26,7 @@
 
 #include "case_evaluation.h"
 #include "case_gbuffer.h"
+#include "fixtures/fuzz/fuzz_fixtures.h"
 #include "hard_shadow_evaluation.h"
 #include "heat_map.h"
 #include "image_paths.h"
@@ -75,8 +76,11 @@ std::string light_name(const Case& c) {
 // `selectors` receives, per case, the option that selects it again ("--fixture NAME" or
 // "--case FILE"), for the reproducer command of each record.
 // `gbuffer_formats[i]`: how case i's G-buffer is laid out (manifests only).
+// `given_samples[i]`: case i's view samples where its fixture places them itself (the fuzz cases
+// `fuzz.<generator>.<seed>.<index>`, fixtures/fuzz/fuzz_fixtures.h).
 std::vector<Case> load_cases(const RunOptions& options, std::vector<std::string>& selectors,
-                             std::vector<GBufferFormat>& gbuffer_formats) {
+                             std::vector<GBufferFormat>& gbuffer_formats,
+                             std::vector<std::optional<ViewSamples>>& given_samples) {
   std::vector<Case> cases;
   std::vector<std::string> fixtures = options.fixtures;
   if (options.suite == "stiff") {
@@ -92,13 +96,21 @@ std::vector<Case> load_cases(const RunOptions& options, std::vector<std::string>
   auto in_shard = [&] { return position++ % options.shard_count == options.shard_index; };
   for (const std::string& name : fixtures)
     if (in_shard()) {
-      cases.push_back(make_fixture(name));
+      if (fuzzing::is_fuzz_case_name(name)) {
+        fuzzing::GeneratedCase generated = fuzzing::make_fuzz_case(name);
+        cases.push_back(std::move(generated.sample_case.c));
+        given_samples.push_back(std::move(generated.sample_case.samples));
+      } else {
+        cases.push_back(make_fixture(name));
+        given_samples.emplace_back();
+      }
       selectors.push_back("--fixture " + name);
       gbuffer_formats.emplace_back();
     }
   for (const std::string& file : options.case_files)
     if (in_shard()) {
       gbuffer_formats.emplace_back();
+      given_samples.emplace_back();
       cases.push_back(load_case_manifest(file, gbuffer_formats.back()));
       selectors.push_back("--case " + file);
     }
@@ -526,7 +538,8 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
   const std::filesystem::path target = checked_out_dir(options.out_dir);
   std::vector<std::string> selectors;
   std::vector<GBufferFormat> gbuffer_formats;
-  const std::vector<Case> cases = load_cases(options, selectors, gbuffer_formats);
+  std::vector<std::optional<ViewSamples>> given_samples;
+  const std::vector<Case> cases = load_cases(options, selectors, gbuffer_formats, given_samples);
   if (cases.empty())
     throw UsageError("the selection matches no case" +
                      (options.shard_count > 1 ? " in shard " + std::to_string(options.shard_index) +
@@ -575,7 +588,12 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
     ViewSamples samples;
     std::vector<std::uint8_t> receiver_ambiguous;
     std::string receivers_line;
-    if (c.gbuffer_path.empty()) {
+    if (given_samples[case_index]) {
+      samples = std::move(*given_samples[case_index]);
+      given_samples[case_index].reset();
+      summary.samples_from = "the fuzz generator";
+      summary.left_out.push_back("Embree G-buffer pass: the fuzz generator places the samples");
+    } else if (c.gbuffer_path.empty()) {
       samples = generate_view_samples(c);
       summary.samples_from = "embree primary rays";
     } else {

@@ -7,8 +7,9 @@
 #include <filesystem>
 #include <string>
 
-#include "reproducer.h"
-#include "sample_case.h"
+#include "fixtures/fuzz/sample_case.h"
+#include "fixtures/fuzz/stable_direction.h"
+#include "runner/case_reproducer.h"
 #include "shadowcts/case_manifest.h"
 #include "shadowcts/gbuffer_exr.h"
 
@@ -56,7 +57,7 @@ int main() {
   const std::string folder =
       (std::filesystem::temp_directory_path() / "shadowcts_reproducer_round_trip").string();
   std::filesystem::remove_all(folder);
-  const std::string manifest = fuzzing::write_reproducer(folder, s.c, s.samples);
+  const std::string manifest = write_reproducer(folder, s.c, s.samples);
   Case c = load_case_manifest(manifest);
   ViewSamples samples = read_gbuffer_exr(c.gbuffer_path);
   classify_samples(c, samples, c.gbuffer_path);

@@ -1,4 +1,4 @@
-#include "reproducer.h"
+#include "case_reproducer.h"
 
 #include <bit>
 #include <cmath>
@@ -8,13 +8,13 @@
 #include <limits>
 #include <vector>
 
-#include <glm/geometric.hpp>
+#include <glm/common.hpp>
 #include <nlohmann/json.hpp>
 
 #include "shadowcts/errors.h"
 #include "shadowcts/gbuffer_exr.h"
 
-namespace shadowcts::fuzzing {
+namespace shadowcts {
 namespace {
 
 namespace fs = std::filesystem;
@@ -90,16 +90,6 @@ Json light_json(const ShadowLight& light) {
 
 }  // namespace
 
-glm::vec3 manifest_stable_direction(const glm::vec3& d) {
-  glm::vec3 current = d;
-  for (int i = 0; i < 8; ++i) {
-    const glm::vec3 next(glm::dvec3(current) / glm::length(glm::dvec3(current)));
-    if (next == current) break;
-    current = next;
-  }
-  return current;
-}
-
 std::string write_reproducer(const std::string& folder, const Case& c, const ViewSamples& samples) {
   fs::create_directories(folder);
   Json scenes = Json::array();
@@ -139,4 +129,4 @@ std::string write_reproducer(const std::string& folder, const Case& c, const Vie
   return manifest_path.string();
 }
 
-}  // namespace shadowcts::fuzzing
+}  // namespace shadowcts
