@@ -151,6 +151,10 @@ shadowcts_backend_negotiate(uint32_t requested_abi_version, ShadowctsBackend* ta
       v.light_kinds = (caps.point_light ? SHADOWCTS_LIGHT_POINT : 0u) |
                       (caps.directional_light ? SHADOWCTS_LIGHT_DIRECTIONAL : 0u);
       v.flags = caps.needs_closed_meshes ? SHADOWCTS_VARIANT_NEEDS_CLOSED_MESHES : 0u;
+      // Implicit cluster bounds are spans of pixel coordinates: samples placed anywhere else
+      // (a fuzzer's) fall outside them, which the port reports as an input error.
+      if (info.variants[k].starts_with("implicit"))
+        v.flags |= SHADOWCTS_VARIANT_NEEDS_SAMPLES_IN_THEIR_PIXELS;
       v.max_triangles = UINT64_MAX;
       v.max_regular_samples = UINT64_MAX;
       v.max_sample_triangle_pairs =

@@ -257,6 +257,8 @@ PluginAlgorithm::PluginAlgorithm(const PluginBackend& backend, std::size_t varia
   caps.ranged_lights = (v.light_kinds & SHADOWCTS_LIGHT_RANGED) != 0;
   caps.needs_closed_meshes = (v.flags & SHADOWCTS_VARIANT_NEEDS_CLOSED_MESHES) != 0;
   caps.approximate = (v.flags & SHADOWCTS_VARIANT_APPROXIMATE) != 0;
+  caps.needs_samples_in_their_pixels =
+      (v.flags & SHADOWCTS_VARIANT_NEEDS_SAMPLES_IN_THEIR_PIXELS) != 0;
   caps.max_sample_triangle_pairs =
       v.max_sample_triangle_pairs == std::numeric_limits<std::uint64_t>::max()
           ? 0

@@ -21,6 +21,9 @@ struct Capabilities {
   bool sun_disk = false;
   bool ranged_lights = false;
   bool needs_closed_meshes = false;
+  // Every regular view sample must lie inside its own pixel's view frustum (geometry::
+  // in_pixel_wedge): bounds built from pixel coordinates (implicit cluster bounds) need it.
+  bool needs_samples_in_their_pixels = false;
   // Approximate by design (shadow maps): robust mismatches are its error figures, reported as
   // QualityWarning instead of Fail while their rate stays within the variant's declared ceiling
   // (Algorithm::robust_mismatch_ceiling); beyond it the verdict is Fail.

@@ -82,10 +82,15 @@ typedef enum ShadowctsOutputKind {
 #define SHADOWCTS_LIGHT_ALL_KINDS 15u
 
 /* Bits of ShadowctsVariant::flags. NEEDS_CLOSED_MESHES: NotSupported unless every caster mesh is
- * closed. APPROXIMATE: approximate by design, robust mismatches are QualityWarning, not Fail. */
+ * closed. APPROXIMATE: approximate by design, robust mismatches are QualityWarning, not Fail.
+ * NEEDS_SAMPLES_IN_THEIR_PIXELS: NotSupported unless every sample lies in front of the camera and
+ * inside the view frustum of its own pixel (samples cast from the camera, not placed by a G-buffer
+ * from elsewhere or a fuzzer), as bounds built from pixel coordinates alone need (added within
+ * version 1: a suite that predates it rejects the bit as unknown). */
 #define SHADOWCTS_VARIANT_NEEDS_CLOSED_MESHES 1u
 #define SHADOWCTS_VARIANT_APPROXIMATE 2u
-#define SHADOWCTS_VARIANT_ALL_FLAGS 3u
+#define SHADOWCTS_VARIANT_NEEDS_SAMPLES_IN_THEIR_PIXELS 4u
+#define SHADOWCTS_VARIANT_ALL_FLAGS 7u
 
 /* Longest name the suite accepts (identity strings, variant names), without the terminating 0. */
 #define SHADOWCTS_MAX_NAME_LENGTH 63u

@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "shadowcts/case.h"
+#include "shadowcts/geometry/camera_frame.h"
 
 namespace shadowcts {
 namespace {
@@ -57,6 +58,29 @@ TEST(ViewSamples, LieOnTheirReceiverWithinFloatError) {
     // The stored normal is the receiver's normal up to sign, unit length.
     EXPECT_NEAR(std::fabs(glm::dot(glm::dvec3(v.normal), n)), 1.0, 1e-6);
     EXPECT_NEAR(glm::length(glm::dvec3(v.normal)), 1.0, 1e-6);
+  }
+  EXPECT_GT(surface, s.samples.size() / 2);
+}
+
+// Samples cast from the camera lie inside their own pixel's view frustum (the test a variant
+// declaring SHADOWCTS_VARIANT_NEEDS_SAMPLES_IN_THEIR_PIXELS is planned with), and not inside a
+// neighbour's.
+TEST(ViewSamples, LieInTheirOwnPixelsFrustum) {
+  const Case c = ground_and_wall(point_light({0, 5, 3}));
+  const ViewSamples s = generate_view_samples(c);
+  const CameraFrame frame = camera_frame(c.camera);
+  std::size_t surface = 0;
+  for (const ViewSample& v : s.samples) {
+    if (v.sample_class == SampleClass::sky) continue;
+    ++surface;
+    const glm::dvec3 p(v.position);
+    EXPECT_TRUE(in_pixel_wedge(frame, s.width, s.height, v.pixel_x, v.pixel_y, p))
+        << v.pixel_x << "," << v.pixel_y;
+    EXPECT_FALSE(in_pixel_wedge(frame, s.width, s.height, v.pixel_x + 1, v.pixel_y, p));
+    EXPECT_FALSE(in_pixel_wedge(frame, s.width, s.height, v.pixel_x, v.pixel_y + 1, p));
+    // Behind the camera: the point mirrored through the eye.
+    EXPECT_FALSE(
+        in_pixel_wedge(frame, s.width, s.height, v.pixel_x, v.pixel_y, 2.0 * frame.origin - p));
   }
   EXPECT_GT(surface, s.samples.size() / 2);
 }
