@@ -54,12 +54,12 @@ inline ViewPoint to_view(const ViewFrame& f, const glm::dvec3& p) {
 
 // Screen coordinate of the left edge of pixel column x (x = width: the image's right edge).
 inline double screen_x_of_column(const ViewFrame& f, double x) {
-  return (2.0 * x / f.width - 1.0) * f.tan_half_fov * f.aspect;
+  return shadowcts::screen_x_of_column(f.tan_half_fov, f.width, f.height, x);
 }
 
 // Screen coordinate of the top edge of pixel row y (rows grow downwards).
 inline double screen_y_of_row(const ViewFrame& f, double y) {
-  return (1.0 - 2.0 * y / f.height) * f.tan_half_fov;
+  return shadowcts::screen_y_of_row(f.tan_half_fov, f.height, y);
 }
 
 // Pixels [x0, x1) x [y0, y1) between view depths depth0 <= depth1.
@@ -86,9 +86,8 @@ inline std::array<glm::dvec3, 8> cell_corners(const ViewFrame& f, const FrustumC
 // coordinates, so they contain a sample only if this holds; G-buffers from elsewhere may break it.
 inline bool inside_pixel_wedge(const ViewFrame& f, const ViewPoint& v, std::uint32_t x0,
                                std::uint32_t x1, std::uint32_t y0, std::uint32_t y1) {
-  return v.depth > 0.0 && v.screen_x >= screen_x_of_column(f, x0) &&
-         v.screen_x <= screen_x_of_column(f, x1) && v.screen_y <= screen_y_of_row(f, y0) &&
-         v.screen_y >= screen_y_of_row(f, y1);
+  return in_pixel_span(f.tan_half_fov, f.width, f.height, v.depth, v.screen_x, v.screen_y, x0, x1,
+                       y0, y1);
 }
 
 }  // namespace shadowcts::ptsv
