@@ -18,6 +18,7 @@
 #include "shadowcts/registry.h"
 #include "simd/lightassign/lightassign_algorithm.h"
 #include "simd/metric/metric_algorithm.h"
+#include "simd/psv/psv_algorithm.h"
 #include "simd/ptsv/ptsv_algorithm.h"
 #include "simd/softtile/softtile_algorithm.h"
 #if SHADOWCTS_HAVE_CUDA
@@ -50,6 +51,7 @@ const Registry& builtin_registry() {
     r.add(make_softtile_cuda_emu());
     r.add(make_psv_cuda_emu());
     r.add(make_simd_ptsv());
+    r.add(make_simd_psv());
     r.add(make_simd_softtile());
     r.add(make_simd_metric());
     r.add(make_simd_lightassign());

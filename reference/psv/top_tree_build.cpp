@@ -17,7 +17,8 @@ float round_up_to_float(double x) {
   return f;
 }
 
-// The wedge a triangle adds to the intersection subtree of edge node `node` (see TopNode::wedge):
+}  // namespace
+
 // |plane| is linear along the triangle, so its maximum is at a vertex; the error bound makes the
 // value an upper bound for the exact plane. A point light divides by the triangle's depth: every
 // volume point p = L + s (y - L) has |plane(p)| / |p - L| = |plane(y)| / |y - L|.
@@ -34,8 +35,6 @@ float triangle_wedge(const PlaneSide& planes, const TopNode& node, const Triangl
   if (!(depth > 0.0f)) return INFINITY;
   return round_up_to_float(extent / double(depth) * (1.0 + 0x1p-50));
 }
-
-}  // namespace
 
 std::vector<std::uint32_t> insertion_order(const Case& c, const PlaneSide& planes,
                                            const std::vector<bool>& face_culling,

@@ -37,6 +37,11 @@ std::vector<std::uint32_t> insertion_order(const Case& c, const PlaneSide& plane
 TopTree build_top_tree(const Case& c, const PlaneSide& planes,
                        const std::vector<std::uint32_t>& order, BuildStatistics& statistics);
 
+// The wedge triangle `t` (light depth `depth`) adds to the intersection subtree of edge node
+// `node` (see TopNode::wedge): an upper bound on |plane| over its shadow volume, per unit of light
+// distance for a point light.
+float triangle_wedge(const PlaneSide& planes, const TopNode& node, const Triangle& t, float depth);
+
 // 1: every vertex on the closed positive side and one strictly; -1: every vertex on the closed
 // negative side (a triangle in the plane is inside its closed negative side); 0: straddling.
 int triangle_location(const TopTree& tree, const PlaneSide& planes, std::uint32_t node,

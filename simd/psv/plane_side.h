@@ -1,0 +1,56 @@
+#pragma once
+// The plane tests of the simd psv: the reference's float planes and exact fallback
+// (reference/psv/plane_side.h), with one error bound per node instead of one per point, and the
+// defining points of a plane (a triangle's own vertices) answered without an exact predicate.
+#include <array>
+#include <cstdint>
+
+#include <glm/vec3.hpp>
+
+#include "reference/psv/plane_side.h"
+#include "reference/psv/top_tree.h"
+
+namespace shadowcts::simd::psv {
+
+namespace ref = shadowcts::psv;
+
+// The vertices of a volume's triangle, stored per volume beside the tree: its planes' defining
+// points (edge plane k holds vertices k and k + 1 mod 3), read without a visit to the triangle.
+using VolumeCorners = std::array<glm::vec3, 3>;
+
+class PlaneSide {
+ public:
+  explicit PlaneSide(const ref::PlaneSide& exact) : exact_(exact) {}
+
+  const ref::PlaneSide& exact() const { return exact_; }
+
+  // A bound on |plane value - exact value| for every point whose coordinates are at most the
+  // scene bound M in magnitude: the reference's per-point bound taken at (M, M, M). Rounding to
+  // nearest is monotone and that bound only grows with |p|, so it covers every such point. A few
+  // operations on the node's own floats: cheaper than one more memory access per node.
+  double node_bound(const ref::TopNode& node, bool capping) const {
+    const double m = exact_.filter().scene_bound;
+    return geometry::plane_error_bound(exact_.filter(), node.plane.data(), capping,
+                                       glm::dvec3(m, m, m));
+  }
+
+  // Exact sign of the plane of `node` at p (1 outside, 0 on it, -1 inside), for a p with
+  // float-valued coordinates. `bound` is node_bound of the node, `corners` its volume's.
+  int side(const ref::TopTree& tree, std::uint32_t node, double bound, const VolumeCorners& corners,
+           const glm::dvec3& p) const {
+    const double v = geometry::plane_value(tree.nodes[node].plane.data(), p);
+    if (v > bound) return 1;
+    if (v < -bound) return -1;
+    return near_side(tree, node, corners, p);
+  }
+
+ private:
+  // Within the per-node bound: a defining point of the plane lies on it; otherwise the
+  // reference's tighter per-point filter, then its exact predicate.
+  int near_side(const ref::TopTree& tree, std::uint32_t node, const VolumeCorners& corners,
+                const glm::dvec3& p) const;
+
+  const ref::PlaneSide& exact_;
+};
+
+}  // namespace shadowcts::simd::psv

@@ -1,0 +1,101 @@
+#include "simd/psv/psv_shadows.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include <tbb/blocked_range.h>
+#include <tbb/combinable.h>
+#include <tbb/parallel_for.h>
+
+#include "reference/closed_mesh_culling.h"
+#include "reference/psv/rule_culling.h"
+#include "shadowcts/hard_shadow_inputs.h"
+#include "shadowcts/phase_clock.h"
+#include "shadowcts/thread_limit.h"
+#include "simd/psv/query_packet.h"
+
+namespace shadowcts::simd::psv {
+namespace {
+
+// Bound on every coordinate the plane tests see (the reference's): triangles, light, samples.
+double coordinate_bound(const PreparedScene& scene) {
+  double bound = scene.source.scale();
+  const RegularSamples& s = scene.samples;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    bound = std::max({bound, std::fabs(double(s.px[i])), std::fabs(double(s.py[i])),
+                      std::fabs(double(s.pz[i]))});
+  return std::max(bound, 1e-30);
+}
+
+}  // namespace
+
+SimdPsvBuild build_psv(const PreparedScene& scene, std::uint64_t seed) {
+  const Case& c = scene.source;
+  SimdPsvBuild result;
+  ref::PsvBuild& build = result.build;
+  build.light = hard_shadow_light(c);
+  check_receivers(c, scene.view_samples);
+  build.planes =
+      std::make_unique<ref::PlaneSide>(build.light, c.triangles, coordinate_bound(scene));
+  const PlaneSide planes(*build.planes);
+  const std::vector<bool> face_culling = ref::culling_clear_of_segment_starts(
+      c, scene.view_samples, build.light, meshes_safe_for_face_culling(c, scene.view_samples));
+  run_with_thread_limit(c.parameters.threads, [&] {
+    const std::vector<std::uint32_t> order =
+        psv::insertion_order(c, *build.planes, face_culling, seed, build.statistics);
+    build.tree =
+        psv::build_top_tree(c, planes, order, build.statistics, result.corners, result.work);
+  });
+  return result;
+}
+
+SimdPsvResult psv_hard_shadows(const PreparedScene& scene, const SimdPsvOptions& options) {
+  PhaseClock clock;
+  const SimdPsvBuild built = build_psv(scene, options.psv.seed);
+  const ref::PsvBuild& build = built.build;
+  const bool depth_test = options.psv.query != ref::QueryKind::stack;
+  const ref::QueryContext exact(build.tree, *build.planes, depth_test);
+  const PlaneSide planes(*build.planes);
+  const QueryTree q{build.tree, built.corners, planes, exact, depth_test, build.light.directional};
+  clock.lap(build_phase);
+
+  const RegularSamples& samples = scene.samples;
+  std::vector<std::uint8_t> shadowed(samples.size(), 0);
+  std::vector<std::uint32_t> visited(samples.size(), 0);
+  const std::uint32_t packet = std::clamp<std::uint32_t>(options.packet, 1, max_packet);
+  tbb::combinable<ref::PsvQueryTotals> partial;
+  run_with_thread_limit(scene.source.parameters.threads, [&] {
+    // Ranges of whole packets, so that a packet never depends on the partitioning.
+    const std::size_t packets = (samples.size() + packet - 1) / packet;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, packets, 8),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        const std::size_t begin = range.begin() * packet;
+                        const std::size_t end = std::min(samples.size(), range.end() * packet);
+                        query_packets(q, options.psv, build.light, samples, begin, end, packet,
+                                      shadowed.data() + begin, visited.data() + begin,
+                                      partial.local());
+                      });
+  });
+  clock.lap(query_phase);
+
+  // Sums and maxima of integers: the totals do not depend on the partitioning.
+  ref::PsvQueryTotals totals;
+  partial.combine_each([&](const ref::PsvQueryTotals& t) {
+    totals.queries += t.queries;
+    totals.nodes_visited_total += t.nodes_visited_total;
+    totals.nodes_visited_max = std::max(totals.nodes_visited_max, t.nodes_visited_max);
+    totals.stack_high_water = std::max(totals.stack_high_water, t.stack_high_water);
+    totals.stack_overflows += t.stack_overflows;
+    totals.hybrid_switches += t.hybrid_switches;
+  });
+  SimdPsvResult result;
+  result.shadowed = scene.per_view_sample(shadowed, std::uint8_t(0));
+  result.nodes_visited = scene.per_view_sample(visited, std::uint32_t(0));
+  result.counters = ref::psv_counters(build, totals, options.psv, build.planes->exact_fallbacks());
+  result.phase_ms = clock.times();
+  result.build_work = built.work;
+  return result;
+}
+
+}  // namespace shadowcts::simd::psv

@@ -1,0 +1,211 @@
+// The simd `psv` against the reference `psv`: the same TOP tree node for node (the first
+// difference is named: which node, which field), the same answer and the same number of nodes
+// visited for every sample, and the same counters (exact_plane_tests excepted: it counts each
+// port's own exact decisions), for every variant, any thread count and any packet size, on the
+// default fixtures, the stiff cases and random scenes at ordinary, tiny and huge scales.
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "hand_built_case.h"
+#include "metric_test_cases.h"
+#include "reference/psv/psv_shadows.h"
+#include "shadowcts/fixtures.h"
+#include "shadowcts/prepared_scene.h"
+#include "simd/psv/psv_algorithm.h"
+#include "simd/psv/psv_shadows.h"
+
+namespace shadowcts::simd::psv {
+namespace {
+
+using shadowcts::metric::testing::fixture_test_name;
+using shadowcts::metric::testing::FixtureCase;
+using shadowcts::metric::testing::hard_shadow_fixtures;
+using shadowcts::metric::testing::load_fixture;
+
+template <class T>
+bool same_bits(const T& a, const T& b) {
+  return std::memcmp(&a, &b, sizeof(T)) == 0;
+}
+
+// Empty when the trees are identical, else the first differing node and field.
+std::string first_tree_difference(const ref::TopTree& expected, const ref::TopTree& actual) {
+  if (expected.root != actual.root) return "root";
+  if (expected.nodes.size() != actual.nodes.size())
+    return "node count " + std::to_string(actual.nodes.size()) + ", expected " +
+           std::to_string(expected.nodes.size());
+  for (std::size_t i = 0; i < expected.nodes.size(); ++i) {
+    const ref::TopNode &e = expected.nodes[i], &a = actual.nodes[i];
+    const auto at = [&](const char* field) { return "node " + std::to_string(i) + ": " + field; };
+    if (!same_bits(e.plane, a.plane)) return at("plane");
+    if (e.positive != a.positive) return at("positive child");
+    if (e.intersection != a.intersection) return at("intersection child");
+    if (!same_bits(e.wedge, a.wedge)) return at("wedge");
+    if (e.volume_word != a.volume_word)
+      return at(i % 4 == 0 ? "depth" : (i % 4 == 1 ? "ancestor link" : "triangle"));
+  }
+  if (expected.sources.size() != actual.sources.size()) return "source count";
+  for (std::size_t v = 0; v < expected.sources.size(); ++v)
+    if (expected.sources[v].edge != actual.sources[v].edge ||
+        expected.sources[v].orientation != actual.sources[v].orientation)
+      return "volume " + std::to_string(v) + ": source";
+  return {};
+}
+
+std::string first_statistics_difference(const ref::BuildStatistics& e,
+                                        const ref::BuildStatistics& a) {
+  if (e.casters != a.casters) return "casters";
+  if (e.culled_front_facing != a.culled_front_facing) return "culled_front_facing";
+  if (e.culled_flat != a.culled_flat) return "culled_flat";
+  if (e.dropped_in_shadow != a.dropped_in_shadow) return "dropped_in_shadow";
+  if (e.volumes != a.volumes) return "volumes";
+  if (e.height != a.height) return "height";
+  return {};
+}
+
+template <class T>
+std::string first_sample_difference(const char* what, const std::vector<T>& expected,
+                                    const std::vector<T>& actual) {
+  if (expected.size() != actual.size()) return std::string(what) + ": sample count";
+  for (std::size_t i = 0; i < expected.size(); ++i)
+    if (expected[i] != actual[i])
+      return std::string(what) + ": sample " + std::to_string(i) + ": " +
+             std::to_string(actual[i]) + ", expected " + std::to_string(expected[i]);
+  return {};
+}
+
+Counters without_exact_plane_tests(Counters counters) {
+  std::erase_if(counters, [](const auto& counter) { return counter.first == "exact_plane_tests"; });
+  return counters;
+}
+
+// The tree of the simd build against the reference's, on 1 and 2 threads.
+void expect_same_tree(Case c, const ViewSamples& samples) {
+  const ref::PsvBuild expected = ref::build_psv(c, samples, c.parameters.seed);
+  for (const std::uint32_t threads : {1u, 2u}) {
+    SCOPED_TRACE(std::to_string(threads) + " threads");
+    c.parameters.threads = threads;
+    const PreparedScene scene = prepare_scene(c, samples);
+    const SimdPsvBuild actual = build_psv(scene, c.parameters.seed);
+    EXPECT_EQ(first_tree_difference(expected.tree, actual.build.tree), "");
+    EXPECT_EQ(first_statistics_difference(expected.statistics, actual.build.statistics), "");
+    EXPECT_EQ(actual.corners.size(), actual.build.statistics.volumes);
+  }
+}
+
+// Every variant's answers, nodes visited and counters against the reference's.
+void expect_same_queries(const Case& c, const ViewSamples& samples,
+                         std::initializer_list<std::uint32_t> packets = {1, 5, 16}) {
+  const PreparedScene scene = prepare_scene(c, samples);
+  for (const std::string& variant : ref::psv_variants()) {
+    SCOPED_TRACE(variant);
+    ref::PsvOptions options = ref::psv_variant_options(variant);
+    options.seed = c.parameters.seed;
+    const ref::PsvResult expected = ref::psv_hard_shadows(c, samples, options);
+    for (const std::uint32_t packet : packets) {
+      SCOPED_TRACE("packet " + std::to_string(packet));
+      const SimdPsvResult actual = psv_hard_shadows(scene, {options, packet});
+      EXPECT_EQ(first_sample_difference("shadowed", expected.shadowed, actual.shadowed), "");
+      EXPECT_EQ(
+          first_sample_difference("nodes visited", expected.nodes_visited, actual.nodes_visited),
+          "");
+      EXPECT_EQ(without_exact_plane_tests(actual.counters),
+                without_exact_plane_tests(expected.counters));
+    }
+  }
+}
+
+class SimdPsvOnFixtures : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(SimdPsvOnFixtures, SameTreeNodeForNode) {
+  const FixtureCase f = load_fixture(GetParam(), 16);
+  expect_same_tree(f.c, f.samples);
+}
+
+TEST_P(SimdPsvOnFixtures, SameAnswersVisitsAndCountersForEveryVariant) {
+  const FixtureCase f = load_fixture(GetParam(), 64);
+  expect_same_queries(f.c, f.samples);
+}
+
+INSTANTIATE_TEST_SUITE_P(DefaultFixtures, SimdPsvOnFixtures,
+                         ::testing::ValuesIn(hard_shadow_fixtures()), fixture_test_name);
+
+// The numerical traps at their own resolution.
+class SimdPsvOnStiffCases : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(SimdPsvOnStiffCases, SameTreeAnswersAndCounters) {
+  Case c = make_fixture(GetParam());
+  if (c.light && c.light->kind == ShadowLightKind::sun_disk) {
+    c.light->kind = ShadowLightKind::directional;
+    c.light->angular_radius = 0.0f;
+  }
+  const ViewSamples samples = generate_view_samples(c);
+  expect_same_tree(c, samples);
+  expect_same_queries(c, samples, {16});
+}
+
+std::vector<std::string> stiff_cases_with_a_shadow_light() {
+  std::vector<std::string> names;
+  for (const std::string& name : stiff_fixtures())
+    if (make_fixture(name).light) names.push_back(name);
+  return names;
+}
+
+INSTANTIATE_TEST_SUITE_P(Stiff, SimdPsvOnStiffCases,
+                         ::testing::ValuesIn(stiff_cases_with_a_shadow_light()), fixture_test_name);
+
+// Random blockers over a caster ground with samples on shadow boundaries: point lights above and
+// inside the blocker field, a directional light; at 2^-60 and 2^60 the float planes lose their
+// precision or overflow (infinite and NaN bounds and wedges).
+class SimdPsvOnRandomCases : public ::testing::TestWithParam<int> {};
+
+TEST_P(SimdPsvOnRandomCases, SameTreeAnswersAndCounters) {
+  const int k = GetParam();
+  const ShadowLight light = k % 3 == 0 ? shadowcts::testing::point_light({1.5f, 10.0f, 0.75f})
+                            : k % 3 == 1
+                                ? shadowcts::testing::point_light({0.25f, 0.5f, 0.5f})
+                                : shadowcts::testing::directional_light({0.25f, 1.0f, -0.375f});
+  auto h = shadowcts::testing::make_random_case(700 + std::uint64_t(k), 8, 600, 0.75f, 1200, light);
+  const int exponent = k < 3 ? 0 : (k < 6 ? -60 : 60);
+  const auto scale = [exponent](glm::vec3& v) {
+    v = {std::ldexp(v.x, exponent), std::ldexp(v.y, exponent), std::ldexp(v.z, exponent)};
+  };
+  for (Triangle& t : h.c.triangles) {
+    scale(t.v0);
+    scale(t.v1);
+    scale(t.v2);
+  }
+  if (h.c.light->kind == ShadowLightKind::point) scale(h.c.light->position);
+  scale(h.c.camera.position);
+  scale(h.c.camera.target);
+  for (ViewSample& s : h.samples.samples) scale(s.position);
+  expect_same_tree(h.c, h.samples);
+  expect_same_queries(h.c, h.samples, {3, 16});
+}
+
+INSTANTIATE_TEST_SUITE_P(RandomCases, SimdPsvOnRandomCases, ::testing::Range(0, 9));
+
+// The parallel build's own path: batches that find a leaf already filled by an earlier triangle
+// of the same batch resume their descent there. A case where that never happened would leave the
+// resumption untested.
+TEST(SimdPsvBuild, BatchesResumeDescentsAndStillBuildTheReferenceTree) {
+  const FixtureCase f = load_fixture("gate_house.20k", 16);
+  const PreparedScene scene = prepare_scene(f.c, f.samples);
+  const SimdPsvBuild actual = build_psv(scene, f.c.parameters.seed);
+  EXPECT_GT(actual.work.batches, 10u);
+  EXPECT_GT(actual.work.resumed_descents, 100u);
+  const ref::PsvBuild expected = ref::build_psv(f.c, f.samples, f.c.parameters.seed);
+  EXPECT_EQ(first_tree_difference(expected.tree, actual.build.tree), "");
+}
+
+TEST(SimdPsv, RegisteredWithTheReferenceVariants) {
+  const auto algorithm = make_simd_psv();
+  EXPECT_EQ(algorithm->info().id, "psv");
+  EXPECT_EQ(algorithm->info().backend, "simd");
+  EXPECT_EQ(algorithm->info().variants, ref::psv_variants());
+}
+
+}  // namespace
+}  // namespace shadowcts::simd::psv
