@@ -725,9 +725,10 @@ bool same_end(const WorkerRun& a, const WorkerRun& b) {
   return a.end == b.end && (a.end == WorkerRun::End::timed_out || a.code == b.code);
 }
 
-std::string fixed_seconds(double s) {
+// Seconds for messages, to the millisecond.
+std::string seconds_text(double s) {
   std::ostringstream text;
-  text << s;
+  text << std::round(s * 1000.0) / 1000.0;
   return text.str();
 }
 
@@ -785,7 +786,7 @@ ordered_json shrink_in_workers(const std::string& exe, const CertifyOptions& opt
       args.push_back("--threads");
       args.push_back(std::to_string(*options.threads));
     }
-    const double limit = std::min(candidate_timeout, left);
+    const double limit = std::min(candidate_timeout, std::round(left * 1000.0) / 1000.0);
     const WorkerRun run = run_worker(args, work / "worker.log", limit);
     ++runs;
     if (!whole_case_run) whole_case_run = run;
@@ -795,7 +796,7 @@ ordered_json shrink_in_workers(const std::string& exe, const CertifyOptions& opt
         << std::round(run.wall_s * 100.0) / 100.0 << " s)";
     if (run.end == WorkerRun::End::timed_out && limit < candidate_timeout) {
       // Cut short by the budget, not by the candidate timeout: its answer is unknown.
-      log << " (the budget ran out: not counted)\n";
+      log << " (cut short by the budget: its answer is not used)\n";
       exhausted = true;
       return CandidateResult::stop;
     }
@@ -833,7 +834,7 @@ ordered_json shrink_in_workers(const std::string& exe, const CertifyOptions& opt
       what["how"] = std::string(exhausted ? "partly shrunk (budget exhausted)" : "shrunk") +
                     " from " + sizes(original) + " to " + sizes(minimal) + " in " +
                     std::to_string(runs) + " worker runs, one per candidate (timeout " +
-                    fixed_seconds(candidate_timeout) + " s)";
+                    seconds_text(candidate_timeout) + " s)";
     what["shrunk"] = smaller;
   }
   log << (what.contains("how") ? what["how"] : what["note"]).get<std::string>() << "\n";
