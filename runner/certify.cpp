@@ -519,7 +519,7 @@ void prefix_image_paths(ordered_json& j, const fs::path& folder) {
 // folders; records of runs that died (Crash, Timeout) and of reruns that differed are added or
 // overridden here.
 void write_run_outputs(const fs::path& dir, const std::vector<Entry>& entries,
-                       const std::string& library) {
+                       const std::string& library, const ordered_json& reproducers) {
   ordered_json root;
   root["schema"] = "shadowcts.results/2";
   const MachineInfo machine = machine_info();
@@ -558,8 +558,13 @@ void write_run_outputs(const fs::path& dir, const std::vector<Entry>& entries,
                       {"oracles", ordered_json::object()},
                       {"left_out", ordered_json::array()}};
     if (cases_seen.insert(e.case_name).second) root["cases"].push_back(case_summary);
-    const std::string reproduce = "shadowcts certify --backend " + quoted(library) + " --fixture " +
-                                  e.case_name + " --out DIR";
+    std::string reproduce = "shadowcts certify --backend " + quoted(library) + " --fixture " +
+                            e.case_name + " --out DIR";
+    // A fuzz case's reproducer, and how it was obtained, in results.json and JUnit too.
+    for (const ordered_json& r : reproducers)
+      if (r.value("case", "") == e.case_name && r.value("variant", "") == e.variant)
+        reproduce += "; reproducer: " + r.value("manifest", "") + " (" +
+                     r.value("how", r.value("note", "")) + ")";
     if (record.is_null()) {
       record["name"] =
           e.record_name.empty() ? "plugin." + e.variant + "." + e.case_name : e.record_name;
@@ -1161,7 +1166,7 @@ int certify(const CertifyOptions& options, std::ostream& out, std::ostream& err)
       entries.push_back(std::move(e));
     }
 
-  write_run_outputs(staging.dir(), entries, options.library);
+  write_run_outputs(staging.dir(), entries, options.library, reproducers);
 
   ordered_json certificate;
   certificate["schema"] = certificate_schema;
@@ -1409,7 +1414,6 @@ int merge_certificates(const std::string& out_dir, const std::vector<std::string
                    [](const auto& a, const auto& b) { return a.first < b.first; });
   std::vector<Entry> entries;
   for (auto& [key, e] : ordered) entries.push_back(std::move(e));
-  write_run_outputs(staging.dir(), entries, first.at("library").at("path").get<std::string>());
 
   ordered_json merged = first;
   merged["created"] = utc_now();
@@ -1421,6 +1425,8 @@ int merge_certificates(const std::string& out_dir, const std::vector<std::string
                    [](const auto& a, const auto& b) { return a.first < b.first; });
   merged["reproducers"] = ordered_json::array();
   for (const auto& [position, r] : reproducers) merged["reproducers"].push_back(r);
+  write_run_outputs(staging.dir(), entries, first.at("library").at("path").get<std::string>(),
+                    merged["reproducers"]);
   seal(merged);
   write_file_atomically(staging.dir() / "certificate.json", merged.dump(2) + "\n");
   staging.commit();

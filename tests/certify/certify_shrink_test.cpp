@@ -69,6 +69,9 @@ TEST(CertifyShrink, CrashAndHangAreShrunkAWorkerPerCandidateAndStillCrashAndHang
   ASSERT_GT(original_samples, 1u);
 
   ASSERT_EQ(c["reproducers"].size(), 2u) << log;
+  const ordered_json results = ordered_json::parse(read_file(dir / "out" / "results.json"));
+  ASSERT_EQ(results["results"].size(), 2u);
+  const std::string junit = read_file(dir / "out" / "junit.xml");
   for (std::size_t k = 0; k < 2; ++k) {
     const ordered_json& r = c["reproducers"][k];
     SCOPED_TRACE(r.dump());
@@ -89,6 +92,11 @@ TEST(CertifyShrink, CrashAndHangAreShrunkAWorkerPerCandidateAndStillCrashAndHang
                  " (" + r["triangles"].dump() + " triangles, 1 samples; " + how + ")"),
         std::string::npos)
         << log;
+    // results.json and JUnit name the reproducer and how it was obtained too.
+    const std::string named = "reproducer: " + r["manifest"].get<std::string>() + " (" + how + ")";
+    EXPECT_NE(results["results"][k]["reproduce"].get<std::string>().find(named), std::string::npos)
+        << results["results"][k].dump();
+    EXPECT_NE(junit.find(named), std::string::npos) << junit;
     const Case shrunk =
         load_case_manifest((dir / "out" / r["manifest"].get<std::string>()).string());
     EXPECT_EQ(shrunk.triangles.size(), r["triangles"].get<std::size_t>());
