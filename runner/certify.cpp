@@ -737,14 +737,15 @@ std::string seconds_text(double s) {
   return text.str();
 }
 
-// The reproducer of a fuzz case x variant whose worker died or hung (`died`: that worker's end):
-// the parent writes each candidate as a reproducer folder (runner/case_reproducer.h) and runs it
-// in a worker process of its own (`certify --worker --case`, no images), keeping a candidate when
-// its worker ends the same way (the same signal, a timeout, the same exit status). The whole case
-// is run first (it must end that way from its reproducer too), then shrink_case_in_chunks. The
-// budget (options.shrink_runs worker runs, options.shrink_seconds seconds, each run at most
-// options.shrink_timeout_s or timeout_s and never past the budget) ends it early: the smallest
-// candidate that ended the same way is the reproducer. Every run is a line of shrink.log.
+// The reproducer of a fuzz case x variant whose worker died or hung (`died`: that worker's end, a
+// shrinkable_end): the parent writes each candidate as a reproducer folder
+// (runner/case_reproducer.h) and runs it in a worker process of its own (`certify --worker --case`,
+// no images), keeping a candidate when its worker ends the same way (the same signal, a timeout,
+// the same exit status). The whole case is run first (it must end that way from its reproducer
+// too), then shrink_case_in_chunks. The budget (options.shrink_runs worker runs,
+// options.shrink_seconds seconds, each run at most options.shrink_timeout_s or timeout_s and never
+// past the budget) ends it early: the smallest candidate that ended the same way is the reproducer.
+// Every run is a line of shrink.log.
 ordered_json shrink_in_workers(const std::string& exe, const CertifyOptions& options,
                                const fs::path& case_dir, const fs::path& reproducer_dir,
                                const Entry& e, const WorkerRun& died) {
@@ -813,10 +814,7 @@ ordered_json shrink_in_workers(const std::string& exe, const CertifyOptions& opt
   what["shrunk"] = false;
   fuzzing::SampleCase minimal = original;
   const std::string end_text = run_end_text(died, candidate_timeout);
-  if (!shrinkable_end(died)) {
-    what["note"] = "not shrunk: " + run_end_text(died, options.timeout_s) +
-                   ", one of the tool's own exit statuses, which is not looked for again";
-  } else if (const CandidateResult whole = test(original); whole == CandidateResult::stop) {
+  if (const CandidateResult whole = test(original); whole == CandidateResult::stop) {
     what["note"] = "unshrunk: budget exhausted before the whole case was run again";
   } else if (whole == CandidateResult::passes) {
     what["note"] = "not shrunk: the whole case, run again from its reproducer in a fresh worker, " +
@@ -859,7 +857,8 @@ ordered_json shrink_in_workers(const std::string& exe, const CertifyOptions& opt
 // was judged (a Fail, or a Crash the port reported by an error status) is shrunk by one worker
 // process (the port runs there, never in this process): `certify --worker --reproduce`; when that
 // worker dies or hangs, the whole case is written unshrunk here. A run whose worker died or hung
-// (`died`) is shrunk by shrink_in_workers, a worker process per candidate.
+// (`died`, when shrinkable_end) is shrunk by shrink_in_workers, a worker process per candidate;
+// one that exited with one of the tool's own statuses goes the first way.
 ordered_json fuzz_reproducer(const std::string& exe, const CertifyOptions& options,
                              const fs::path& staging_dir, const fs::path& case_dir, const Entry& e,
                              const WorkerRun* died) {
@@ -869,7 +868,7 @@ ordered_json fuzz_reproducer(const std::string& exe, const CertifyOptions& optio
   j["case"] = e.case_name;
   j["variant"] = e.variant;
   j["verdict"] = e.verdict;
-  if (died) {
+  if (died && shrinkable_end(*died)) {
     const ordered_json what =
         shrink_in_workers(exe, options, staging_dir / case_dir, dir, e, *died);
     for (const auto& [key, value] : what.items()) j[key] = value;
