@@ -815,7 +815,7 @@ ordered_json shrink_in_workers(const std::string& exe, const CertifyOptions& opt
   fuzzing::SampleCase minimal = original;
   const std::string end_text = run_end_text(died, candidate_timeout);
   if (const CandidateResult whole = test(original); whole == CandidateResult::stop) {
-    what["note"] = "unshrunk: budget exhausted before the whole case was run again";
+    what["note"] = "unshrunk: budget exhausted before the whole case could be run again";
   } else if (whole == CandidateResult::passes) {
     what["note"] = "not shrunk: the whole case, run again from its reproducer in a fresh worker, " +
                    run_end_text(*whole_case_run, candidate_timeout) +
