@@ -240,6 +240,23 @@ int main(int argc, char** argv) {
           },
           "in [0.1, 86400]"))
       ->capture_default_str();
+  double certify_shrink_timeout = 0;
+  auto* shrink_timeout_option =
+      certify_command
+          ->add_option("--shrink-timeout", certify_shrink_timeout,
+                       "Fuzz cases that crashed or hung are shrunk in a worker process per "
+                       "candidate: seconds each may take (default: --timeout)")
+          ->check(CLI::Range(0.1, 86400.0));
+  certify_command
+      ->add_option("--shrink-runs", certify_options.shrink_runs,
+                   "Worker runs that shrinking one crash or hang may take (0: no shrinking)")
+      ->check(CLI::Range(0u, 1000000u))
+      ->capture_default_str();
+  certify_command
+      ->add_option("--shrink-seconds", certify_options.shrink_seconds,
+                   "Seconds that shrinking one crash or hang may take (0: no shrinking)")
+      ->check(CLI::Range(0.0, 86400.0 * 7))
+      ->capture_default_str();
   certify_command->add_option(
       "--shard", certify_shard,
       "Certify only shard I of N (I/N, 0-based); join with `certify merge`");
@@ -252,6 +269,9 @@ int main(int argc, char** argv) {
   certify_command->add_flag("--probe", worker_options.probe)->group("");
   certify_command->add_flag("--reproduce", worker_options.reproduce)->group("");
   certify_command->add_option("--worker-result", worker_options.result_file)->group("");
+  certify_command->add_option("--case", worker_options.case_file)->group("");
+  bool certify_no_images = false;
+  certify_command->add_flag("--no-images", certify_no_images)->group("");
   std::string verify_dir;
   CLI::App* certify_verify = certify_command->add_subcommand(
       "verify",
@@ -301,14 +321,23 @@ int main(int argc, char** argv) {
           worker_options.library = certify_options.library;
           return certify_worker(worker_options, std::cout, std::cerr);
         }
-        if (certify_options.fixtures.size() != 1)
-          throw UsageError("certify --worker: give exactly one --fixture");
+        if (certify_options.fixtures.size() + (worker_options.case_file.empty() ? 0 : 1) != 1)
+          throw UsageError("certify --worker: give exactly one --fixture or --case");
+        if (worker_options.reproduce && !worker_options.case_file.empty())
+          throw UsageError("certify --worker --reproduce: give the fuzz case by --fixture");
         worker_options.library = certify_options.library;
-        worker_options.fixture = certify_options.fixtures.front();
+        if (!certify_options.fixtures.empty())
+          worker_options.fixture = certify_options.fixtures.front();
+        worker_options.images = !certify_no_images;
         worker_options.out_dir = certify_options.out_dir;
         worker_options.threads = certify_options.threads;
         return certify_worker(worker_options, std::cout, std::cerr);
       }
+      if (!worker_options.case_file.empty() || certify_no_images)
+        throw UsageError(
+            "certify: --case and --no-images are for worker processes; certify cases by "
+            "--profile or --fixture");
+      if (*shrink_timeout_option) certify_options.shrink_timeout_s = certify_shrink_timeout;
       if (certify_options.out_dir.empty()) throw UsageError("certify: give --out DIR");
       if ((*fuzz_seed_option || *fuzz_count_option) &&
           (!certify_options.fixtures.empty() ||

@@ -519,7 +519,7 @@ void prefix_image_paths(ordered_json& j, const fs::path& folder) {
 // folders; records of runs that died (Crash, Timeout) and of reruns that differed are added or
 // overridden here.
 void write_run_outputs(const fs::path& dir, const std::vector<Entry>& entries,
-                       const std::string& library) {
+                       const std::string& library, const ordered_json& reproducers) {
   ordered_json root;
   root["schema"] = "shadowcts.results/2";
   const MachineInfo machine = machine_info();
@@ -558,8 +558,13 @@ void write_run_outputs(const fs::path& dir, const std::vector<Entry>& entries,
                       {"oracles", ordered_json::object()},
                       {"left_out", ordered_json::array()}};
     if (cases_seen.insert(e.case_name).second) root["cases"].push_back(case_summary);
-    const std::string reproduce = "shadowcts certify --backend " + quoted(library) + " --fixture " +
-                                  e.case_name + " --out DIR";
+    std::string reproduce = "shadowcts certify --backend " + quoted(library) + " --fixture " +
+                            e.case_name + " --out DIR";
+    // A fuzz case's reproducer, and how it was obtained, in results.json and JUnit too.
+    for (const ordered_json& r : reproducers)
+      if (r.value("case", "") == e.case_name && r.value("variant", "") == e.variant)
+        reproduce += "; reproducer: " + r.value("manifest", "") + " (" +
+                     r.value("how", r.value("note", "")) + ")";
     if (record.is_null()) {
       record["name"] =
           e.record_name.empty() ? "plugin." + e.variant + "." + e.case_name : e.record_name;
@@ -681,9 +686,11 @@ int write_fuzz_reproducer(const PluginBackend& backend, std::size_t index,
   if (w.threads) original.c.parameters.threads = *w.threads;
   const auto algorithm = backend.algorithm(index);
   const std::optional<Violation> violation = violation_on(*algorithm, w.variant, original);
+  std::size_t candidates = 0;
   const fuzzing::SampleCase minimal =
       violation ? shrink_case(original, violation->sample,
                               [&](const fuzzing::SampleCase& candidate) {
+                                ++candidates;
                                 return violation_on(*algorithm, w.variant, candidate).has_value();
                               })
                 : original;
@@ -695,6 +702,14 @@ int write_fuzz_reproducer(const PluginBackend& backend, std::size_t index,
     result["note"] =
         "not shrunk: the variant keeps the conformance property on this case within "
         "one process";
+  else
+    result["how"] = "shrunk from " + std::to_string(original.c.triangles.size()) + " triangles / " +
+                    std::to_string(original.samples.samples.size()) + " samples to " +
+                    std::to_string(minimal.c.triangles.size()) + " triangles / " +
+                    std::to_string(minimal.samples.samples.size()) + " samples in one worker " +
+                    "process (" + std::to_string(candidates) +
+                    " candidates through the port there)";
+  result["worker_runs"] = 1;
   result["triangles"] = minimal.c.triangles.size();
   result["samples"] = minimal.samples.samples.size();
   result["original_triangles"] = original.c.triangles.size();
@@ -703,15 +718,164 @@ int write_fuzz_reproducer(const PluginBackend& backend, std::size_t index,
   return exit_pass;
 }
 
-// The reproducer of a fuzz case x variant that did not pass (Fail, Crash, Timeout): shrunk by a
-// worker process (the port runs there, never in this process); when that worker dies or hangs
-// (a port that crashes crashes it too: shrinking a crash would need a process per candidate),
-// the whole case is written unshrunk here, without running the port.
+// Whether a worker's end is one that shrinking per process can look for again: killed by a
+// signal, killed at the timeout, or an exit status that is not one of the tool's own (0 to 3:
+// pass, conformance failure, bad input, internal error).
+bool shrinkable_end(const WorkerRun& run) {
+  return run.end == WorkerRun::End::signalled || run.end == WorkerRun::End::timed_out ||
+         (run.end == WorkerRun::End::exited && run.code > exit_internal_error);
+}
+
+bool same_end(const WorkerRun& a, const WorkerRun& b) {
+  return a.end == b.end && (a.end == WorkerRun::End::timed_out || a.code == b.code);
+}
+
+// Seconds for messages, to the millisecond.
+std::string seconds_text(double s) {
+  std::ostringstream text;
+  text << std::round(s * 1000.0) / 1000.0;
+  return text.str();
+}
+
+// The reproducer of a fuzz case x variant whose worker died or hung (`died`: that worker's end, a
+// shrinkable_end): the parent writes each candidate as a reproducer folder
+// (runner/case_reproducer.h) and runs it in a worker process of its own (`certify --worker --case`,
+// no images), keeping a candidate when its worker ends the same way (the same signal, a timeout,
+// the same exit status). The whole case is run first (it must end that way from its reproducer
+// too), then shrink_case_in_chunks. The budget (options.shrink_runs worker runs,
+// options.shrink_seconds seconds, each run at most options.shrink_timeout_s or timeout_s and never
+// past the budget) ends it early: the smallest candidate that ended the same way is the reproducer.
+// Every run is a line of shrink.log.
+ordered_json shrink_in_workers(const std::string& exe, const CertifyOptions& options,
+                               const fs::path& case_dir, const fs::path& reproducer_dir,
+                               const Entry& e, const WorkerRun& died) {
+  const fuzzing::GeneratedCase generated = fuzzing::make_fuzz_case(e.case_name);
+  const fuzzing::SampleCase& original = generated.sample_case;
+  const double candidate_timeout = options.shrink_timeout_s.value_or(options.timeout_s);
+  const fs::path work = case_dir / "shrink";
+  std::ofstream log(case_dir / "shrink.log");
+  log << "shrinking " << e.case_name << " x " << e.variant
+      << ": the worker ended: " << run_end_text(died, options.timeout_s)
+      << "; each candidate in a worker of its own "
+      << "(timeout " << candidate_timeout << " s), budget " << options.shrink_runs
+      << " worker runs and " << options.shrink_seconds << " s\n";
+  const auto start = Clock::now();
+  std::size_t runs = 0;
+  bool exhausted = false;
+  std::optional<WorkerRun> whole_case_run;
+  auto test = [&](const fuzzing::SampleCase& candidate) {
+    const double used = std::chrono::duration<double>(Clock::now() - start).count();
+    const double left = options.shrink_seconds - used;
+    if (runs >= options.shrink_runs || left <= 0) {
+      exhausted = true;
+      return CandidateResult::stop;
+    }
+    std::error_code ec;
+    fs::remove_all(work, ec);
+    const std::string manifest =
+        write_reproducer((work / "candidate").string(), candidate.c, candidate.samples);
+    std::vector<std::string> args = {exe,
+                                     "certify",
+                                     "--worker",
+                                     "--backend",
+                                     fs::absolute(options.library).string(),
+                                     "--case",
+                                     manifest,
+                                     "--variant",
+                                     e.variant,
+                                     "--out",
+                                     (work / "run").string(),
+                                     "--worker-result",
+                                     (work / "worker.json").string(),
+                                     "--no-images"};
+    if (options.threads) {
+      args.push_back("--threads");
+      args.push_back(std::to_string(*options.threads));
+    }
+    const double limit = std::min(candidate_timeout, std::round(left * 1000.0) / 1000.0);
+    const WorkerRun run = run_worker(args, work / "worker.log", limit);
+    ++runs;
+    if (!whole_case_run) whole_case_run = run;
+    fs::remove_all(work, ec);
+    log << "run " << runs << ": " << candidate.c.triangles.size() << " triangles, "
+        << candidate.samples.samples.size() << " samples: " << run_end_text(run, limit) << " ("
+        << std::round(run.wall_s * 100.0) / 100.0 << " s)";
+    if (run.end == WorkerRun::End::timed_out && limit < candidate_timeout) {
+      // Cut short by the budget, not by the candidate timeout: its answer is unknown.
+      log << " (cut short by the budget: its answer is not used)\n";
+      exhausted = true;
+      return CandidateResult::stop;
+    }
+    const bool kept = same_end(run, died);
+    log << (kept ? ": kept" : "") << "\n";
+    return kept ? CandidateResult::fails : CandidateResult::passes;
+  };
+  ordered_json what;
+  what["shrunk"] = false;
+  fuzzing::SampleCase minimal = original;
+  const std::string end_text = run_end_text(died, candidate_timeout);
+  if (const CandidateResult whole = test(original); whole == CandidateResult::stop) {
+    what["note"] = "unshrunk: budget exhausted before the whole case could be run again";
+  } else if (whole == CandidateResult::passes) {
+    what["note"] = "not shrunk: the whole case, run again from its reproducer in a fresh worker, " +
+                   run_end_text(*whole_case_run, candidate_timeout) +
+                   " (the first time: " + run_end_text(died, options.timeout_s) + ")";
+  } else {
+    const ChunkShrinking shrunk = shrink_case_in_chunks(original, test);
+    minimal = shrunk.best;
+    const bool smaller = minimal.c.triangles.size() < original.c.triangles.size() ||
+                         minimal.samples.samples.size() < original.samples.samples.size();
+    auto sizes = [](const fuzzing::SampleCase& k) {
+      return std::to_string(k.c.triangles.size()) + " triangles / " +
+             std::to_string(k.samples.samples.size()) + " samples";
+    };
+    if (!smaller && exhausted)
+      what["note"] = "unshrunk: budget exhausted after " + std::to_string(runs) + " worker runs";
+    else if (!smaller)
+      what["note"] = "not shrunk: no smaller candidate ended the same way (" + end_text + ")";
+    else
+      what["how"] = std::string(exhausted ? "partly shrunk (budget exhausted)" : "shrunk") +
+                    " from " + sizes(original) + " to " + sizes(minimal) + " in " +
+                    std::to_string(runs) + " worker runs, one per candidate (timeout " +
+                    seconds_text(candidate_timeout) + " s)";
+    what["shrunk"] = smaller;
+  }
+  log << (what.contains("how") ? what["how"] : what["note"]).get<std::string>() << "\n";
+  write_reproducer(reproducer_dir.string(), minimal.c, minimal.samples);
+  what["violation"] = run_end_text(died, options.timeout_s);
+  what["worker_runs"] = runs;
+  what["budget_exhausted"] = exhausted;
+  what["candidate_timeout_s"] = candidate_timeout;
+  what["triangles"] = minimal.c.triangles.size();
+  what["samples"] = minimal.samples.samples.size();
+  what["original_triangles"] = original.c.triangles.size();
+  what["original_samples"] = original.samples.samples.size();
+  return what;
+}
+
+// The reproducer of a fuzz case x variant that did not pass (Fail, Crash, Timeout). A run that
+// was judged (a Fail, or a Crash the port reported by an error status) is shrunk by one worker
+// process (the port runs there, never in this process): `certify --worker --reproduce`; when that
+// worker dies or hangs, the whole case is written unshrunk here. A run whose worker died or hung
+// (`died`, when shrinkable_end) is shrunk by shrink_in_workers, a worker process per candidate;
+// one that exited with one of the tool's own statuses goes the first way.
 ordered_json fuzz_reproducer(const std::string& exe, const CertifyOptions& options,
-                             const fs::path& staging_dir, const fs::path& case_dir,
-                             const Entry& e) {
+                             const fs::path& staging_dir, const fs::path& case_dir, const Entry& e,
+                             const WorkerRun* died) {
   const fs::path rel = fs::path("reproducers") / folder_name(e.case_name) / folder_name(e.variant);
   const fs::path dir = staging_dir / rel;
+  ordered_json j;
+  j["case"] = e.case_name;
+  j["variant"] = e.variant;
+  j["verdict"] = e.verdict;
+  if (died && shrinkable_end(*died)) {
+    const ordered_json what =
+        shrink_in_workers(exe, options, staging_dir / case_dir, dir, e, *died);
+    for (const auto& [key, value] : what.items()) j[key] = value;
+    j["folder"] = rel.string();
+    j["manifest"] = (rel / "case.json").string();
+    return j;
+  }
   const fs::path result_file = staging_dir / case_dir / "reproducer.json";
   std::vector<std::string> args = {exe,
                                    "certify",
@@ -733,10 +897,6 @@ ordered_json fuzz_reproducer(const std::string& exe, const CertifyOptions& optio
   }
   const WorkerRun run =
       run_worker(args, staging_dir / case_dir / "reproduce.log", options.timeout_s);
-  ordered_json j;
-  j["case"] = e.case_name;
-  j["variant"] = e.variant;
-  j["verdict"] = e.verdict;
   ordered_json what;
   std::error_code ec;
   if (run.end == WorkerRun::End::exited && run.code == 0 && fs::exists(result_file, ec))
@@ -749,6 +909,7 @@ ordered_json fuzz_reproducer(const std::string& exe, const CertifyOptions& optio
     what["shrunk"] = false;
     what["violation"] = "";
     what["note"] = "not shrunk: " + run_end_text(run, options.timeout_s) + " while shrinking";
+    what["worker_runs"] = 1;
     what["triangles"] = whole.c.triangles.size();
     what["samples"] = whole.samples.samples.size();
     what["original_triangles"] = whole.c.triangles.size();
@@ -764,7 +925,8 @@ void print_reproducer(std::ostream& out, const std::string& out_dir, const order
   out << "    reproducer: " << (fs::path(out_dir) / r.at("manifest").get<std::string>()).string()
       << " (" << r.at("triangles").get<std::size_t>() << " triangles, "
       << r.at("samples").get<std::size_t>() << " samples"
-      << (r.at("shrunk").get<bool>()
+      << (r.at("shrunk").get<bool>() && r.contains("how") ? "; " + r.at("how").get<std::string>()
+          : r.at("shrunk").get<bool>()
               ? ", shrunk from " + std::to_string(r.at("original_triangles").get<std::size_t>()) +
                     " triangles and " +
                     std::to_string(r.at("original_samples").get<std::size_t>()) + " samples"
@@ -909,7 +1071,11 @@ int certify_worker(const CertifyWorkerOptions& w, std::ostream& out, std::ostrea
   const PluginAlgorithm* plugin = algorithm.get();
   registry.add(std::move(algorithm));
   RunOptions options;
-  options.fixtures = {w.fixture};
+  if (w.case_file.empty())
+    options.fixtures = {w.fixture};
+  else
+    options.case_files = {w.case_file};
+  options.images = w.images;
   options.out_dir = w.out_dir;
   options.repeats = 1;  // a warm-up run and one timed repeat: two calls in this process
   options.threads = w.threads;
@@ -928,6 +1094,9 @@ int certify(const CertifyOptions& options, std::ostream& out, std::ostream& err)
   const PluginBackend backend(options.library);
   if (!(options.timeout_s > 0)) throw UsageError("--timeout: must be positive");
   if (options.fuzz.count == 0) throw UsageError("--fuzz-count: must be at least 1");
+  if (options.shrink_timeout_s && !(*options.shrink_timeout_s > 0))
+    throw UsageError("--shrink-timeout: must be positive");
+  if (!(options.shrink_seconds >= 0)) throw UsageError("--shrink-seconds: must not be negative");
   const std::vector<std::string> all_cases =
       options.fixtures.empty() ? profile_cases(options.profile, options.fuzz) : options.fixtures;
   for (std::size_t i = 0; i < all_cases.size(); ++i)
@@ -986,13 +1155,17 @@ int certify(const CertifyOptions& options, std::ostream& out, std::ostream& err)
             << "\n";
       if (fuzzing::is_fuzz_case_name(fixture) &&
           (e.verdict == "Fail" || e.verdict == "Crash" || e.verdict == "Timeout")) {
-        reproducers.push_back(fuzz_reproducer(exe, options, staging.dir(), rel, e));
+        // The run whose worker died or hung, if that is what the verdict comes from.
+        const WorkerRun* died = !first.judged               ? &first.run
+                                : second && !second->judged ? &second->run
+                                                            : nullptr;
+        reproducers.push_back(fuzz_reproducer(exe, options, staging.dir(), rel, e, died));
         print_reproducer(out, options.out_dir, reproducers.back());
       }
       entries.push_back(std::move(e));
     }
 
-  write_run_outputs(staging.dir(), entries, options.library);
+  write_run_outputs(staging.dir(), entries, options.library, reproducers);
 
   ordered_json certificate;
   certificate["schema"] = certificate_schema;
@@ -1012,6 +1185,10 @@ int certify(const CertifyOptions& options, std::ostream& out, std::ostream& err)
   certificate["cases"] = case_list;
   certificate["shard"] = {{"index", options.shard_index}, {"count", options.shard_count}};
   certificate["timeout_s"] = options.timeout_s;
+  certificate["shrink_budget"] = {
+      {"runs", options.shrink_runs},
+      {"seconds", options.shrink_seconds},
+      {"timeout_s", options.shrink_timeout_s.value_or(options.timeout_s)}};
   certificate["results"] = ordered_json::array();
   for (const Entry& e : entries) certificate["results"].push_back(entry_json(e));
   certificate["reproducers"] = reproducers;
@@ -1236,7 +1413,6 @@ int merge_certificates(const std::string& out_dir, const std::vector<std::string
                    [](const auto& a, const auto& b) { return a.first < b.first; });
   std::vector<Entry> entries;
   for (auto& [key, e] : ordered) entries.push_back(std::move(e));
-  write_run_outputs(staging.dir(), entries, first.at("library").at("path").get<std::string>());
 
   ordered_json merged = first;
   merged["created"] = utc_now();
@@ -1248,6 +1424,8 @@ int merge_certificates(const std::string& out_dir, const std::vector<std::string
                    [](const auto& a, const auto& b) { return a.first < b.first; });
   merged["reproducers"] = ordered_json::array();
   for (const auto& [position, r] : reproducers) merged["reproducers"].push_back(r);
+  write_run_outputs(staging.dir(), entries, first.at("library").at("path").get<std::string>(),
+                    merged["reproducers"]);
   seal(merged);
   write_file_atomically(staging.dir() / "certificate.json", merged.dump(2) + "\n");
   staging.commit();

@@ -37,6 +37,12 @@ struct CertifyOptions {
   std::vector<std::string> fixtures;
   std::string out_dir;
   double timeout_s = 300;  // per worker process (one run of one case x variant)
+  // Shrinking a fuzz case that crashed or hung, one worker process per candidate: each candidate
+  // may take shrink_timeout_s (unset: timeout_s) and one failing case x variant at most
+  // shrink_runs worker runs and shrink_seconds seconds in all (0: no shrinking).
+  std::optional<double> shrink_timeout_s;
+  std::uint32_t shrink_runs = 100;
+  double shrink_seconds = 300;
   std::uint32_t shard_index = 0, shard_count = 1;
   std::optional<std::uint32_t> threads;
   std::vector<std::string> command_line;  // argv, recorded in the certificate
@@ -51,6 +57,10 @@ int certify(const CertifyOptions& options, std::ostream& out, std::ostream& err)
 
 struct CertifyWorkerOptions {
   std::string library, fixture, variant, out_dir, result_file;
+  // Instead of `fixture`: a case manifest (a reproducer's case.json, samples in its G-buffer), as
+  // the parent writes each candidate when it shrinks a crash or a hang.
+  std::string case_file;
+  bool images = true;  // false: the run writes no images (shrink candidates)
   std::optional<std::uint32_t> threads;
   bool probe = false;  // only load and validate the library (exit 2 naming the field when bad)
   // Write a reproducer of the fuzz case `fixture` into out_dir instead of running the runner:
@@ -60,8 +70,9 @@ struct CertifyWorkerOptions {
 
 // `shadowcts certify --worker --probe`: loads and validates the library only (the parent does this
 // first, so that a library that crashes while loading is a bad library, not a crash of certify).
-// `shadowcts certify --worker`: one case x variant through the runner into out_dir, then the
-// output hashes of every call into result_file. Returns the runner's exit code.
+// `shadowcts certify --worker`: one case x variant (a fixture, or a case manifest) through the
+// runner into out_dir, then the output hashes of every call into result_file. Returns the
+// runner's exit code.
 // `shadowcts certify --worker --reproduce`: the minimal reproducer of a failing fuzz case into
 // out_dir, what it is into result_file; 0 when written.
 int certify_worker(const CertifyWorkerOptions& options, std::ostream& out, std::ostream& err);
