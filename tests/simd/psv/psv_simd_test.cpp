@@ -200,6 +200,22 @@ TEST(SimdPsvBuild, BatchesResumeDescentsAndStillBuildTheReferenceTree) {
   EXPECT_EQ(first_tree_difference(expected.tree, actual.build.tree), "");
 }
 
+// Every counter, exact_plane_tests included, and the mask do not depend on the thread count.
+TEST(SimdPsv, SameBytesOnOneAndTwoThreads) {
+  FixtureCase f = load_fixture("ground_blockers.10k", 48);
+  for (const std::string& variant : ref::psv_variants()) {
+    SCOPED_TRACE(variant);
+    ref::PsvOptions options = ref::psv_variant_options(variant);
+    f.c.parameters.threads = 1;
+    const SimdPsvResult one = psv_hard_shadows(prepare_scene(f.c, f.samples), {options, 16});
+    f.c.parameters.threads = 2;
+    const SimdPsvResult two = psv_hard_shadows(prepare_scene(f.c, f.samples), {options, 16});
+    EXPECT_EQ(one.shadowed, two.shadowed);
+    EXPECT_EQ(one.nodes_visited, two.nodes_visited);
+    EXPECT_EQ(one.counters, two.counters);
+  }
+}
+
 TEST(SimdPsv, RegisteredWithTheReferenceVariants) {
   const auto algorithm = make_simd_psv();
   EXPECT_EQ(algorithm->info().id, "psv");
