@@ -3,6 +3,7 @@
 // (reference/psv/plane_side.h), with one error bound per node instead of one per point, and the
 // defining points of a plane (a triangle's own vertices) answered without an exact predicate.
 #include <array>
+#include <bit>
 #include <cstdint>
 
 #include <glm/vec3.hpp>
@@ -32,6 +33,31 @@ class PlaneSide {
     const double m = exact_.filter().scene_bound;
     return geometry::plane_error_bound(exact_.filter(), node.plane.data(), capping,
                                        glm::dvec3(m, m, m));
+  }
+
+  // ref::triangle_location of the triangle with vertices `t` at `node`: 1 when every vertex lies
+  // on the closed positive side and one strictly, -1 on the closed negative side, 0 straddling.
+  // The three plane values first, without a branch; exact tests only for the vertices the bound
+  // leaves open, and none once the triangle is known to straddle.
+  int triangle_location(const ref::TopTree& tree, std::uint32_t node, const VolumeCorners& corners,
+                        const glm::dvec3 (&t)[3]) const {
+    const ref::TopNode& n = tree.nodes[node];
+    const double bound = node_bound(n, ref::is_capping_node(node));
+    unsigned positive = 0, negative = 0;
+    for (unsigned k = 0; k < 3; ++k) {
+      const double v = geometry::plane_value(n.plane.data(), t[k]);
+      positive |= unsigned(v > bound) << k;
+      negative |= unsigned(v < -bound) << k;
+    }
+    for (unsigned open = 7u & ~(positive | negative); open != 0 && !(positive && negative);
+         open &= open - 1) {
+      const unsigned k = unsigned(std::countr_zero(open));
+      const int side = near_side(tree, node, corners, t[k]);
+      positive |= unsigned(side > 0) << k;
+      negative |= unsigned(side < 0) << k;
+    }
+    if (positive && negative) return 0;
+    return positive ? 1 : -1;
   }
 
   // Exact sign of the plane of `node` at p (1 outside, 0 on it, -1 inside), for a p with

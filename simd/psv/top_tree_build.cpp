@@ -10,7 +10,6 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <glm/common.hpp>
 
 #include "reference/psv/top_tree_depth.h"
 #include "shadowcts/hard_shadow_inputs.h"
@@ -38,28 +37,12 @@ TriangleVertices vertices_of(const Triangle& t) {
   return {{glm::dvec3(t.v0), glm::dvec3(t.v1), glm::dvec3(t.v2)}};
 }
 
-// ref::triangle_location, stopping once the triangle is known to straddle the plane.
-int triangle_location(const ref::TopTree& tree, const std::vector<VolumeCorners>& corners_of,
-                      const PlaneSide& planes, std::uint32_t node, const TriangleVertices& t) {
-  bool positive = false, negative = false;
-  const double bound = planes.node_bound(tree.nodes[node], ref::is_capping_node(node));
-  const VolumeCorners& corners = corners_of[ref::volume_of(node)];
-  for (const glm::dvec3& v : t.v) {
-    const int side = planes.side(tree, node, bound, corners, v);
-    positive = positive || side > 0;
-    negative = negative || side < 0;
-    if (positive && negative) return 0;
-  }
-  return positive ? 1 : -1;
-}
-
-// The reference's descent (ref::build_top_tree) from `node` on, continuing `d`.
 // One node of the reference's descent (ref::build_top_tree): the next node, or no_node once the
 // descent has reached an empty child or a shadow leaf (d.dropped).
 std::uint32_t descend_step(const ref::TopTree& tree, const std::vector<VolumeCorners>& corners,
                            const PlaneSide& planes, std::uint32_t node, const TriangleVertices& t,
                            Descent& d) {
-  const int location = triangle_location(tree, corners, planes, node, t);
+  const int location = planes.triangle_location(tree, node, corners[ref::volume_of(node)], t.v);
   d.parent = node;
   if (location > 0) {
     d.into_intersection = false;
@@ -149,30 +132,6 @@ void advise_huge_pages(const std::vector<T>& v) {
   const std::uintptr_t end =
       (reinterpret_cast<std::uintptr_t>(v.data() + v.capacity())) & ~(huge - 1);
   if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
-}
-
-// Spreads the low 10 bits of x to every third bit.
-std::uint32_t spread_bits(std::uint32_t x) {
-  x &= 0x3ffu;
-  x = (x | (x << 16)) & 0x030000ffu;
-  x = (x | (x << 8)) & 0x0300f00fu;
-  x = (x | (x << 4)) & 0x030c30c3u;
-  x = (x | (x << 2)) & 0x09249249u;
-  return x;
-}
-
-// A Morton key of the triangle's centroid in the scene's box: triangles close together follow
-// mostly the same path down the tree, so descending them one after another finds its nodes in
-// the cache (the descents are bound by memory, not by arithmetic).
-std::uint32_t locality_key(const Triangle& t, const glm::dvec3& lo, const glm::dvec3& extent) {
-  const glm::dvec3 centroid = (glm::dvec3(t.v0) + glm::dvec3(t.v1) + glm::dvec3(t.v2)) / 3.0;
-  std::uint32_t key = 0;
-  for (int axis = 0; axis < 3; ++axis) {
-    const double u = extent[axis] > 0.0 ? (centroid[axis] - lo[axis]) / extent[axis] : 0.0;
-    const double cell = std::clamp(u * 1024.0, 0.0, 1023.0);
-    key |= spread_bits(std::uint32_t(cell)) << axis;
-  }
-  return key;
 }
 
 // What a triangle of a batch brings to its commit, computed in parallel.
@@ -310,41 +269,23 @@ ref::TopTree build_top_tree(const Case& c, const PlaneSide& planes,
   std::vector<float> own_depth;
   own_depth.reserve(order.size());
 
-  glm::dvec3 lo(INFINITY), hi(-INFINITY);
-  for (const std::uint32_t triangle : order)
-    for (const glm::vec3& v :
-         {c.triangles[triangle].v0, c.triangles[triangle].v1, c.triangles[triangle].v2}) {
-      lo = glm::min(lo, glm::dvec3(v));
-      hi = glm::max(hi, glm::dvec3(v));
-    }
-  std::vector<std::uint32_t> key(order.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, order.size(), 4096),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      for (std::size_t i = range.begin(); i != range.end(); ++i)
-                        key[i] = locality_key(c.triangles[order[i]], lo, hi - lo);
-                    });
-
   constexpr std::size_t largest_batch = std::size_t(1) << 15;
   std::vector<Candidate> batch;
-  std::vector<std::uint32_t> visit;  // batch positions in the order of their keys
   for (std::size_t begin = 0; begin < order.size();) {
     const std::size_t size = std::min(
         {order.size() - begin, largest_batch, std::max<std::size_t>(1, own_depth.size() / 2)});
     batch.resize(size);
-    visit.resize(size);
-    for (std::size_t j = 0; j < size; ++j) visit[j] = std::uint32_t(j);
-    std::sort(visit.begin(), visit.end(),
-              [&](std::uint32_t a, std::uint32_t b) { return key[begin + a] < key[begin + b]; });
     // Descend the tree as it stands, and prepare the volume, in parallel.
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, size, 64),
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         std::size_t r = range.begin();
                         const auto next = [&](std::size_t& item) -> const Triangle* {
                           if (r == range.end()) return nullptr;
-                          // The triangles lie in the scene's order, not the batch's: fetch ahead.
+                          // The triangles lie in the scene's order, not the shuffled one:
+                          // fetch ahead.
                           if (r + 8 < range.end())
-                            __builtin_prefetch(&c.triangles[order[begin + visit[r + 8]]]);
-                          item = visit[r++];
+                            __builtin_prefetch(&c.triangles[order[begin + r + 8]]);
+                          item = r++;
                           return &c.triangles[order[begin + item]];
                         };
                         const auto done = [&](std::size_t item, const Descent& d) {
