@@ -64,16 +64,14 @@ SimdPsvResult psv_hard_shadows(const PreparedScene& scene, const SimdPsvOptions&
   std::vector<std::uint8_t> shadowed(samples.size(), 0);
   std::vector<std::uint32_t> visited(samples.size(), 0);
   const std::uint32_t packet = std::clamp<std::uint32_t>(options.packet, 1, max_packet);
+  const Packets packets = tile_packets(samples, scene.source.camera.width, packet);
   tbb::combinable<ref::PsvQueryTotals> partial;
   run_with_thread_limit(scene.source.parameters.threads, [&] {
-    // Ranges of whole packets, so that a packet never depends on the partitioning.
-    const std::size_t packets = (samples.size() + packet - 1) / packet;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, packets, 8),
+    // Whole packets per range: a packet never depends on the partitioning.
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, packets.begin.size() - 1, 8),
                       [&](const tbb::blocked_range<std::size_t>& range) {
-                        const std::size_t begin = range.begin() * packet;
-                        const std::size_t end = std::min(samples.size(), range.end() * packet);
-                        query_packets(q, options.psv, build.light, samples, begin, end, packet,
-                                      shadowed.data() + begin, visited.data() + begin,
+                        query_packets(q, options.psv, build.light, samples, packets, range.begin(),
+                                      range.end(), shadowed.data(), visited.data(),
                                       partial.local());
                       });
   });

@@ -26,68 +26,97 @@ HWY_INLINE std::uint32_t lane_bits(D d, M mask) {
   return bytes[0];
 }
 
-// The tests of `node` for every lane of the packet, with the reference's operations in the
-// reference's order (geometry/plane_filter.h): each IEEE operation rounds once in a vector lane
-// as in a scalar, so the wedge decisions agree with the reference's to the bit.
-NodeTests node_tests(const QueryTree& q, std::uint32_t node, const Packet& packet) {
-  const hn::ScalableTag<double> d;
-  const std::size_t lanes = hn::Lanes(d);
+// What the tests of a node need of the node.
+struct NodeConstants {
+  double a, b, c, offset, bound;
+  double aa, ab, ac, ad, spread;  // the per-point error bound's terms that depend on the node only
+  double wedge, edge_extra_error;
+  bool has_intersection, wedge_test, directional;
+  bool depth_of_intersection, depth_of_positive;
+  double intersection_depth, positive_depth;
+};
+
+// The tests for the lanes of one vector of `d` from lane j on, with the reference's operations in
+// the reference's order (geometry/plane_filter.h): each IEEE operation rounds once in a vector
+// lane as in a scalar, so the wedge decisions agree with the reference's to the bit.
+template <class D>
+HWY_INLINE void test_lanes(D d, const NodeConstants& k, const Packet& packet, std::size_t j,
+                           NodeTests& tests) {
+  const auto x = hn::LoadU(d, packet.x + j), y = hn::LoadU(d, packet.y + j),
+             z = hn::LoadU(d, packet.z + j), depth = hn::LoadU(d, packet.light_depth + j);
+  const auto value =
+      hn::Add(hn::Add(hn::Add(hn::Mul(hn::Set(d, k.a), x), hn::Mul(hn::Set(d, k.b), y)),
+                      hn::Mul(hn::Set(d, k.c), z)),
+              hn::Set(d, k.offset));
+  const auto bound = hn::Set(d, k.bound);
+  tests.positive |= lane_bits(d, hn::Gt(value, bound)) << j;
+  tests.negative |= lane_bits(d, hn::Lt(value, hn::Neg(bound))) << j;
+  if (k.has_intersection) {
+    auto visits = hn::FirstN(d, hn::Lanes(d));
+    if (k.wedge_test) {
+      const auto px = hn::Abs(x), py = hn::Abs(y), pz = hn::Abs(z);
+      const auto magnitude = hn::Add(
+          hn::Add(hn::Add(hn::Add(hn::Mul(hn::Set(d, k.aa), px), hn::Mul(hn::Set(d, k.ab), py)),
+                          hn::Mul(hn::Set(d, k.ac), pz)),
+                  hn::Set(d, k.ad)),
+          hn::Set(d, k.spread));
+      const auto subnormal =
+          hn::Mul(hn::Set(d, 0x1p-149), hn::Add(hn::Add(hn::Add(px, py), pz), hn::Set(d, 1.0)));
+      const auto error = hn::Add(hn::Add(hn::Mul(hn::Set(d, 0x1p-22), magnitude), subnormal),
+                                 hn::Set(d, k.edge_extra_error));
+      const auto outside = hn::Sub(hn::Abs(value), error);
+      const auto wedge = hn::Set(d, k.wedge);
+      const auto limit = k.directional ? wedge : hn::Mul(wedge, depth);
+      visits = hn::Not(hn::Gt(outside, limit));
+    }
+    if (k.depth_of_intersection)
+      visits = hn::AndNot(hn::Lt(depth, hn::Set(d, k.intersection_depth)), visits);
+    tests.visits_intersection |= lane_bits(d, visits) << j;
+  }
+  if (k.depth_of_positive)
+    tests.positive_skipped |= lane_bits(d, hn::Lt(depth, hn::Set(d, k.positive_depth))) << j;
+}
+
+// The tests of `node` for the lanes of the group (bits of other lanes are left unspecified).
+NodeTests node_tests(const QueryTree& q, std::uint32_t node, std::uint32_t lanes_of_group,
+                     const Packet& packet) {
   const ref::TopNode& n = q.tree.nodes[node];
   const bool capping = ref::is_capping_node(node);
-  const auto a = hn::Set(d, double(n.plane[0])), b = hn::Set(d, double(n.plane[1])),
-             c = hn::Set(d, double(n.plane[2])), offset = hn::Set(d, double(n.plane[3]));
-  const auto bound = hn::Set(d, q.planes.node_bound(n, capping));
-  const bool has_intersection = n.intersection != ref::no_node;
-  const bool wedge_test = has_intersection && !capping;
+  NodeConstants k;
+  k.a = double(n.plane[0]);
+  k.b = double(n.plane[1]);
+  k.c = double(n.plane[2]);
+  k.offset = double(n.plane[3]);
+  k.bound = q.planes.node_bound(n, capping);
   const geometry::PlaneFilter& filter = q.planes.exact().filter();
-  // The per-point error bound's terms that depend on the node only.
-  const double aa = std::fabs(double(n.plane[0])), ab = std::fabs(double(n.plane[1])),
-               ac = std::fabs(double(n.plane[2])), ad = std::fabs(double(n.plane[3]));
-  const double spread = ((aa + ab) + ac) * filter.scene_bound;
-  const auto wedge = hn::Set(d, double(n.wedge));
-  const bool depth_of_intersection = has_intersection && q.depth_test;
-  const auto intersection_depth =
-      hn::Set(d, depth_of_intersection ? double(ref::volume_depth(q.tree, n.intersection)) : 0.0);
-  const bool depth_of_positive = n.positive != ref::no_node && q.depth_test;
-  const auto positive_depth =
-      hn::Set(d, depth_of_positive ? double(ref::volume_depth(q.tree, n.positive)) : 0.0);
+  k.aa = std::fabs(k.a);
+  k.ab = std::fabs(k.b);
+  k.ac = std::fabs(k.c);
+  k.ad = std::fabs(k.offset);
+  k.spread = ((k.aa + k.ab) + k.ac) * filter.scene_bound;
+  k.wedge = double(n.wedge);
+  k.edge_extra_error = filter.edge_extra_error;
+  k.has_intersection = n.intersection != ref::no_node;
+  k.wedge_test = k.has_intersection && !capping;
+  k.directional = q.directional;
+  k.depth_of_intersection = k.has_intersection && q.depth_test;
+  k.intersection_depth =
+      k.depth_of_intersection ? double(ref::volume_depth(q.tree, n.intersection)) : 0.0;
+  k.depth_of_positive = n.positive != ref::no_node && q.depth_test;
+  k.positive_depth = k.depth_of_positive ? double(ref::volume_depth(q.tree, n.positive)) : 0.0;
 
   NodeTests tests;
-  for (std::size_t j = 0; j < packet.size; j += lanes) {
-    const auto x = hn::Load(d, packet.x + j), y = hn::Load(d, packet.y + j),
-               z = hn::Load(d, packet.z + j), depth = hn::Load(d, packet.light_depth + j);
-    const auto value =
-        hn::Add(hn::Add(hn::Add(hn::Mul(a, x), hn::Mul(b, y)), hn::Mul(c, z)), offset);
-    tests.positive |= lane_bits(d, hn::Gt(value, bound)) << j;
-    tests.negative |= lane_bits(d, hn::Lt(value, hn::Neg(bound))) << j;
-    if (has_intersection) {
-      auto visits = hn::FirstN(d, lanes);
-      if (wedge_test) {
-        const auto px = hn::Abs(x), py = hn::Abs(y), pz = hn::Abs(z);
-        const auto magnitude = hn::Add(
-            hn::Add(hn::Add(hn::Add(hn::Mul(hn::Set(d, aa), px), hn::Mul(hn::Set(d, ab), py)),
-                            hn::Mul(hn::Set(d, ac), pz)),
-                    hn::Set(d, ad)),
-            hn::Set(d, spread));
-        const auto subnormal =
-            hn::Mul(hn::Set(d, 0x1p-149), hn::Add(hn::Add(hn::Add(px, py), pz), hn::Set(d, 1.0)));
-        const auto error = hn::Add(hn::Add(hn::Mul(hn::Set(d, 0x1p-22), magnitude), subnormal),
-                                   hn::Set(d, filter.edge_extra_error));
-        const auto outside = hn::Sub(hn::Abs(value), error);
-        const auto limit = q.directional ? wedge : hn::Mul(wedge, depth);
-        visits = hn::Not(hn::Gt(outside, limit));
-      }
-      if (depth_of_intersection) visits = hn::AndNot(hn::Lt(depth, intersection_depth), visits);
-      tests.visits_intersection |= lane_bits(d, visits) << j;
-    }
-    if (depth_of_positive)
-      tests.positive_skipped |= lane_bits(d, hn::Lt(depth, positive_depth)) << j;
+  if (std::has_single_bit(lanes_of_group)) {
+    // A lone lane (frequent where the samples' paths part, as under foliage): one-lane vectors.
+    test_lanes(hn::CappedTag<double, 1>(), k, packet, std::size_t(std::countr_zero(lanes_of_group)),
+               tests);
+    return tests;
   }
-  const std::uint32_t all = (1u << packet.size) - 1u;
-  tests.positive &= all;
-  tests.negative &= all;
-  tests.visits_intersection &= all;
-  tests.positive_skipped &= all;
+  const hn::ScalableTag<double> d;
+  const std::size_t lanes = hn::Lanes(d);
+  const std::uint32_t vector_lanes = lanes >= 32 ? ~0u : (1u << lanes) - 1u;
+  for (std::size_t j = 0; j < packet.size; j += lanes)
+    if (((lanes_of_group >> j) & vector_lanes) != 0) test_lanes(d, k, packet, j, tests);
   return tests;
 }
 
@@ -106,7 +135,7 @@ void run_lanes(const QueryTree& q, ref::QueryKind kind, std::uint32_t capacity, 
   });
   while (!work.empty()) {
     const Group group = work.take();
-    const NodeTests tests = node_tests(q, group.node, packet);
+    const NodeTests tests = node_tests(q, group.node, group.lanes, packet);
     switch (kind) {
       case ref::QueryKind::stack:
       case ref::QueryKind::depth:
@@ -123,15 +152,16 @@ void run_lanes(const QueryTree& q, ref::QueryKind kind, std::uint32_t capacity, 
 }
 
 void QueryPackets(const QueryTree& q, const ref::PsvOptions& options, const HardShadowLight& light,
-                  const RegularSamples& samples, std::size_t begin, std::size_t end,
-                  std::uint32_t packet_size, std::uint8_t* shadowed, std::uint32_t* nodes_visited,
+                  const RegularSamples& samples, const Packets& packets, std::size_t first_packet,
+                  std::size_t last_packet, std::uint8_t* shadowed, std::uint32_t* nodes_visited,
                   ref::PsvQueryTotals& totals) {
   Packet packet;
-  for (std::size_t first = begin; first < end; first += packet_size) {
-    packet.size = std::uint32_t(std::min<std::size_t>(packet_size, end - first));
+  for (std::size_t k = first_packet; k < last_packet; ++k) {
+    const std::uint32_t* lane_sample = packets.sample.data() + packets.begin[k];
+    packet.size = packets.begin[k + 1] - packets.begin[k];
     for (std::uint32_t i = 0; i < max_packet; ++i) {
       // Lanes past the packet's end repeat its first sample: their tests are computed and unused.
-      const std::size_t s = first + (i < packet.size ? i : 0);
+      const std::size_t s = lane_sample[i < packet.size ? i : 0];
       ref::QueryPoint& point = packet.point[i];
       point = ref::QueryPoint();
       point.position = glm::dvec3(samples.position(s));
@@ -154,8 +184,8 @@ void QueryPackets(const QueryTree& q, const ref::PsvOptions& options, const Hard
     }
     for (std::uint32_t i = 0; i < packet.size; ++i) {
       const ref::QueryWork& work = packet.work[i];
-      shadowed[first + i - begin] = packet.answer[i] == ref::QueryAnswer::shadowed ? 1 : 0;
-      nodes_visited[first + i - begin] = std::uint32_t(work.nodes_visited);
+      shadowed[lane_sample[i]] = packet.answer[i] == ref::QueryAnswer::shadowed ? 1 : 0;
+      nodes_visited[lane_sample[i]] = std::uint32_t(work.nodes_visited);
       ++totals.queries;
       totals.nodes_visited_total += work.nodes_visited;
       totals.nodes_visited_max = std::max(totals.nodes_visited_max, work.nodes_visited);
@@ -180,11 +210,45 @@ HWY_EXPORT(QueryPackets);
 HWY_EXPORT(QueryTarget);
 
 void query_packets(const QueryTree& q, const ref::PsvOptions& options, const HardShadowLight& light,
-                   const RegularSamples& samples, std::size_t begin, std::size_t end,
-                   std::uint32_t packet, std::uint8_t* shadowed, std::uint32_t* nodes_visited,
+                   const RegularSamples& samples, const Packets& packets, std::size_t first,
+                   std::size_t last, std::uint8_t* shadowed, std::uint32_t* nodes_visited,
                    ref::PsvQueryTotals& totals) {
   HWY_DYNAMIC_DISPATCH(QueryPackets)
-  (q, options, light, samples, begin, end, packet, shadowed, nodes_visited, totals);
+  (q, options, light, samples, packets, first, last, shadowed, nodes_visited, totals);
+}
+
+Packets tile_packets(const RegularSamples& samples, std::uint32_t width,
+                     std::uint32_t packet_size) {
+  constexpr std::uint32_t tile = 4;
+  width = std::max<std::uint32_t>(width, 1);
+  const std::uint32_t tiles_across = (width + tile - 1) / tile;
+  const auto tile_of = [&](std::uint32_t pixel) {
+    return std::uint64_t(pixel / width / tile) * tiles_across + pixel % width / tile;
+  };
+  Packets packets;
+  packets.sample.resize(samples.size());
+  // The samples are in pixel order, so a band of 4 rows is a run of them: within it, a
+  // counting sort by tile column keeps each tile's samples in pixel order.
+  std::vector<std::uint32_t> count(tiles_across + 1);
+  for (std::size_t band = 0; band < samples.size();) {
+    const std::uint32_t row = samples.index[band] / width / tile;
+    std::size_t end = band;
+    while (end < samples.size() && samples.index[end] / width / tile == row) ++end;
+    std::fill(count.begin(), count.end(), 0u);
+    for (std::size_t i = band; i < end; ++i) ++count[samples.index[i] % width / tile + 1];
+    for (std::uint32_t t = 0; t < tiles_across; ++t) count[t + 1] += count[t];
+    for (std::size_t i = band; i < end; ++i)
+      packets.sample[band + count[samples.index[i] % width / tile]++] = std::uint32_t(i);
+    band = end;
+  }
+  for (std::size_t i = 0; i < packets.sample.size(); ++i) {
+    const bool new_tile = i == 0 || tile_of(samples.index[packets.sample[i]]) !=
+                                        tile_of(samples.index[packets.sample[i - 1]]);
+    if (new_tile || i - packets.begin.back() == packet_size)
+      packets.begin.push_back(std::uint32_t(i));
+  }
+  packets.begin.push_back(std::uint32_t(packets.sample.size()));
+  return packets;
 }
 
 std::string query_target() {
