@@ -1,31 +1,19 @@
 #pragma once
-// The TOP tree of reference/psv built on oneTBB, node for node the reference's tree.
-//
-// The reference inserts triangles one at a time in a seeded random order, and a triangle's path
-// depends on every volume inserted before it. Here the triangles are inserted in batches: every
-// triangle of a batch descends the tree as it stood before the batch, in parallel, and the batch
-// is then committed in insertion order. An earlier triangle of the same batch can only have
-// filled the leaf a later one reached (a leaf is replaced, nothing above it changes), so the later
-// one resumes its descent from the volume now standing in that leaf, with the same parent and
-// ancestor as the reference's uninterrupted descent. Batches grow with the tree (half its
-// volumes), which keeps those resumed descents short. The depths, wedges and height, which the
-// reference updates along each path, are computed after the last batch from the finished tree,
-// with the reference's own order of comparisons, so every bit agrees.
+// The TOP tree of reference/psv built on oneTBB, node for node the reference's tree: the batches
+// of reference/psv/top_tree_batches.h, whose descents run here on oneTBB threads, several
+// interleaved per thread, with this port's plane tests (plane_side.h).
 #include <cstdint>
 #include <vector>
 
 #include "reference/psv/top_tree.h"
+#include "reference/psv/top_tree_batches.h"
 #include "reference/psv/top_tree_build.h"
 #include "shadowcts/case.h"
 #include "simd/psv/plane_side.h"
 
 namespace shadowcts::simd::psv {
 
-// How the parallel build went (not counters of the algorithm: they describe this port's work).
-struct BuildWork {
-  std::uint64_t batches = 0;
-  std::uint64_t resumed_descents = 0;  // triangles whose leaf an earlier one of the batch filled
-};
+using BuildWork = ref::BatchWork;
 
 // ref::insertion_order with the light sides decided in parallel: the same order and statistics.
 std::vector<std::uint32_t> insertion_order(const Case& c, const ref::PlaneSide& planes,

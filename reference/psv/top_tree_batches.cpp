@@ -1,0 +1,199 @@
+#include "reference/psv/top_tree_batches.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "reference/psv/top_tree_depth.h"
+
+namespace shadowcts::psv {
+namespace {
+
+// What a triangle of a batch brings to its commit, computed in parallel.
+struct Volume {
+  float depth = 0.0f;
+  TopNode nodes[nodes_per_volume];
+  VolumeSource source;
+};
+
+// The child a descent ended in: no_node while it is still empty.
+std::uint32_t slot_of(const TopTree& tree, const Descent& d) {
+  if (d.parent == no_node) return tree.root;
+  return d.into_intersection ? tree.nodes[d.parent].intersection : tree.nodes[d.parent].positive;
+}
+
+// The reference updates a volume's depth with the depth of every triangle inserted below it, in
+// insertion order, lowering it only on a strict '<': the result is the first smallest value of
+// [own depth, then the subtree's in insertion order], and NaN only when the own depth is NaN.
+// Volumes are numbered in insertion order and every volume below v comes after it, so one sweep
+// from the last volume to the first finds, per volume, the smallest non-NaN depth of its subtree
+// and which volume holds it first.
+void set_subtree_depths(TopTree& tree, const std::vector<float>& own) {
+  const std::size_t volumes = own.size();
+  std::vector<float> best(volumes, INFINITY);
+  std::vector<std::uint32_t> holder(volumes, no_node);
+  const auto improves = [&](float value, std::uint32_t index, std::size_t v) {
+    if (holder[v] == no_node || value < best[v]) return true;
+    return !(best[v] < value) && index < holder[v];
+  };
+  for (std::size_t v = volumes; v-- > 0;) {
+    if (!std::isnan(own[v])) {
+      best[v] = own[v];
+      holder[v] = std::uint32_t(v);
+    }
+    for (std::uint32_t k = 0; k < nodes_per_volume; ++k) {
+      const TopNode& n = tree.nodes[v * nodes_per_volume + k];
+      for (const std::uint32_t child : {n.positive, n.intersection}) {
+        if (child == no_node) continue;
+        const std::uint32_t w = volume_of(child);
+        if (holder[w] != no_node && improves(best[w], holder[w], v)) {
+          best[v] = best[w];
+          holder[v] = holder[w];
+        }
+      }
+    }
+    const float depth = std::isnan(own[v]) ? own[v] : best[v];
+    set_volume_depth(tree, std::uint32_t(v * nodes_per_volume), depth);
+  }
+}
+
+// Every edge node's wedge: the largest triangle_wedge over the volumes of its intersection subtree
+// (the triangles that straddled it on their way down), folded as the reference folds it.
+void set_wedges(TopTree& tree, const PlaneSide& planes, const std::vector<float>& own) {
+  const std::size_t node_count = tree.nodes.size();
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, node_count, 256),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      std::vector<std::uint32_t> pending;
+                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                        TopNode& node = tree.nodes[i];
+                        if (is_capping_node(std::uint32_t(i)) || node.intersection == no_node)
+                          continue;
+                        float wedge = node.wedge;
+                        pending.assign(1, node.intersection);
+                        while (!pending.empty()) {
+                          const std::uint32_t first = pending.back();
+                          pending.pop_back();
+                          const std::uint32_t v = volume_of(first);
+                          const Triangle& t = planes.triangles()[volume_triangle(tree, first)];
+                          wedge = std::max(wedge, triangle_wedge(planes, node, t, own[v]));
+                          for (std::uint32_t k = 0; k < nodes_per_volume; ++k) {
+                            const TopNode& n = tree.nodes[first + k];
+                            if (n.positive != no_node) pending.push_back(n.positive);
+                            if (n.intersection != no_node) pending.push_back(n.intersection);
+                          }
+                        }
+                        node.wedge = wedge;
+                      }
+                    });
+}
+
+// Nodes on the longest root-to-leaf path, from the last volume to the first.
+std::uint64_t longest_path(const TopTree& tree) {
+  if (tree.root == no_node) return 0;
+  std::vector<std::uint32_t> height(tree.nodes.size(), 0);
+  const auto of = [&](std::uint32_t node) { return node == no_node ? 0u : height[node]; };
+  for (std::size_t i = tree.nodes.size(); i-- > 0;) {
+    const TopNode& n = tree.nodes[i];
+    std::uint32_t below = std::max(of(n.positive), of(n.intersection));
+    if (!is_capping_node(std::uint32_t(i))) below = std::max(below, height[i + 1]);
+    height[i] = below + 1;
+  }
+  return height[tree.root];
+}
+
+}  // namespace
+
+std::uint32_t descend_step(const TopTree& tree, const PlaneSide& planes, std::uint32_t node,
+                           const Triangle& t, Descent& d) {
+  const int location = triangle_location(tree, planes, node, t);
+  d.parent = node;
+  if (location > 0) {
+    d.into_intersection = false;
+    return tree.nodes[node].positive;
+  }
+  if (location < 0) {
+    if (is_capping_node(node)) {
+      d.dropped = true;
+      return no_node;
+    }
+    return node + 1;
+  }
+  d.into_intersection = true;
+  d.ancestor = node;
+  return tree.nodes[node].intersection;
+}
+
+TopTree build_top_tree_in_batches(const Case& c, const PlaneSide& planes,
+                                  const std::vector<std::uint32_t>& order,
+                                  BuildStatistics& statistics, DescentEngine& engine,
+                                  BatchWork& work) {
+  TopTree tree;
+  tree.nodes.reserve(order.size() * nodes_per_volume);
+  tree.sources.reserve(order.size());
+  std::vector<float> own_depth;
+  own_depth.reserve(order.size());
+
+  constexpr std::size_t largest_batch = std::size_t(1) << 15;
+  std::vector<std::uint32_t> triangles;
+  std::vector<Descent> descents;
+  std::vector<Volume> volumes;
+  for (std::size_t begin = 0; begin < order.size();) {
+    const std::size_t size = std::min(
+        {order.size() - begin, largest_batch, std::max<std::size_t>(1, own_depth.size() / 2)});
+    triangles.assign(order.begin() + std::ptrdiff_t(begin),
+                     order.begin() + std::ptrdiff_t(begin + size));
+    descents.assign(size, Descent());
+    engine.descend_batch(tree, triangles, descents);
+    // The volumes of the triangles that may stay, in parallel.
+    volumes.resize(size);
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, size, 256),
+        [&](const tbb::blocked_range<std::size_t>& range) {
+          for (std::size_t j = range.begin(); j != range.end(); ++j) {
+            if (descents[j].dropped) continue;
+            volumes[j].depth = triangle_light_depth(planes.light(), c.triangles[triangles[j]]);
+            planes.make_volume_planes(triangles[j], volumes[j].nodes, volumes[j].source);
+          }
+        });
+    // Commit in insertion order.
+    for (std::size_t j = 0; j < size; ++j) {
+      Descent& d = descents[j];
+      if (!d.dropped) {
+        const std::uint32_t filled = slot_of(tree, d);
+        if (filled != no_node) {
+          ++work.resumed_descents;
+          engine.resume(tree, filled, triangles[j], d);
+        }
+      }
+      if (d.dropped) {
+        ++statistics.dropped_in_shadow;
+        continue;
+      }
+      const Volume& volume = volumes[j];
+      const std::uint32_t first = std::uint32_t(tree.nodes.size());
+      tree.nodes.insert(tree.nodes.end(), volume.nodes, volume.nodes + nodes_per_volume);
+      tree.sources.push_back(volume.source);
+      own_depth.push_back(volume.depth);
+      set_volume_depth(tree, first, volume.depth);
+      tree.nodes[first + 1].volume_word = d.ancestor;
+      tree.nodes[first + 2].volume_word = triangles[j];
+      if (d.parent == no_node)
+        tree.root = first;
+      else if (d.into_intersection)
+        tree.nodes[d.parent].intersection = first;
+      else
+        tree.nodes[d.parent].positive = first;
+      ++statistics.volumes;
+    }
+    begin += size;
+    ++work.batches;
+  }
+  set_subtree_depths(tree, own_depth);
+  set_wedges(tree, planes, own_depth);
+  statistics.height = longest_path(tree);
+  return tree;
+}
+
+}  // namespace shadowcts::psv

@@ -1,0 +1,66 @@
+#pragma once
+// The reference's TOP tree (top_tree_build.h), node for node, from batches of descents: how the
+// ports build it in parallel (simd on oneTBB threads, cuda on the device) and still build the
+// reference's tree.
+//
+// The reference inserts triangles one at a time in a seeded random order, and a triangle's path
+// depends on every volume inserted before it. Here every triangle of a batch descends the tree as
+// it stood before the batch (the engine's work, in parallel), and the batch is then committed in
+// insertion order. An earlier triangle of the same batch can only have filled the empty child a
+// later one reached (a child is filled, nothing above it changes), so the later one resumes its
+// descent from the volume now standing there, with the same parent and ancestor as the
+// reference's uninterrupted descent. Batches grow with the tree (half its volumes, at most 32768),
+// which keeps those resumed descents short. The depths, wedges and height, which the reference
+// updates along each path, are computed from the finished tree with the reference's own order of
+// comparisons, so every bit agrees.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "reference/psv/plane_side.h"
+#include "reference/psv/top_tree.h"
+#include "reference/psv/top_tree_build.h"
+#include "shadowcts/case.h"
+
+namespace shadowcts::psv {
+
+// Where a triangle's descent stopped: the node whose empty child it fills (which child, and the
+// innermost intersection node above it), or a shadow leaf (dropped).
+struct Descent {
+  std::uint32_t parent = no_node;
+  std::uint32_t ancestor = no_node;
+  bool into_intersection = false;
+  bool dropped = false;
+};
+
+// What descends: a port's plane tests and parallelism.
+class DescentEngine {
+ public:
+  virtual ~DescentEngine() = default;
+  // Descends each triangle of `triangles` (indices into the case's triangles) from the root of
+  // `tree`, which does not change during the call, into out[i].
+  virtual void descend_batch(const TopTree& tree, const std::vector<std::uint32_t>& triangles,
+                             std::vector<Descent>& out) = 0;
+  // Continues `d` from `node` on the tree as it stands now (the commit's resumed descents).
+  virtual void resume(const TopTree& tree, std::uint32_t node, std::uint32_t triangle,
+                      Descent& d) = 0;
+};
+
+// One step of the reference's descent with the reference's plane tests: the next node, or no_node
+// once `d` has reached an empty child or a shadow leaf.
+std::uint32_t descend_step(const TopTree& tree, const PlaneSide& planes, std::uint32_t node,
+                           const Triangle& t, Descent& d);
+
+struct BatchWork {
+  std::uint64_t batches = 0;
+  std::uint64_t resumed_descents = 0;  // triangles whose child an earlier one of the batch filled
+};
+
+// build_top_tree's tree, sources and statistics, from `engine`'s descents. The volumes' planes
+// and depths are computed on oneTBB threads (the caller's arena).
+TopTree build_top_tree_in_batches(const Case& c, const PlaneSide& planes,
+                                  const std::vector<std::uint32_t>& order,
+                                  BuildStatistics& statistics, DescentEngine& engine,
+                                  BatchWork& work);
+
+}  // namespace shadowcts::psv
