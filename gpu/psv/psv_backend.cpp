@@ -29,7 +29,8 @@ class PsvKernelAlgorithm final : public Algorithm {
 
   const AlgorithmInfo& info() const override { return info_; }
 
-  // build: insertion order and TOP tree on the host, and the kernel's input; query: the kernel.
+  // build: insertion order, the TOP tree (descents on the device, commits on the host), the
+  // query kernel's input; query: the query kernel.
   std::vector<std::string> timed_phases(const std::string&) const override {
     return build_and_query_phases();
   }
@@ -55,7 +56,8 @@ class PsvKernelAlgorithm final : public Algorithm {
     // The emulator spreads blocks over oneTBB: keep to the case's thread limit, as the reference
     // backends do.
     run_with_thread_limit(c.parameters.threads, [&] {
-      result = psv_hard_shadows(c, samples, options, backend_.run_kernel);
+      result =
+          psv_hard_shadows(c, samples, options, backend_.run_kernel, backend_.make_descent_session);
     });
     AlgorithmOutput output;
     output.shadowed = std::move(result.shadowed);

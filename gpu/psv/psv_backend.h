@@ -14,6 +14,7 @@ struct PsvKernelBackend {
   std::string backend;  // "cuda" or "cuda-emu"
   std::string summary;
   QueryKernel run_kernel = nullptr;
+  DescentSessionMaker make_descent_session = nullptr;
   // Why the kernel cannot run here (no device), or nullopt; nullptr: it always can.
   std::optional<std::string> (*unavailable_reason)() = nullptr;
   bool emulated = false;  // adds the `emulated_threads` counter to every record

@@ -1,13 +1,17 @@
 #pragma once
-// Launch interface of the psv query kernel. Plain data only, so that the C++20 host side (the
-// Algorithm) and the C++17 CUDA translation unit share it.
+// Launch interface of the psv kernels: the descents of the batched TOP-tree build and the
+// queries. Plain data only, so that the C++20 host side (the Algorithm) and the C++17 CUDA
+// translation unit share it.
 //
-// First step of the port: the TOP tree is built on the host by the reference's construction
-// (reference/psv/top_tree_build.h) and uploaded as the flat node array of Mora 2016, section 3.6;
-// the device queries it. A device build (the concurrent insertion) would replace only
-// that upload.
+// The TOP tree is built in batches (reference/psv/top_tree_batches.h): the device descends every
+// triangle of a batch in the tree as it stands, one thread per triangle, and the host commits
+// the batch in insertion order, so the tree is the reference's node for node. It stays on the
+// device as the flat node array of Mora 2016, section 3.6, each batch appending what the host
+// committed; the query kernel then reads it.
+#include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -76,11 +80,45 @@ struct PsvQueryResult {
   std::uint64_t exact_plane_tests = 0;  // plane tests of the queries the float filter left open
 };
 
+// Where a triangle's descent stopped (reference/psv/top_tree_batches.h, Descent).
+struct PsvDeviceDescent {
+  std::uint32_t parent;
+  std::uint32_t ancestor;
+  std::uint8_t into_intersection;
+  std::uint8_t dropped;
+};
+
+struct PsvDescentSetup {
+  std::vector<PsvDeviceTriangle> triangles;  // every triangle of the case
+  std::size_t node_capacity = 0;             // the most nodes the tree can grow to
+  bool directional_light = false;
+  glm::dvec3 light{0.0};
+  geometry::PlaneFilter filter;
+};
+
+// The device half of the batched build: the triangles and the growing tree live on the device.
+class PsvDescentSession {
+ public:
+  virtual ~PsvDescentSession() = default;
+  // nodes[0, node_count) and sources[0, node_count / 4) are the whole tree as it stands (the
+  // nodes are copied again, since new volumes hang below old nodes; of the sources only the new
+  // ones). Then one thread per triangle of `batch` descends it from `root` (the reference's plane
+  // tests, every vertex at every node) into out.
+  virtual void descend(const PsvDeviceNode* nodes, const PsvDeviceSource* sources,
+                       std::size_t node_count, std::uint32_t root,
+                       const std::vector<std::uint32_t>& batch,
+                       std::vector<PsvDeviceDescent>& out) = 0;
+  // Plane tests of all descents so far that the float filter left open.
+  virtual std::uint64_t exact_plane_tests() const = 0;
+};
+
 // Runs on the current CUDA device; throws std::runtime_error if a CUDA call fails.
 PsvQueryResult run_psv_query_kernel(const PsvQueryInput& input);
+std::unique_ptr<PsvDescentSession> make_psv_descent_session(const PsvDescentSetup& setup);
 
 // The same kernel source run by the CUDA-subset emulator on the host (gpu/emulator); throws
 // shadowcts::emu::EmulatorError where a GPU would hang or race.
 PsvQueryResult run_psv_query_kernel_emulated(const PsvQueryInput& input);
+std::unique_ptr<PsvDescentSession> make_psv_descent_session_emulated(const PsvDescentSetup& setup);
 
 }  // namespace shadowcts

@@ -1,11 +1,16 @@
-// The psv query kernel (psv_shadows.cuh) built by the host compiler against the CUDA-subset
-// emulator.
+// The psv kernels (top_tree_build.cuh, psv_shadows.cuh) built by the host compiler against the
+// CUDA-subset emulator.
 #include "gpu/psv/psv_shadows.cuh"
+#include "gpu/psv/top_tree_build.cuh"
 
 namespace shadowcts {
 
 PsvQueryResult run_psv_query_kernel_emulated(const PsvQueryInput& input) {
   return emulated::psv::run(input);
+}
+
+std::unique_ptr<PsvDescentSession> make_psv_descent_session_emulated(const PsvDescentSetup& setup) {
+  return std::make_unique<emulated::psv::DescentSession>(setup);
 }
 
 }  // namespace shadowcts

@@ -1,6 +1,8 @@
 #include "gpu/psv/psv_shadows.h"
 
+#include <cstddef>
 #include <cstring>
+#include <memory>
 #include <stdexcept>
 
 #include "shadowcts/phase_clock.h"
@@ -22,7 +24,68 @@ PsvDeviceQuery device_query(psv::QueryKind kind) {
   throw std::invalid_argument("psv: unknown query kind");
 }
 
+static_assert(sizeof(PsvDeviceNode) == sizeof(psv::TopNode) &&
+              offsetof(psv::TopNode, positive) == offsetof(PsvDeviceNode, positive) &&
+              offsetof(psv::TopNode, volume_word) == offsetof(PsvDeviceNode, volume_word));
+static_assert(sizeof(PsvDeviceSource) == sizeof(psv::VolumeSource) &&
+              offsetof(psv::VolumeSource, orientation) == offsetof(PsvDeviceSource, orientation));
+
+// The device's descents: the tree's nodes and sources go up byte for byte (the layouts agree), and
+// the commit's resumed descents run on the host with the reference's plane tests.
+class DeviceDescents final : public psv::DescentEngine {
+ public:
+  // `exact_tests`: the device's exact plane tests so far, kept up to date batch by batch.
+  DeviceDescents(const Case& c, const psv::PlaneSide& planes,
+                 std::unique_ptr<PsvDescentSession> session, std::uint64_t& exact_tests)
+      : c_(c), planes_(planes), session_(std::move(session)), exact_tests_(exact_tests) {}
+
+  void descend_batch(const psv::TopTree& tree, const std::vector<std::uint32_t>& triangles,
+                     std::vector<psv::Descent>& out) override {
+    session_->descend(reinterpret_cast<const PsvDeviceNode*>(tree.nodes.data()),
+                      reinterpret_cast<const PsvDeviceSource*>(tree.sources.data()),
+                      tree.nodes.size(), tree.root, triangles, descents_);
+    for (std::size_t i = 0; i < triangles.size(); ++i) {
+      const PsvDeviceDescent& d = descents_[i];
+      out[i] = {d.parent, d.ancestor, d.into_intersection != 0, d.dropped != 0};
+    }
+    exact_tests_ = session_->exact_plane_tests();
+  }
+
+  void resume(const psv::TopTree& tree, std::uint32_t node, std::uint32_t triangle,
+              psv::Descent& d) override {
+    while (node != psv::no_node)
+      node = psv::descend_step(tree, planes_, node, c_.triangles[triangle], d);
+  }
+
+ private:
+  const Case& c_;
+  const psv::PlaneSide& planes_;
+  std::unique_ptr<PsvDescentSession> session_;
+  std::uint64_t& exact_tests_;
+  std::vector<PsvDeviceDescent> descents_;
+};
+
 }  // namespace
+
+psv::PsvBuild build_psv_on_device(const Case& c, const ViewSamples& samples, std::uint64_t seed,
+                                  DescentSessionMaker make_session, psv::BatchWork& work,
+                                  std::uint64_t& device_exact_tests) {
+  device_exact_tests = 0;
+  return psv::build_psv_in_batches(
+      c, samples, seed,
+      [&](const psv::PlaneSide& planes) {
+        PsvDescentSetup setup;
+        setup.triangles.reserve(c.triangles.size());
+        for (const Triangle& t : c.triangles) setup.triangles.push_back({t.v0, t.v1, t.v2});
+        setup.node_capacity = c.triangles.size() * psv::nodes_per_volume;
+        setup.directional_light = planes.light().directional;
+        setup.light =
+            planes.light().directional ? planes.light().direction : planes.light().position;
+        setup.filter = planes.filter();
+        return std::make_unique<DeviceDescents>(c, planes, make_session(setup), device_exact_tests);
+      },
+      work);
+}
 
 PsvQueryInput psv_query_input(const Case& c, const ViewSamples& samples, const psv::PsvBuild& build,
                               const psv::PsvOptions& options,
@@ -71,12 +134,16 @@ PsvQueryInput psv_query_input(const Case& c, const ViewSamples& samples, const p
 }
 
 psv::PsvResult psv_hard_shadows(const Case& c, const ViewSamples& samples,
-                                const psv::PsvOptions& options, QueryKernel kernel) {
+                                const psv::PsvOptions& options, QueryKernel kernel,
+                                DescentSessionMaker make_session) {
   static_assert(no_receiver == psv_no_node);
   PhaseClock clock;
-  const psv::PsvBuild build = psv::build_psv(c, samples, options.seed);
-  // The build's exact plane tests, before any query adds to the counter.
-  const std::uint64_t build_exact_tests = build.planes->exact_fallbacks();
+  psv::BatchWork work;
+  std::uint64_t device_exact_tests = 0;
+  const psv::PsvBuild build =
+      build_psv_on_device(c, samples, options.seed, make_session, work, device_exact_tests);
+  // The build's exact plane tests (the device's and the host's), before any query adds to them.
+  const std::uint64_t build_exact_tests = device_exact_tests + build.planes->exact_fallbacks();
   std::vector<std::size_t> regular_samples;
   const PsvQueryInput input = psv_query_input(c, samples, build, options, regular_samples);
   clock.lap(build_phase);

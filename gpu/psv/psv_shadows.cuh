@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "gpu/emulator/kernel.h"
+#include "gpu/psv/device_array.cuh"
 #include "gpu/psv/psv_kernels.h"
 #include "gpu/psv/query_context.cuh"
 #include "gpu/psv/query_hybrid.cuh"
@@ -87,47 +88,6 @@ psv_query(QueryContext context, PsvDeviceQuery query, std::uint32_t stack_capaci
     atomicAdd(&totals[total_exact], static_cast<unsigned long long>(work.exact_plane_tests));
   if (work.stack_high_water != 0) atomicMax(&maxima[maximum_high_water], work.stack_high_water);
 }
-
-inline void check(cudaError_t status, const char* call) {
-  if (status == cudaSuccess) return;
-  throw std::runtime_error(std::string("CUDA error in ") + call + ": " + cudaGetErrorName(status) +
-                           ": " + cudaGetErrorString(status));
-}
-
-// Owns one device allocation.
-template <typename T>
-class DeviceArray {
- public:
-  explicit DeviceArray(std::size_t count) : count_(count) {
-    if (count_ != 0) check(cudaMalloc(&data_, count_ * sizeof(T)), "cudaMalloc");
-  }
-  DeviceArray(const DeviceArray&) = delete;
-  DeviceArray& operator=(const DeviceArray&) = delete;
-  ~DeviceArray() {
-    if (data_ != nullptr) cudaFree(data_);  // nothing useful to do with an error in a destructor
-  }
-  T* data() const { return data_; }
-
-  void upload(const std::vector<T>& host) {
-    if (count_ != 0) {
-      check(cudaMemcpy(data_, host.data(), count_ * sizeof(T), cudaMemcpyHostToDevice),
-            "cudaMemcpy to device");
-    }
-  }
-  void zero() {
-    if (count_ != 0) check(cudaMemset(data_, 0, count_ * sizeof(T)), "cudaMemset");
-  }
-  void download(T* host) const {
-    if (count_ != 0) {
-      check(cudaMemcpy(host, data_, count_ * sizeof(T), cudaMemcpyDeviceToHost),
-            "cudaMemcpy to host");
-    }
-  }
-
- private:
-  std::size_t count_;
-  T* data_ = nullptr;
-};
 
 inline PsvQueryResult run(const PsvQueryInput& input) {
   const std::size_t sample_count = input.sample_positions.size();

@@ -68,18 +68,36 @@ std::vector<std::string> psv_variants() {
   return {"stack", "stack32", "depth", "stackless", "hybrid", "hybrid4"};
 }
 
-PsvBuild build_psv(const Case& c, const ViewSamples& samples, std::uint64_t seed) {
-  PsvBuild build;
+namespace {
+
+// The build up to the insertion order: light, plane tests, culling.
+std::vector<std::uint32_t> prepare_build(const Case& c, const ViewSamples& samples,
+                                         std::uint64_t seed, PsvBuild& build) {
   build.light = hard_shadow_light(c);
   check_receivers(c, samples);
   build.planes =
       std::make_unique<PlaneSide>(build.light, c.triangles, coordinate_bound(c, samples));
-  const std::vector<std::uint32_t> order =
-      insertion_order(c, *build.planes,
-                      culling_clear_of_segment_starts(c, samples, build.light,
-                                                      meshes_safe_for_face_culling(c, samples)),
-                      seed, build.statistics);
+  return insertion_order(c, *build.planes,
+                         culling_clear_of_segment_starts(c, samples, build.light,
+                                                         meshes_safe_for_face_culling(c, samples)),
+                         seed, build.statistics);
+}
+
+}  // namespace
+
+PsvBuild build_psv(const Case& c, const ViewSamples& samples, std::uint64_t seed) {
+  PsvBuild build;
+  const std::vector<std::uint32_t> order = prepare_build(c, samples, seed, build);
   build.tree = build_top_tree(c, *build.planes, order, build.statistics);
+  return build;
+}
+
+PsvBuild build_psv_in_batches(const Case& c, const ViewSamples& samples, std::uint64_t seed,
+                              const DescentEngineFactory& make_engine, BatchWork& work) {
+  PsvBuild build;
+  const std::vector<std::uint32_t> order = prepare_build(c, samples, seed, build);
+  const std::unique_ptr<DescentEngine> engine = make_engine(*build.planes);
+  build.tree = build_top_tree_in_batches(c, *build.planes, order, build.statistics, *engine, work);
   return build;
 }
 

@@ -2,12 +2,14 @@
 // Hard shadows of a case with partitioned shadow volumes: builds the TOP tree once, then locates
 // every regular view sample with one of the four queries of Mora 2016.
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "reference/psv/plane_side.h"
 #include "reference/psv/top_tree.h"
+#include "reference/psv/top_tree_batches.h"
 #include "reference/psv/top_tree_build.h"
 #include "shadowcts/algorithm.h"
 #include "shadowcts/case.h"
@@ -60,6 +62,13 @@ struct PsvBuild {
 };
 // Throws InputError when the case has no point or directional light.
 PsvBuild build_psv(const Case& c, const ViewSamples& samples, std::uint64_t seed);
+
+// build_psv with the tree built from batches of `engine`'s descents (top_tree_batches.h): the
+// same build, for a port whose descents run elsewhere (the device). `make_engine` receives the
+// build's plane tests.
+using DescentEngineFactory = std::function<std::unique_ptr<DescentEngine>(const PlaneSide&)>;
+PsvBuild build_psv_in_batches(const Case& c, const ViewSamples& samples, std::uint64_t seed,
+                              const DescentEngineFactory& make_engine, BatchWork& work);
 
 // What the queries of all samples add up to (sums and maxima: independent of the partitioning).
 struct PsvQueryTotals {

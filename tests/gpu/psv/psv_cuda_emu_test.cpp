@@ -128,12 +128,56 @@ TEST_P(PsvCudaEmu, UploadedTreeEqualsTheReferenceNodeForNode) {
   }
 }
 
+// The tree whose descents ran on the (emulated) device and whose batches the host committed: the
+// reference's node for node, with the same statistics and the same exact plane tests.
+TEST_P(PsvCudaEmu, TreeBuiltWithDeviceDescentsEqualsTheReferenceNodeForNode) {
+  const Scene s = load(GetParam());
+  const psv::PsvBuild reference = psv::build_psv(s.c, s.samples, s.c.parameters.seed);
+  psv::BatchWork work;
+  std::uint64_t device_exact_tests = 0;
+  const psv::PsvBuild device =
+      gpu_psv::build_psv_on_device(s.c, s.samples, s.c.parameters.seed,
+                                   make_psv_descent_session_emulated, work, device_exact_tests);
+  EXPECT_EQ(device.tree.root, reference.tree.root);
+  ASSERT_EQ(device.tree.nodes.size(), reference.tree.nodes.size());
+  for (std::size_t i = 0; i < reference.tree.nodes.size(); ++i)
+    ASSERT_EQ(std::memcmp(&device.tree.nodes[i], &reference.tree.nodes[i], sizeof(psv::TopNode)), 0)
+        << "node " << i << " differs";
+  ASSERT_EQ(device.tree.sources.size(), reference.tree.sources.size());
+  for (std::size_t v = 0; v < reference.tree.sources.size(); ++v)
+    ASSERT_TRUE(device.tree.sources[v].edge == reference.tree.sources[v].edge &&
+                device.tree.sources[v].orientation == reference.tree.sources[v].orientation)
+        << "volume " << v;
+  EXPECT_EQ(device.statistics.volumes, reference.statistics.volumes);
+  EXPECT_EQ(device.statistics.dropped_in_shadow, reference.statistics.dropped_in_shadow);
+  EXPECT_EQ(device.statistics.height, reference.statistics.height);
+  EXPECT_EQ(device_exact_tests + device.planes->exact_fallbacks(),
+            reference.planes->exact_fallbacks());
+  EXPECT_GT(work.batches, 5u);
+}
+
+// Batches whose triangles meet in a child an earlier one filled: the host's resumed descents.
+TEST(PsvCudaEmuBuild, ResumedDescentsOnTheHostKeepTheReferenceTree) {
+  const Scene s = load({"gate_house", 20000, 1});
+  const psv::PsvBuild reference = psv::build_psv(s.c, s.samples, s.c.parameters.seed);
+  psv::BatchWork work;
+  std::uint64_t device_exact_tests = 0;
+  const psv::PsvBuild device =
+      gpu_psv::build_psv_on_device(s.c, s.samples, s.c.parameters.seed,
+                                   make_psv_descent_session_emulated, work, device_exact_tests);
+  EXPECT_GT(work.resumed_descents, 100u);
+  ASSERT_EQ(device.tree.nodes.size(), reference.tree.nodes.size());
+  EXPECT_EQ(std::memcmp(device.tree.nodes.data(), reference.tree.nodes.data(),
+                        reference.tree.nodes.size() * sizeof(psv::TopNode)),
+            0);
+}
+
 void expect_every_variant_as_the_reference(const Scene& s, const std::string& name) {
   for (const std::string& variant : psv::psv_variants()) {
     const psv::PsvOptions options = options_of(s.c, variant);
     const psv::PsvResult reference = psv::psv_hard_shadows(s.c, s.samples, options);
-    const psv::PsvResult port =
-        gpu_psv::psv_hard_shadows(s.c, s.samples, options, run_psv_query_kernel_emulated);
+    const psv::PsvResult port = gpu_psv::psv_hard_shadows(
+        s.c, s.samples, options, run_psv_query_kernel_emulated, make_psv_descent_session_emulated);
     expect_same_answers(reference, port, name + " " + variant);
     EXPECT_GT(counter(port.counters, "queries"), 0u) << variant;
   }
@@ -153,8 +197,8 @@ TEST_P(PsvCudaEmu, OverflowingStacksAnswerAsTheReference) {
     options.stack_capacity = 1;
     options.seed = s.c.parameters.seed;
     const psv::PsvResult reference = psv::psv_hard_shadows(s.c, s.samples, options);
-    const psv::PsvResult port =
-        gpu_psv::psv_hard_shadows(s.c, s.samples, options, run_psv_query_kernel_emulated);
+    const psv::PsvResult port = gpu_psv::psv_hard_shadows(
+        s.c, s.samples, options, run_psv_query_kernel_emulated, make_psv_descent_session_emulated);
     const std::string what = GetParam().generator + " query " + std::to_string(int(kind));
     expect_same_answers(reference, port, what);
     // The test must reach the path it is about.
@@ -213,14 +257,16 @@ TEST(PsvCudaEmuSchedule, SameResultForAnySchedule) {
     const emu::ScopedOptions scoped(emu_options);
     psv::PsvResult port;
     run_with_thread_limit(1, [&] {
-      port = gpu_psv::psv_hard_shadows(s.c, s.samples, options, run_psv_query_kernel_emulated);
+      port = gpu_psv::psv_hard_shadows(s.c, s.samples, options, run_psv_query_kernel_emulated,
+                                       make_psv_descent_session_emulated);
     });
     expect_same_answers(reference, port, "random schedule " + std::to_string(seed));
   }
   for (const std::uint32_t threads : {1u, 2u}) {
     psv::PsvResult port;
     run_with_thread_limit(threads, [&] {
-      port = gpu_psv::psv_hard_shadows(s.c, s.samples, options, run_psv_query_kernel_emulated);
+      port = gpu_psv::psv_hard_shadows(s.c, s.samples, options, run_psv_query_kernel_emulated,
+                                       make_psv_descent_session_emulated);
     });
     expect_same_answers(reference, port, std::to_string(threads) + " threads");
   }
