@@ -12,6 +12,7 @@
 #include "reference/psv/rule_culling.h"
 #include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/phase_clock.h"
+#include "shadowcts/phase_progress.h"
 #include "shadowcts/thread_limit.h"
 #include "simd/psv/query_packet.h"
 
@@ -66,14 +67,16 @@ SimdPsvResult psv_hard_shadows(const PreparedScene& scene, const SimdPsvOptions&
   const std::uint32_t packet = std::clamp<std::uint32_t>(options.packet, 1, max_packet);
   const Packets packets = tile_packets(samples, scene.source.camera.width, packet);
   tbb::combinable<ref::PsvQueryTotals> partial;
+  phase_progress::begin(samples.size());  // the queries: regular samples done of all
   run_with_thread_limit(scene.source.parameters.threads, [&] {
     // Whole packets per range: a packet never depends on the partitioning.
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, packets.begin.size() - 1, 8),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                        query_packets(q, options.psv, build.light, samples, packets, range.begin(),
-                                      range.end(), shadowed.data(), visited.data(),
-                                      partial.local());
-                      });
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, packets.begin.size() - 1, 8),
+        [&](const tbb::blocked_range<std::size_t>& range) {
+          query_packets(q, options.psv, build.light, samples, packets, range.begin(), range.end(),
+                        shadowed.data(), visited.data(), partial.local());
+          phase_progress::advance(packets.begin[range.end()] - packets.begin[range.begin()]);
+        });
   });
   clock.lap(query_phase);
 
