@@ -71,17 +71,10 @@ class Worklist {
     groups_[count_++] = {node, twice, lanes};
   }
   bool empty() const { return count_ == 0; }
-  // The group on the smallest node: a lane's path runs to ever larger nodes (a volume's children
-  // are inserted after it) except where it returns up a link or pops its stack, so lanes that
-  // parted tend to meet again on a node before either group reaches it alone.
-  Group take() {
-    std::uint32_t first = 0;
-    for (std::uint32_t g = 1; g < count_; ++g)
-      if (groups_[g].node < groups_[first].node) first = g;
-    const Group group = groups_[first];
-    groups_[first] = groups_[--count_];
-    return group;
-  }
+  // The group added last: its node is likely still in the cache. (Taking the smallest node
+  // first, so that parted lanes meet again, was 15-25 % slower on foliage.100k and
+  // gate_house.100k.)
+  Group take() { return groups_[--count_]; }
 
  private:
   // Every lane is in at most one group.
