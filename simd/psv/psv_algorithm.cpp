@@ -16,7 +16,7 @@ class SimdPsvAlgorithm final : public Algorithm {
     info_.variants = psv::psv_variants();
     info_.summary =
         "partitioned shadow volumes on oneTBB + Highway: the reference's TOP tree built in "
-        "parallel batches, queries in 16-sample packets with node tests in vector lanes; PSV, "
+        "parallel batches, queries in 4x4-pixel packets with node tests in vector lanes; PSV, "
         "D-PSV, D-Stackless, D-Hybrid (Mora 2016)";
     info_.capabilities.output = OutputKind::hard_shadow;
     info_.capabilities.point_light = true;

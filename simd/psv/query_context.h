@@ -1,6 +1,6 @@
 #pragma once
-// What the packet queries of the simd psv share. A packet holds up to 16 regular samples (in
-// pixel order: a run of a pixel row), one per lane; each lane runs the reference's query for its
+// What the packet queries of the simd psv share. A packet holds up to 16 regular samples (those
+// of a 4x4 pixel tile), one per lane; each lane runs the reference's query for its
 // sample. Lanes standing on the same node in the same state form a group, and a group is stepped
 // as a whole: the node's plane, wedge and depth tests are evaluated for all lanes at once in
 // vector lanes (query_packet.cpp), and the reference's branches become lane masks (one step per
