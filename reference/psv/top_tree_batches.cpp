@@ -105,26 +105,6 @@ std::uint64_t longest_path(const TopTree& tree) {
 
 }  // namespace
 
-std::uint32_t descend_step(const TopTree& tree, const PlaneSide& planes, std::uint32_t node,
-                           const Triangle& t, Descent& d) {
-  const int location = triangle_location(tree, planes, node, t);
-  d.parent = node;
-  if (location > 0) {
-    d.into_intersection = false;
-    return tree.nodes[node].positive;
-  }
-  if (location < 0) {
-    if (is_capping_node(node)) {
-      d.dropped = true;
-      return no_node;
-    }
-    return node + 1;
-  }
-  d.into_intersection = true;
-  d.ancestor = node;
-  return tree.nodes[node].intersection;
-}
-
 TopTree build_top_tree_in_batches(const Case& c, const PlaneSide& planes,
                                   const std::vector<std::uint32_t>& order,
                                   BuildStatistics& statistics, DescentEngine& engine,

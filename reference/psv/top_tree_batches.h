@@ -46,10 +46,33 @@ class DescentEngine {
                       Descent& d) = 0;
 };
 
-// One step of the reference's descent with the reference's plane tests: the next node, or no_node
-// once `d` has reached an empty child or a shadow leaf.
-std::uint32_t descend_step(const TopTree& tree, const PlaneSide& planes, std::uint32_t node,
-                           const Triangle& t, Descent& d);
+// One step of the reference's descent (build_top_tree) where the triangle's location at `node`
+// is `location` (triangle_location): the next node, or no_node once `d` has reached an empty child
+// or a shadow leaf.
+inline std::uint32_t step_by_location(const TopTree& tree, std::uint32_t node, int location,
+                                      Descent& d) {
+  d.parent = node;
+  if (location > 0) {
+    d.into_intersection = false;
+    return tree.nodes[node].positive;
+  }
+  if (location < 0) {
+    if (is_capping_node(node)) {
+      d.dropped = true;
+      return no_node;
+    }
+    return node + 1;
+  }
+  d.into_intersection = true;
+  d.ancestor = node;
+  return tree.nodes[node].intersection;
+}
+
+// One step of the reference's descent with the reference's plane tests.
+inline std::uint32_t descend_step(const TopTree& tree, const PlaneSide& planes, std::uint32_t node,
+                                  const Triangle& t, Descent& d) {
+  return step_by_location(tree, node, triangle_location(tree, planes, node, t), d);
+}
 
 struct BatchWork {
   std::uint64_t batches = 0;

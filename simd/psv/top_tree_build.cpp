@@ -33,22 +33,8 @@ TriangleVertices vertices_of(const Triangle& t) {
 std::uint32_t descend_step(const ref::TopTree& tree, const std::vector<VolumeCorners>& corners,
                            const PlaneSide& planes, std::uint32_t node, const TriangleVertices& t,
                            Descent& d) {
-  const int location = planes.triangle_location(tree, node, corners[ref::volume_of(node)], t.v);
-  d.parent = node;
-  if (location > 0) {
-    d.into_intersection = false;
-    return tree.nodes[node].positive;
-  }
-  if (location < 0) {
-    if (ref::is_capping_node(node)) {
-      d.dropped = true;
-      return no_node;
-    }
-    return node + 1;
-  }
-  d.into_intersection = true;
-  d.ancestor = node;
-  return tree.nodes[node].intersection;
+  return ref::step_by_location(
+      tree, node, planes.triangle_location(tree, node, corners[ref::volume_of(node)], t.v), d);
 }
 
 // The descent from `node` on, continuing `d`.
