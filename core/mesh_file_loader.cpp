@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "mesh_closedness.h"
+#include "shadowcts/closed_surface.h"
 #include "shadowcts/errors.h"
 
 namespace shadowcts {
