@@ -334,9 +334,33 @@ DeclaredCounts scan_stl(const std::string& path, std::istream& in) {
   std::string line;
   std::size_t line_number = 0, vertex = 0;
   float points[3][3] = {};
+  // OpenMesh's reader takes the 3 lines after any line containing "outer" (or "OUTER") as the
+  // facet's corners, each a word and 3 coordinates, whatever the word is. A corner line without
+  // them leaves the reader's point uninitialized (garbage coordinates that differ from run to
+  // run, found by replaying mutated seeds), so each of those lines must hold them.
+  std::size_t corner_lines_left = 0, loops = 0, loop_line = 0;
+  const auto loop_element = [&] {
+    return "facet " + std::to_string(loops - 1) + " (line " + std::to_string(loop_line) + ")";
+  };
   while (std::getline(in, line)) {
     ++line_number;
     const auto tokens = split_whitespace(line);
+    if (corner_lines_left > 0) {
+      const std::size_t corner = 3 - corner_lines_left--;
+      if (tokens.size() < 4) {
+        throw InputError(path, loop_element(),
+                         "corner " + std::to_string(corner) + " (line " +
+                             std::to_string(line_number) +
+                             ") is not 'vertex x y z': the 3 lines after 'outer loop' are the "
+                             "facet's corners");
+      }
+      for (std::size_t axis = 1; axis <= 3; ++axis)
+        check_position_token(path, tokens[axis], vertex_element(vertex, line_number));
+    } else if (line.find("outer") != std::string::npos || line.find("OUTER") != std::string::npos) {
+      corner_lines_left = 3;
+      ++loops;
+      loop_line = line_number;
+    }
     if (tokens.empty()) continue;
     const std::string keyword = lowercase(tokens[0]);
     if (keyword == "facet") ++*counts.triangles;
@@ -353,6 +377,10 @@ DeclaredCounts scan_stl(const std::string& path, std::istream& in) {
                       std::to_string(line_number - 2) + ")",
                   same_point_ids(points), "the point of corner");
     }
+  }
+  if (corner_lines_left > 0) {
+    throw InputError(path, loop_element(),
+                     "the file ends before the facet's 3 corners (the 3 lines after 'outer loop')");
   }
   if (*counts.triangles == 0 && header_bytes == sizeof header && !error) {
     // Binary STLs often start with "solid" too.

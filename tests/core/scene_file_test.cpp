@@ -1129,6 +1129,39 @@ TEST(MeshFilesHostile, RepeatedVerticesAndShortFacesAreNamedInEveryFormat) {
   }
 }
 
+// Found by replaying mutated seeds: OpenMesh's ASCII STL reader takes the 3 lines after
+// "outer loop" as the corners whatever they hold; one without a word and 3 coordinates left the
+// corner uninitialized (a triangle with garbage coordinates, different on every run).
+TEST(MeshFilesHostile, StlCornerLinesWithoutCoordinatesAreInputErrorsNotGarbage) {
+  const TempDir dir;
+  const std::string head = "solid t\n  facet normal 0 0 1\n    outer loop\n";
+  const std::string tail = "    endloop\n  endfacet\nendsolid t\n";
+  struct Shape {
+    std::string name, text, expected;
+  };
+  for (const Shape& shape : std::vector<Shape>{
+           {"keyword_lost.stl",
+            head + "      .0 0.0\n      vertex 1 0 0\n      vertex 0 1 0\n" + tail,
+            "facet 0 (line 3): corner 0 (line 4) is not 'vertex x y z'"},
+           {"endloop_early.stl", head + "      vertex 0 0 0\n      vertex 1 0 0\n" + tail,
+            "facet 0 (line 3): corner 2 (line 6) is not 'vertex x y z'"},
+           {"ends_in_loop.stl", head + "      vertex 0 0 0\n",
+            "the file ends before the facet's 3 corners"},
+       }) {
+    const fs::path file = dir.write(shape.name, shape.text);
+    const std::string message = load_error(file);
+    EXPECT_NE(message.find(file.string()), std::string::npos) << shape.name << ": " << message;
+    EXPECT_NE(message.find(shape.expected), std::string::npos) << shape.name << ": " << message;
+  }
+  // Any word before the coordinates is what the reader accepts.
+  const LoadedScene scene = load_scene_file(
+      dir.write("word.stl",
+                head + "      vertex 0 0 0\n      VERTEX 1 0 0\n      vertex 0 1 0\n" + tail)
+          .string());
+  ASSERT_EQ(scene.triangles.size(), 1u);
+  EXPECT_EQ(scene.triangles[0].v1, glm::vec3(1, 0, 0));
+}
+
 TEST(MeshFilesHostile, Utf16ObjIsNamedAsUtf16) {
   const TempDir dir;
   const std::string ascii = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
