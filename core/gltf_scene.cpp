@@ -11,7 +11,7 @@
 #include <glm/mat4x4.hpp>
 
 #include "gltf_accessors.h"
-#include "mesh_closedness.h"
+#include "shadowcts/closed_surface.h"
 #include "shadowcts/errors.h"
 
 namespace shadowcts {

@@ -1,8 +1,8 @@
 #include "mesh_file_loader.h"
 
-// OpenMesh's reader needs MeshIO.hh before the mesh type is declared.
+// MeshIO.hh registers OpenMesh's readers with its IOManager.
 #include <OpenMesh/Core/IO/MeshIO.hh>
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <OpenMesh/Core/IO/importer/BaseImporter.hh>
 
 #include <algorithm>
 #include <cctype>
@@ -22,13 +22,12 @@
 #include <utility>
 #include <vector>
 
-#include "mesh_closedness.h"
+#include "openmesh_quiet.h"
+#include "shadowcts/closed_surface.h"
 #include "shadowcts/errors.h"
 
 namespace shadowcts {
 namespace {
-
-using FileMesh = OpenMesh::TriMesh_ArrayKernelT<>;
 
 std::vector<std::string> split_whitespace(std::string_view line) {
   std::vector<std::string> tokens;
@@ -114,6 +113,7 @@ struct DeclaredCounts {
   std::size_t faces = 0;                             // faces seen by the scan
   std::size_t repeated_vertex_faces = 0;             // of them, with fewer than 3 distinct corners
   std::optional<std::string> first_repeated_vertex;  // "f 2 (line 7) uses vertex 3 more ..."
+  std::vector<std::string> skipped_words;            // PLY header words the reader skips
 
   // One face of the file at `element`, by its corners' vertex numbers (as the file numbers
   // them). Fewer than 3 corners is an error (OpenMesh drops the face without a word); fewer than
@@ -334,9 +334,33 @@ DeclaredCounts scan_stl(const std::string& path, std::istream& in) {
   std::string line;
   std::size_t line_number = 0, vertex = 0;
   float points[3][3] = {};
+  // OpenMesh's reader takes the 3 lines after any line containing "outer" (or "OUTER") as the
+  // facet's corners, each a word and 3 coordinates, whatever the word is. A corner line without
+  // them leaves the reader's point uninitialized (garbage coordinates that differ from run to
+  // run, found by replaying mutated seeds), so each of those lines must hold them.
+  std::size_t corner_lines_left = 0, loops = 0, loop_line = 0;
+  const auto loop_element = [&] {
+    return "facet " + std::to_string(loops - 1) + " (line " + std::to_string(loop_line) + ")";
+  };
   while (std::getline(in, line)) {
     ++line_number;
     const auto tokens = split_whitespace(line);
+    if (corner_lines_left > 0) {
+      const std::size_t corner = 3 - corner_lines_left--;
+      if (tokens.size() < 4) {
+        throw InputError(path, loop_element(),
+                         "corner " + std::to_string(corner) + " (line " +
+                             std::to_string(line_number) +
+                             ") is not 'vertex x y z': the 3 lines after 'outer loop' are the "
+                             "facet's corners");
+      }
+      for (std::size_t axis = 1; axis <= 3; ++axis)
+        check_position_token(path, tokens[axis], vertex_element(vertex, line_number));
+    } else if (line.find("outer") != std::string::npos || line.find("OUTER") != std::string::npos) {
+      corner_lines_left = 3;
+      ++loops;
+      loop_line = line_number;
+    }
     if (tokens.empty()) continue;
     const std::string keyword = lowercase(tokens[0]);
     if (keyword == "facet") ++*counts.triangles;
@@ -353,6 +377,10 @@ DeclaredCounts scan_stl(const std::string& path, std::istream& in) {
                       std::to_string(line_number - 2) + ")",
                   same_point_ids(points), "the point of corner");
     }
+  }
+  if (corner_lines_left > 0) {
+    throw InputError(path, loop_element(),
+                     "the file ends before the facet's 3 corners (the 3 lines after 'outer loop')");
   }
   if (*counts.triangles == 0 && header_bytes == sizeof header && !error) {
     // Binary STLs often start with "solid" too.
@@ -746,7 +774,8 @@ PlyRole ply_role(const std::string& element, const std::string& property) {
 struct PlyHeader {
   bool binary = false, big_endian = false;
   std::vector<PlyElement> elements;
-  std::uint64_t body_start = 0;  // binary: where OpenMesh starts reading the data
+  std::uint64_t body_start = 0;            // binary: where OpenMesh starts reading the data
+  std::vector<std::string> skipped_words;  // header words the reader does not know, once each
 };
 
 // One "property ..." line after its keyword, with the rules of OpenMesh's reader and the shapes
@@ -880,8 +909,11 @@ PlyHeader read_ply_header(const std::string& path, std::istream& in, TokenReader
       }
       PlyElement& element = header.elements.back();
       element.properties.push_back(read_ply_property(path, tokens, element, header.binary));
+    } else if (std::find(header.skipped_words.begin(), header.skipped_words.end(), *keyword) ==
+               header.skipped_words.end()) {
+      // Any other word is skipped, as OpenMesh does ("obj_info", free text), and reported.
+      header.skipped_words.push_back(*keyword);
     }
-    // Any other word is skipped, as OpenMesh does ("obj_info", free text).
   }
   return header;
 }
@@ -1011,35 +1043,157 @@ DeclaredCounts scan_ply(const std::string& path, std::istream& in) {
     if (element.name == "face") break;  // OpenMesh reads nothing after the faces
   }
   counts.vertices = vertices;
+  counts.skipped_words = header.skipped_words;
   return counts;
 }
 
-std::size_t count_occurrences(const std::string& text, std::string_view what) {
-  std::size_t count = 0;
-  for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size())) {
-    ++count;
-  }
-  return count;
-}
-
-// OpenMesh's PLY reader prints "Unsupported keyword : <word>" for every header word it skips
-// (to std::cerr, captured with its error stream): the words, once each.
-std::string ignored_keywords(const std::string& diagnostics) {
-  static constexpr std::string_view marker = "Unsupported keyword : ";
-  std::vector<std::string> words;
-  for (auto at = diagnostics.find(marker); at != std::string::npos;
-       at = diagnostics.find(marker, at + marker.size())) {
-    const std::size_t start = at + marker.size();
-    const std::size_t end = diagnostics.find('\n', start);
-    std::string word = diagnostics.substr(start, end == std::string::npos ? end : end - start);
-    if (std::find(words.begin(), words.end(), word) == words.end()) words.push_back(word);
-  }
+// The words of a list, quoted, the first four of them.
+std::string quoted_list(const std::vector<std::string>& words) {
   std::string list;
   for (std::size_t i = 0; i < words.size() && i < 4; ++i)
     list += (list.empty() ? "'" : ", '") + words[i] + "'";
   if (words.size() > 4) list += ", ... (" + std::to_string(words.size()) + " words)";
   return list;
 }
+
+// What OpenMesh's reader reads, received as it reads it: every vertex, and every face with its
+// corners as the file gives them. Nothing goes through OpenMesh's mesh topology, so a face that a
+// PolyMesh would reject (a complex edge or vertex: three faces on an edge, inconsistent
+// orientation) is kept as it is; a conformance suite must not change its input. Faces that name
+// a vertex more than once have no area: they are counted and dropped (the pre-checks name the
+// first one with its line). Problems are recorded, not thrown, so that no exception crosses
+// OpenMesh's reader; the first one is reported once the reader returns.
+class FaceKeepingImporter final : public OpenMesh::IO::BaseImporter {
+ public:
+  using Point = OpenMesh::Vec3f;
+  using VertexHandle = OpenMesh::VertexHandle;
+  using HalfedgeHandle = OpenMesh::HalfedgeHandle;
+  using EdgeHandle = OpenMesh::EdgeHandle;
+  using FaceHandle = OpenMesh::FaceHandle;
+
+  std::vector<Point> points;                // in the reader's vertex order
+  std::vector<std::uint32_t> corners;       // kept faces' corners, one face after the other
+  std::vector<std::uint32_t> face_corners;  // number of corners of each kept face
+  std::size_t faces_read = 0;               // every add_face call
+  std::size_t repeated_vertex_faces = 0;    // dropped: a corner repeats
+  std::size_t repeated_vertex_triangles = 0;
+  std::optional<std::string> first_repeated_vertex;  // "face 3 (from 0) uses vertex 1 (from 0) ..."
+  std::optional<std::pair<std::string, std::string>> problem;  // element, what is wrong
+
+  // Fan triangulation (corner 0, i, i + 1), as OpenMesh's TriMesh splits a polygon.
+  std::vector<Triangle> triangles() const {
+    std::vector<Triangle> out;
+    std::size_t first = 0;
+    for (const std::uint32_t n : face_corners) {
+      const auto at = [&](std::size_t c) {
+        const Point& p = points[corners[first + c]];
+        return glm::vec3(p[0], p[1], p[2]);
+      };
+      for (std::size_t i = 1; i + 1 < n; ++i) out.push_back(Triangle{at(0), at(i), at(i + 1), 0});
+      first += n;
+    }
+    return out;
+  }
+
+  VertexHandle add_vertex(const Point& point) override {
+    points.push_back(point);
+    return VertexHandle(static_cast<int>(points.size() - 1));
+  }
+  VertexHandle add_vertex() override { return add_vertex(Point(0.0f, 0.0f, 0.0f)); }
+  void set_point(VertexHandle vertex, const Point& point) override {
+    if (valid(vertex)) points[static_cast<std::size_t>(vertex.idx())] = point;
+  }
+
+  FaceHandle add_face(const VHandles& indices) override {
+    // Faces and vertices as the reader numbers them: from 0, in the order it hands them over.
+    const std::string element = "face " + std::to_string(faces_read++) + " (from 0)";
+    if (indices.size() < 3) {
+      fail(element,
+           "has " + std::to_string(indices.size()) + " corner(s); a face needs at least 3");
+      return FaceHandle();
+    }
+    for (const VertexHandle vertex : indices) {
+      if (!valid(vertex)) {
+        fail(element, "vertex index " + std::to_string(vertex.idx()) +
+                          " (from 0) is out of range (" + std::to_string(points.size()) +
+                          " vertices read)");
+        return FaceHandle();
+      }
+    }
+    for (std::size_t i = 0; i < indices.size(); ++i) {
+      for (std::size_t j = i + 1; j < indices.size(); ++j) {
+        if (indices[i] != indices[j]) continue;
+        ++repeated_vertex_faces;
+        repeated_vertex_triangles += indices.size() - 2;
+        if (!first_repeated_vertex) {
+          first_repeated_vertex = element + " uses vertex " + std::to_string(indices[i].idx()) +
+                                  " (from 0) more than once";
+        }
+        return FaceHandle();
+      }
+    }
+    for (const VertexHandle vertex : indices)
+      corners.push_back(static_cast<std::uint32_t>(vertex.idx()));
+    face_corners.push_back(static_cast<std::uint32_t>(indices.size()));
+    return FaceHandle(static_cast<int>(face_corners.size() - 1));
+  }
+  // Only OpenMesh's own .om format builds faces from halfedges; the loader does not read it.
+  FaceHandle add_face(HalfedgeHandle) override {
+    fail("face " + std::to_string(faces_read++), "given as halfedges, which is not supported");
+    return FaceHandle();
+  }
+  HalfedgeHandle add_edge(VertexHandle, VertexHandle) override { return HalfedgeHandle(); }
+
+  // Like OpenMesh's importer for its TriMesh, so that each reader takes the path it took before.
+  bool is_triangle_mesh() const override { return true; }
+  // The declared counts are not trusted with memory: nothing is reserved.
+  void reserve(unsigned int, unsigned int, unsigned int) override {}
+  size_t n_vertices() const override { return points.size(); }
+  size_t n_faces() const override { return face_corners.size(); }
+  size_t n_edges() const override { return 0; }
+
+  // What the loader does not use: normals, colours, texture coordinates, status, halfedges.
+  void add_face_texcoords(FaceHandle, VertexHandle, const std::vector<OpenMesh::Vec2f>&) override {}
+  void add_face_texcoords(FaceHandle, VertexHandle, const std::vector<OpenMesh::Vec3f>&) override {}
+  void set_face_texindex(FaceHandle, int) override {}
+  void set_halfedge(VertexHandle, HalfedgeHandle) override {}
+  void set_normal(VertexHandle, const OpenMesh::Vec3f&) override {}
+  void set_normal(VertexHandle, const OpenMesh::Vec3d&) override {}
+  void set_color(VertexHandle, const OpenMesh::Vec3uc&) override {}
+  void set_color(VertexHandle, const OpenMesh::Vec4uc&) override {}
+  void set_color(VertexHandle, const OpenMesh::Vec3f&) override {}
+  void set_color(VertexHandle, const OpenMesh::Vec4f&) override {}
+  void set_texcoord(VertexHandle, const OpenMesh::Vec2f&) override {}
+  void set_status(VertexHandle, const OpenMesh::Attributes::StatusInfo&) override {}
+  void set_next(HalfedgeHandle, HalfedgeHandle) override {}
+  void set_face(HalfedgeHandle, FaceHandle) override {}
+  void request_face_texcoords2D() override {}
+  void set_texcoord(HalfedgeHandle, const OpenMesh::Vec2f&) override {}
+  void set_texcoord(VertexHandle, const OpenMesh::Vec3f&) override {}
+  void set_texcoord(HalfedgeHandle, const OpenMesh::Vec3f&) override {}
+  void set_status(HalfedgeHandle, const OpenMesh::Attributes::StatusInfo&) override {}
+  void set_color(EdgeHandle, const OpenMesh::Vec3uc&) override {}
+  void set_color(EdgeHandle, const OpenMesh::Vec4uc&) override {}
+  void set_color(EdgeHandle, const OpenMesh::Vec3f&) override {}
+  void set_color(EdgeHandle, const OpenMesh::Vec4f&) override {}
+  void set_status(EdgeHandle, const OpenMesh::Attributes::StatusInfo&) override {}
+  void set_normal(FaceHandle, const OpenMesh::Vec3f&) override {}
+  void set_normal(FaceHandle, const OpenMesh::Vec3d&) override {}
+  void set_color(FaceHandle, const OpenMesh::Vec3uc&) override {}
+  void set_color(FaceHandle, const OpenMesh::Vec4uc&) override {}
+  void set_color(FaceHandle, const OpenMesh::Vec3f&) override {}
+  void set_color(FaceHandle, const OpenMesh::Vec4f&) override {}
+  void set_status(FaceHandle, const OpenMesh::Attributes::StatusInfo&) override {}
+  void add_texture_information(int, std::string) override {}
+
+ private:
+  bool valid(VertexHandle vertex) const {
+    return vertex.idx() >= 0 && static_cast<std::size_t>(vertex.idx()) < points.size();
+  }
+  void fail(const std::string& element, std::string what) {
+    if (!problem) problem.emplace(element, std::move(what));
+  }
+};
 
 }  // namespace
 
@@ -1049,6 +1203,9 @@ LoadedScene load_mesh_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "file", "cannot be opened");
 
+  // Pre-checks: what OpenMesh's readers would hang on, over-allocate for, crash on, or silently
+  // read as something else (an unparsable coordinate, an index out of range) is named here, with
+  // its element and line.
   DeclaredCounts declared;
   if (format == ".obj") declared = scan_obj(path, in);
   if (format == ".stl") declared = scan_stl(path, in);
@@ -1056,110 +1213,77 @@ LoadedScene load_mesh_file(const std::string& path) {
   if (format == ".ply") declared = scan_ply(path, in);
   in.close();
 
-  FileMesh mesh;
-  std::string diagnostics;
+  FaceKeepingImporter importer;
   bool read_ok = false;
   {
-    OpenMeshErrorCapture capture;
+    const OpenMeshQuiet quiet;
     OpenMesh::IO::Options options;
     try {
-      read_ok = OpenMesh::IO::read_mesh(mesh, path, options);
+      read_ok = OpenMesh::IO::IOManager().read(path, importer, options);
     } catch (const std::exception& e) {
       throw InputError(path, "file", std::string("OpenMesh failed: ") + e.what());
     }
-    diagnostics = capture.text();
   }
-  auto with_diagnostics = [&](std::string problem) {
-    if (!diagnostics.empty()) problem += " (OpenMesh: " + diagnostics + ")";
-    while (!problem.empty() && problem.back() == '\n') problem.pop_back();
-    return problem;
-  };
-  if (!read_ok) throw InputError(path, "file", with_diagnostics("OpenMesh cannot read it"));
-
-  // Faces OpenMesh could not add because an index points nowhere (out of range, or at a vertex it
-  // failed to read) are missing geometry: the file is malformed.
-  const std::size_t invalid_index_faces =
-      count_occurrences(diagnostics, "Face contains invalid vertex index");
-  // The scans check every index, so faces OpenMesh "could not add" after one of them found
-  // repeated vertices are those (the PLY reader reports them so).
-  const bool repeats_explain_it = invalid_index_faces == 0 && declared.repeated_vertex_faces > 0;
-  if (invalid_index_faces > 0 ||
-      (!repeats_explain_it &&
-       diagnostics.find("invalid faces, that could not be added") != std::string::npos)) {
-    throw InputError(path, "faces",
-                     std::to_string(invalid_index_faces > 0 ? invalid_index_faces : 1) +
-                         " face(s) reference a vertex that does not exist (index out of range, "
-                         "or a vertex whose coordinates could not be read)");
-  }
-  if (mesh.n_faces() == 0) {
-    if (declared.faces > 0 && declared.repeated_vertex_faces == declared.faces) {
+  if (importer.problem) throw InputError(path, importer.problem->first, importer.problem->second);
+  if (!read_ok) throw InputError(path, "file", "OpenMesh cannot read it as a " + format + " file");
+  // Faces that repeat a corner: some readers drop them before the importer sees them (OBJ, STL),
+  // the others hand them over. The pre-checks count and name them with their lines either way.
+  const std::size_t repeated_vertex_faces =
+      std::max(importer.repeated_vertex_faces, declared.repeated_vertex_faces);
+  const std::optional<std::string> first_repeated_vertex = declared.first_repeated_vertex
+                                                               ? declared.first_repeated_vertex
+                                                               : importer.first_repeated_vertex;
+  if (importer.face_corners.empty()) {
+    // OpenMesh "loads" an invalid file as an empty mesh: empty is an error.
+    const std::size_t faces = std::max(importer.faces_read, declared.faces);
+    if (faces > 0 && repeated_vertex_faces == faces) {
       throw InputError(path, "faces",
-                       "every face (" + std::to_string(declared.faces) +
+                       "every face (" + std::to_string(faces) +
                            ") repeats a vertex, so none has area (first: " +
-                           *declared.first_repeated_vertex + ")");
+                           first_repeated_vertex.value_or("?") + ")");
     }
-    throw InputError(path, "faces",
-                     with_diagnostics("no faces: empty, or not a valid " + format + " file"));
+    throw InputError(path, "faces", "no faces: empty, or not a valid " + format + " file");
   }
-  if (declared.vertices && mesh.n_vertices() < *declared.vertices) {
+  if (declared.vertices && importer.points.size() < *declared.vertices) {
     throw InputError(path, "vertices",
                      "the file declares " + std::to_string(*declared.vertices) +
-                         " vertices, OpenMesh read " + std::to_string(mesh.n_vertices()));
+                         " vertices, OpenMesh read " + std::to_string(importer.points.size()));
   }
 
   LoadedScene scene;
-  const std::size_t degenerate_faces = std::max(
-      count_occurrences(diagnostics, "Face has equal vertices"), declared.repeated_vertex_faces);
-  if (degenerate_faces > 0) {
-    scene.warnings.push_back(
-        path + ": faces: " + std::to_string(degenerate_faces) +
-        " face(s) with a repeated vertex dropped (no area, no shadow)" +
-        (declared.first_repeated_vertex ? "; first: " + *declared.first_repeated_vertex : ""));
+  scene.triangles = importer.triangles();
+  if (repeated_vertex_faces > 0) {
+    scene.warnings.push_back(path + ": faces: " + std::to_string(repeated_vertex_faces) +
+                             " face(s) with a repeated vertex dropped (no area, no shadow)" +
+                             (first_repeated_vertex ? "; first: " + *first_repeated_vertex : ""));
   }
-  const std::size_t non_manifold_faces = count_occurrences(diagnostics, "complex edge") +
-                                         count_occurrences(diagnostics, "complex vertex");
-  if (non_manifold_faces > 0) {
-    scene.warnings.push_back(path + ": faces: " + std::to_string(non_manifold_faces) +
-                             " non-manifold face(s) kept with duplicated vertices");
-  }
-  if (declared.triangles && mesh.n_faces() + degenerate_faces < *declared.triangles) {
+  const std::size_t dropped_triangles =
+      std::max(importer.repeated_vertex_triangles, declared.repeated_vertex_faces);
+  if (declared.triangles && scene.triangles.size() + dropped_triangles < *declared.triangles) {
     scene.warnings.push_back(path + ": faces: the file has " + std::to_string(*declared.triangles) +
-                             " triangles, OpenMesh read " + std::to_string(mesh.n_faces()));
+                             " triangles, OpenMesh read " + std::to_string(scene.triangles.size()));
+  }
+  if (!declared.skipped_words.empty()) {
+    scene.warnings.push_back(path + ": header: words the reader does not know, skipped: " +
+                             quoted_list(declared.skipped_words));
   }
 
-  const std::string keywords = ignored_keywords(diagnostics);
-  if (!keywords.empty()) {
-    scene.warnings.push_back(path +
-                             ": header: words the reader does not know, skipped: " + keywords);
-  }
-
-  for (const auto vertex : mesh.vertices()) {
-    const auto& p = mesh.point(vertex);
+  for (std::size_t vertex = 0; vertex < importer.points.size(); ++vertex) {
+    const auto& p = importer.points[vertex];
     const std::string coordinates = "(" + std::to_string(p[0]) + ", " + std::to_string(p[1]) +
                                     ", " + std::to_string(p[2]) + ")";
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
-      throw InputError(path, "vertex " + std::to_string(vertex.idx()),
+      throw InputError(path, "vertex " + std::to_string(vertex),
                        "non-finite coordinate " + coordinates);
     }
     // Binary PLY coordinates are not scanned: this names them (0-based, as OpenMesh counts).
     if (std::max({std::fabs(p[0]), std::fabs(p[1]), std::fabs(p[2])}) > max_scene_coordinate) {
       throw InputError(
-          path, "vertex " + std::to_string(vertex.idx()),
+          path, "vertex " + std::to_string(vertex),
           "coordinate beyond 1e30 (the largest coordinate a case accepts) " + coordinates);
     }
   }
 
-  scene.triangles.reserve(mesh.n_faces());
-  for (const auto face : mesh.faces()) {
-    glm::vec3 corners[3] = {glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
-    int corner = 0;
-    for (const auto vertex : mesh.fv_range(face)) {
-      const auto& p = mesh.point(vertex);
-      corners[corner++] = glm::vec3(p[0], p[1], p[2]);
-      if (corner == 3) break;
-    }
-    scene.triangles.push_back(Triangle{corners[0], corners[1], corners[2], 0});
-  }
   Mesh loaded_mesh;
   loaded_mesh.name = file.stem().string();
   loaded_mesh.closed = is_closed_surface(scene.triangles);

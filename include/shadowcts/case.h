@@ -12,7 +12,7 @@ namespace shadowcts {
 
 struct Mesh {
   std::string name;
-  bool closed = false;  // every edge shared by exactly two consistently oriented faces (OpenMesh)
+  bool closed = false;  // is_closed_surface (shadowcts/closed_surface.h): exact positions
   bool caster = true;   // false: receives shadows but casts none
 };
 

@@ -7,6 +7,7 @@
 #include <glm/common.hpp>
 
 #include "reference/stencil/robust_orientation.h"
+#include "shadowcts/closed_surface.h"
 
 namespace shadowcts::stencil {
 namespace {
@@ -43,20 +44,6 @@ void for_each_net_edge(std::vector<EdgeUse>& uses, Visit visit) {
   }
 }
 
-bool is_closed(const Case& c, const std::vector<std::uint32_t>& triangles) {
-  std::vector<EdgeUse> uses;
-  uses.reserve(3 * triangles.size());
-  for (std::uint32_t i : triangles) {
-    const Triangle& t = c.triangles[i];
-    uses.push_back(edge_use(t.v0, t.v1));
-    uses.push_back(edge_use(t.v1, t.v2));
-    uses.push_back(edge_use(t.v2, t.v0));
-  }
-  bool closed = !uses.empty();
-  for_each_net_edge(uses, [&](const EdgeUse&, int net) { closed = closed && net == 0; });
-  return closed;
-}
-
 bool light_outside_box(const Case& c, const std::vector<std::uint32_t>& triangles,
                        const HardShadowLight& light) {
   if (light.directional) return true;
@@ -90,7 +77,8 @@ Occluders find_occluders(const Case& c, const HardShadowLight& light,
   Occluders out;
   for (const std::vector<std::uint32_t>& triangles : by_mesh) {
     if (triangles.empty()) continue;
-    const bool front_faces_only = is_closed(c, triangles) && light_outside_box(c, triangles, light);
+    const bool front_faces_only =
+        is_closed_surface(c.triangles, triangles) && light_outside_box(c, triangles, light);
     out.closed_meshes += front_faces_only;
     std::vector<EdgeUse> uses;
     for (std::uint32_t i : triangles) {

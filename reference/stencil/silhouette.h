@@ -4,7 +4,8 @@
 // positions.
 //
 // Per caster mesh:
-//  - closed (every directed edge has its reverse, checked here on the exact float positions) and
+//  - closed (is_closed_surface, shadowcts/closed_surface.h: on the exact float positions, every
+//    directed edge once and its reverse once, the definition the loaders' Mesh::closed uses) and
 //    the light outside the mesh's bounding box: the textbook rule. Caps are the light-facing
 //    triangles; an edge is a silhouette edge when exactly one of its two triangles faces the light.
 //    Back faces are dropped: a light segment that crosses one crossed a front face before.

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -568,6 +569,60 @@ TEST(MeshFiles, TetrahedronInEveryFormatIsClosed) {
   }
 }
 
+// OpenMesh's readers feed an importer that keeps every face as the file gives it: a face that
+// OpenMesh's own mesh would reject (a complex edge: a third face on an edge, or a halfedge used
+// twice) is loaded with its corners unchanged, and not duplicated.
+TEST(MeshFiles, FacesOnAComplexEdgeAreKeptAsTheFileGivesThem) {
+  const TempDir dir;
+  // Three faces on the edge 0-1, two of them traversing it 0 -> 1.
+  const LoadedScene book =
+      load_scene_file(dir.write("book.off",
+                                "OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n0 -1 0\n"
+                                "3 0 1 2\n3 1 0 3\n3 0 1 4\n")
+                          .string());
+  ASSERT_EQ(book.triangles.size(), 3u);
+  EXPECT_EQ(book.triangles[2].v0, glm::vec3(0, 0, 0));
+  EXPECT_EQ(book.triangles[2].v1, glm::vec3(1, 0, 0));
+  EXPECT_EQ(book.triangles[2].v2, glm::vec3(0, -1, 0));
+  EXPECT_FALSE(book.meshes[0].closed);
+  EXPECT_TRUE(book.warnings.empty()) << book.warnings.front();
+
+  // A quad whose second fan triangle (1 3 4) reuses the halfedge 3 -> 4 of the face before it.
+  // OpenMesh's TriMesh added the first fan triangle, rejected the second, and then added the
+  // whole quad again on copied vertices: three triangles for a quad. Now: the face, then the
+  // quad's two fan triangles, once each.
+  const LoadedScene quad = load_scene_file(
+      dir.write("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 1 1\nf 3 4 5\nf 1 2 3 4\n")
+          .string());
+  const std::vector<std::array<glm::vec3, 3>> expected = {
+      {glm::vec3(1, 1, 0), glm::vec3(0, 1, 0), glm::vec3(0, 1, 1)},
+      {glm::vec3(0, 0, 0), glm::vec3(1, 0, 0), glm::vec3(1, 1, 0)},
+      {glm::vec3(0, 0, 0), glm::vec3(1, 1, 0), glm::vec3(0, 1, 0)}};
+  ASSERT_EQ(quad.triangles.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_EQ(quad.triangles[i].v0, expected[i][0]) << i;
+    EXPECT_EQ(quad.triangles[i].v1, expected[i][1]) << i;
+    EXPECT_EQ(quad.triangles[i].v2, expected[i][2]) << i;
+  }
+  EXPECT_TRUE(quad.warnings.empty()) << quad.warnings.front();
+}
+
+// A polygon becomes the fan (0 1 2), (0 2 3), ... from its first corner, in the file's order.
+TEST(MeshFiles, ObjPolygonIsFanTriangulatedFromItsFirstCorner) {
+  const TempDir dir;
+  const LoadedScene scene = load_scene_file(
+      dir.write("pentagon.obj", "v 0 0 0\nv 2 0 0\nv 3 1 0\nv 1 2 0\nv -1 1 0\nf 1 2 3 4 5\n")
+          .string());
+  const glm::vec3 v[5] = {{0, 0, 0}, {2, 0, 0}, {3, 1, 0}, {1, 2, 0}, {-1, 1, 0}};
+  ASSERT_EQ(scene.triangles.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(scene.triangles[i].v0, v[0]) << i;
+    EXPECT_EQ(scene.triangles[i].v1, v[i + 1]) << i;
+    EXPECT_EQ(scene.triangles[i].v2, v[i + 2]) << i;
+  }
+  EXPECT_FALSE(scene.meshes[0].closed);
+}
+
 TEST(MeshFiles, InvalidOffIsAnInputError) {
   const TempDir dir;
   const fs::path file = dir.write("bad.off", "this is not an off file\n");
@@ -1072,6 +1127,39 @@ TEST(MeshFilesHostile, RepeatedVerticesAndShortFacesAreNamedInEveryFormat) {
     EXPECT_NE(message.find(file.string()), std::string::npos) << shape.name << ": " << message;
     EXPECT_NE(message.find(shape.expected), std::string::npos) << shape.name << ": " << message;
   }
+}
+
+// Found by replaying mutated seeds: OpenMesh's ASCII STL reader takes the 3 lines after
+// "outer loop" as the corners whatever they hold; one without a word and 3 coordinates left the
+// corner uninitialized (a triangle with garbage coordinates, different on every run).
+TEST(MeshFilesHostile, StlCornerLinesWithoutCoordinatesAreInputErrorsNotGarbage) {
+  const TempDir dir;
+  const std::string head = "solid t\n  facet normal 0 0 1\n    outer loop\n";
+  const std::string tail = "    endloop\n  endfacet\nendsolid t\n";
+  struct Shape {
+    std::string name, text, expected;
+  };
+  for (const Shape& shape : std::vector<Shape>{
+           {"keyword_lost.stl",
+            head + "      .0 0.0\n      vertex 1 0 0\n      vertex 0 1 0\n" + tail,
+            "facet 0 (line 3): corner 0 (line 4) is not 'vertex x y z'"},
+           {"endloop_early.stl", head + "      vertex 0 0 0\n      vertex 1 0 0\n" + tail,
+            "facet 0 (line 3): corner 2 (line 6) is not 'vertex x y z'"},
+           {"ends_in_loop.stl", head + "      vertex 0 0 0\n",
+            "the file ends before the facet's 3 corners"},
+       }) {
+    const fs::path file = dir.write(shape.name, shape.text);
+    const std::string message = load_error(file);
+    EXPECT_NE(message.find(file.string()), std::string::npos) << shape.name << ": " << message;
+    EXPECT_NE(message.find(shape.expected), std::string::npos) << shape.name << ": " << message;
+  }
+  // Any word before the coordinates is what the reader accepts.
+  const LoadedScene scene = load_scene_file(
+      dir.write("word.stl",
+                head + "      vertex 0 0 0\n      VERTEX 1 0 0\n      vertex 0 1 0\n" + tail)
+          .string());
+  ASSERT_EQ(scene.triangles.size(), 1u);
+  EXPECT_EQ(scene.triangles[0].v1, glm::vec3(1, 0, 0));
 }
 
 TEST(MeshFilesHostile, Utf16ObjIsNamedAsUtf16) {

@@ -4,12 +4,18 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
 #include "oracles/exact_segment_triangle.h"
 #include "reference/stencil/robust_orientation.h"
 #include "reference/stencil/silhouette.h"
 #include "shadowcts/fixtures.h"
 #include "shadowcts/hard_shadow_comparison.h"
 #include "shadowcts/hard_shadow_oracle.h"
+#include "shadowcts/scene_file.h"
 
 namespace shadowcts {
 namespace {
@@ -118,6 +124,46 @@ void add_box(Case& c, const glm::vec3& lo, const glm::vec3& hi) {
       c.triangles.push_back({p00, p10, p11, m});
       c.triangles.push_back({p00, p11, p01, m});
     }
+}
+
+// The stencil's front-face rule and the loaders' Mesh::closed use one definition of closedness
+// (shadowcts/closed_surface.h): on open, closed, non-manifold and duplicated-face meshes, the mesh
+// a file loads as is closed exactly when the stencil treats it as closed.
+TEST(StencilSilhouette, ClosednessAgreesWithTheLoaders) {
+  struct Shape {
+    std::string name, faces;
+    int face_count;
+    bool closed;
+  };
+  // Vertices 0-3: a tetrahedron; 4: a point below it (for a fin on the edge 0-1).
+  const std::string vertices = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n0 -1 0\n";
+  const std::string tetrahedron = "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  const std::vector<Shape> shapes = {
+      {"closed", tetrahedron, 4, true},
+      {"open", "3 0 2 1\n3 0 1 3\n3 0 3 2\n", 3, false},
+      {"non_manifold", tetrahedron + "3 1 0 4\n3 0 1 4\n", 6, false},  // a two-sided fin on 0-1
+      {"duplicated_face", tetrahedron + "3 0 2 1\n", 5, false},
+      {"duplicated_reversed_face", tetrahedron + "3 0 1 2\n", 5, false},
+  };
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "shadowcts_stencil_closedness";
+  std::filesystem::create_directories(dir);
+  ShadowLight light;
+  light.kind = ShadowLightKind::directional;
+  light.direction = {0.3f, 1.0f, 0.2f};
+  for (const Shape& shape : shapes) {
+    const std::filesystem::path file = dir / (shape.name + ".off");
+    std::ofstream(file) << "OFF\n5 " << shape.face_count << " 0\n" << vertices << shape.faces;
+    const LoadedScene loaded = load_scene_file(file.string());
+    ASSERT_EQ(loaded.meshes.size(), 1u) << shape.name;
+    EXPECT_EQ(loaded.meshes[0].closed, shape.closed) << shape.name;
+    Case c = base_case(light);
+    c.meshes = loaded.meshes;
+    c.triangles = loaded.triangles;
+    const Occluders occluders = find_occluders(c, hard_shadow_light(c));
+    EXPECT_EQ(occluders.closed_meshes, shape.closed ? 1u : 0u) << shape.name;
+  }
+  std::filesystem::remove_all(dir);
 }
 
 TEST(StencilSilhouette, ClosedBoxUnderAnOverheadLightHasTheTopRimAsSilhouette) {
