@@ -85,12 +85,24 @@ CasterClosure::CasterClosure(const Case& c, const CasterBvh& casters,
     for (std::uint32_t k = 0; k < 3; ++k)
       uses[3 * i + k] = {position_hash(corner(c.triangles[ids[i]], int(k))), ids[i] * 4 + k};
   });
-  tbb::parallel_sort(uses.begin(), uses.end(), [&](const Use& x, const Use& y) {
-    if (x.hash != y.hash) return x.hash < y.hash;
-    if (before(use_position(x), use_position(y))) return true;
-    if (before(use_position(y), use_position(x))) return false;
-    return x.use < y.use;
+  // Sorted by hash and use alone (no position lookups, which miss the cache); a run of equal
+  // hashes holding different positions (a collision) is then sorted by position as well. Either
+  // way the order is (hash, position, use).
+  tbb::parallel_sort(uses.begin(), uses.end(), [](const Use& x, const Use& y) {
+    return x.hash != y.hash ? x.hash < y.hash : x.use < y.use;
   });
+  for (std::size_t begin = 0, end = 0; begin < uses.size(); begin = end) {
+    bool one_position = true;
+    for (end = begin + 1; end < uses.size() && uses[end].hash == uses[begin].hash; ++end)
+      one_position = one_position && use_position(uses[end]) == use_position(uses[begin]);
+    if (!one_position)
+      std::sort(uses.begin() + std::ptrdiff_t(begin), uses.begin() + std::ptrdiff_t(end),
+                [&](const Use& x, const Use& y) {
+                  if (before(use_position(x), use_position(y))) return true;
+                  if (before(use_position(y), use_position(x))) return false;
+                  return x.use < y.use;
+                });
+  }
   std::vector<std::size_t> group_begin;  // uses[group_begin[g] ...] have the position of group g
   for (std::size_t i = 0; i < uses.size(); ++i) {
     if (i == 0 || uses[i - 1].hash != uses[i].hash ||
