@@ -16,23 +16,12 @@ const glm::vec3& corner(const Triangle& t, int k) {
   return k == 0 ? t.v0 : k == 1 ? t.v1 : t.v2;
 }
 
-bool before(const glm::vec3& x, const glm::vec3& y) {
-  if (x.x != y.x) return x.x < y.x;
-  if (x.y != y.y) return x.y < y.y;
-  return x.z < y.z;
-}
-
-// Equal positions (with -0 equal to +0) have equal hashes.
-std::uint64_t position_hash(const glm::vec3& x) {
-  std::uint64_t h = 0x9e3779b97f4a7c15ull;
-  for (int k = 0; k < 3; ++k) {
-    const float v = x[k] + 0.0f;  // -0 becomes +0
-    std::uint32_t bits = 0;
-    std::memcpy(&bits, &v, sizeof bits);
-    h = (h ^ bits) * 0xff51afd7ed558ccdull;
-    h ^= h >> 32;
-  }
-  return h;
+// A float's bits, mapped so that their unsigned order is the numeric order (-0 taken as +0).
+std::uint32_t ordered_bits(float v) {
+  v += 0.0f;  // -0 becomes +0
+  std::uint32_t bits = 0;
+  std::memcpy(&bits, &v, sizeof bits);
+  return (bits & 0x80000000u) != 0 ? ~bits : bits | 0x80000000u;
 }
 
 // The coordinate along which the points of the line through a != b are ordered (the largest
@@ -71,10 +60,12 @@ CasterClosure::CasterClosure(const Case& c, const CasterBvh& casters,
   const std::vector<std::uint32_t>& ids = casters.triangles();
   if (ids.empty() || n > (std::size_t(1) << 30)) return;  // too many: everything stays open
 
-  // Every (caster, vertex) use, as caster * 4 + k, grouped by the vertex position: sorted by a
-  // hash of the position first (cheap to compare), then by the position itself.
+  // Every (caster, vertex) use, as caster * 4 + k, grouped by the vertex position: sorted by the
+  // position's coordinates as integer keys (x, y, z, then the use), so that neither the sort nor
+  // the grouping reads the triangles.
   struct Use {
-    std::uint64_t hash;
+    std::uint64_t xy;  // ordered_bits(x) << 32 | ordered_bits(y)
+    std::uint32_t z;   // ordered_bits(z)
     std::uint32_t use;
   };
   const auto use_position = [&](const Use& x) -> const glm::vec3& {
@@ -82,31 +73,20 @@ CasterClosure::CasterClosure(const Case& c, const CasterBvh& casters,
   };
   std::vector<Use> uses(3 * ids.size());
   tbb::parallel_for(std::size_t(0), ids.size(), [&](std::size_t i) {
-    for (std::uint32_t k = 0; k < 3; ++k)
-      uses[3 * i + k] = {position_hash(corner(c.triangles[ids[i]], int(k))), ids[i] * 4 + k};
+    for (std::uint32_t k = 0; k < 3; ++k) {
+      const glm::vec3& x = corner(c.triangles[ids[i]], int(k));
+      uses[3 * i + k] = {std::uint64_t(ordered_bits(x.x)) << 32 | ordered_bits(x.y),
+                         ordered_bits(x.z), ids[i] * 4 + k};
+    }
   });
-  // Sorted by hash and use alone (no position lookups, which miss the cache); a run of equal
-  // hashes holding different positions (a collision) is then sorted by position as well. Either
-  // way the order is (hash, position, use).
   tbb::parallel_sort(uses.begin(), uses.end(), [](const Use& x, const Use& y) {
-    return x.hash != y.hash ? x.hash < y.hash : x.use < y.use;
+    if (x.xy != y.xy) return x.xy < y.xy;
+    if (x.z != y.z) return x.z < y.z;
+    return x.use < y.use;
   });
-  for (std::size_t begin = 0, end = 0; begin < uses.size(); begin = end) {
-    bool one_position = true;
-    for (end = begin + 1; end < uses.size() && uses[end].hash == uses[begin].hash; ++end)
-      one_position = one_position && use_position(uses[end]) == use_position(uses[begin]);
-    if (!one_position)
-      std::sort(uses.begin() + std::ptrdiff_t(begin), uses.begin() + std::ptrdiff_t(end),
-                [&](const Use& x, const Use& y) {
-                  if (before(use_position(x), use_position(y))) return true;
-                  if (before(use_position(y), use_position(x))) return false;
-                  return x.use < y.use;
-                });
-  }
   std::vector<std::size_t> group_begin;  // uses[group_begin[g] ...] have the position of group g
   for (std::size_t i = 0; i < uses.size(); ++i) {
-    if (i == 0 || uses[i - 1].hash != uses[i].hash ||
-        use_position(uses[i - 1]) != use_position(uses[i])) {
+    if (i == 0 || uses[i - 1].xy != uses[i].xy || uses[i - 1].z != uses[i].z) {
       group_begin.push_back(i);
       positions_.push_back(use_position(uses[i]));
     }
