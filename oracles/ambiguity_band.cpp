@@ -14,9 +14,11 @@ constexpr std::uint32_t no_triangle = 0xffffffffu;
 
 struct ExactBandClassifier::Query {
   glm::dvec3 position;
+  ShadowSegment segment;
+  double inflation = 0.0;  // the candidates' reach: the largest cube this query decides
   bool shadowed = false;
   BandCandidate first_blocker{0.0, no_triangle};  // the first candidate that blocks p itself
-  const std::vector<BandCandidate>* candidates = nullptr;  // sorted by (separation, triangle)
+  std::vector<BandCandidate>* candidates = nullptr;  // sorted by (separation, triangle)
   std::vector<BandCandidate> blockers;  // shadowed: every candidate that blocks p, first first
   std::uint32_t receiver = no_receiver;
   ReceiverPlane plane;  // the receiver's, for the receiver half-space rule
@@ -176,46 +178,80 @@ std::size_t ExactBandClassifier::first_changing_length(const Query& q,
   return std::size_t(changing);
 }
 
-SampleTruth ExactBandClassifier::classify(const ViewSample& sample,
-                                          std::vector<BandCandidate>& candidates,
-                                          bool with_exponent) const {
-  // Candidates within the largest cube this call decides.
-  const double inflation = with_exponent ? largest_move_ : class_length_;
+ExactBandClassifier::Query ExactBandClassifier::start(const ViewSample& sample,
+                                                      std::vector<BandCandidate>& candidates,
+                                                      bool with_exponent) const {
   Query q;
+  // Candidates within the largest cube this call decides.
+  q.inflation = with_exponent ? largest_move_ : class_length_;
   q.position = glm::dvec3(sample.position);
   q.receiver = sample.receiver;
   q.candidates = &candidates;
-  const ShadowSegment segment = make_shadow_segment(q.position, light_, scale_);
-
-  // Candidates: every caster that may come within largest_move_ of the query (conservative, see
-  // caster_bvh.h and shadow_segment.h). On the way, the exact answer at p: only candidates with
-  // separation 0 can block p itself.
+  q.segment = make_shadow_segment(q.position, light_, scale_);
   if (sample.receiver != no_receiver)
     q.plane = predicate_.receiver_plane(case_.triangles[sample.receiver]);
-  const MovedPoint at_p{q.position, 0.0, {0, 0, 0}};
-  auto gather = [&](bool stop_at_first_blocker) {
-    candidates.clear();
-    q.first_blocker = BandCandidate{0.0, no_triangle};
-    casters_.visit(segment, inflation, [&](std::uint32_t triangle) {
-      if (triangle == sample.receiver) return false;
-      const Triangle& t = case_.triangles[triangle];
-      const double separation = separation_inflation(segment, glm::dvec3(t.v0), glm::dvec3(t.v1),
-                                                     glm::dvec3(t.v2), inflation);
-      if (separation > inflation) return false;
-      const PlaneReach reach = predicate_.reach(q.plane, t);
-      if (reach == PlaneReach::none) return false;  // shadows no point of this sample's cubes
-      const BandCandidate candidate{separation, triangle, reach};
-      candidates.push_back(candidate);
-      if (separation == 0.0 && q.first_blocker.triangle == no_triangle &&
-          blocks(q, candidate, at_p)) {
-        q.first_blocker = candidate;
-        return stop_at_first_blocker;
-      }
-      return false;
-    });
-  };
-  gather(true);
+  candidates.clear();
+  return q;
+}
+
+// Candidates: every caster that may come within the inflation of the query (conservative, see
+// caster_bvh.h and shadow_segment.h). On the way, the exact answer at p: only candidates with
+// separation 0 can block p itself. True when the traversal may stop (the first blocker found).
+bool ExactBandClassifier::consider(Query& q, std::uint32_t triangle,
+                                   bool stop_at_first_blocker) const {
+  if (triangle == q.receiver) return false;
+  const Triangle& t = case_.triangles[triangle];
+  const double separation = separation_inflation(q.segment, glm::dvec3(t.v0), glm::dvec3(t.v1),
+                                                 glm::dvec3(t.v2), q.inflation);
+  if (separation > q.inflation) return false;
+  const PlaneReach reach = predicate_.reach(q.plane, t);
+  if (reach == PlaneReach::none) return false;  // shadows no point of this sample's cubes
+  const BandCandidate candidate{separation, triangle, reach};
+  q.candidates->push_back(candidate);
+  if (separation == 0.0 && q.first_blocker.triangle == no_triangle &&
+      blocks(q, candidate, MovedPoint{q.position, 0.0, {0, 0, 0}})) {
+    q.first_blocker = candidate;
+    return stop_at_first_blocker;
+  }
+  return false;
+}
+
+void ExactBandClassifier::gather(Query& q, bool stop_at_first_blocker) const {
+  q.candidates->clear();
+  q.first_blocker = BandCandidate{0.0, no_triangle};
+  casters_.visit(q.segment, q.inflation, [&](std::uint32_t triangle) {
+    return consider(q, triangle, stop_at_first_blocker);
+  });
+}
+
+SampleTruth ExactBandClassifier::classify(const ViewSample& sample,
+                                          std::vector<BandCandidate>& candidates,
+                                          bool with_exponent) const {
+  Query q = start(sample, candidates, with_exponent);
+  gather(q, true);
+  return finish(q, with_exponent);
+}
+
+void ExactBandClassifier::classify_packet(const ViewSample* const* samples, int count,
+                                          std::vector<BandCandidate>* candidates,
+                                          SampleTruth* truths) const {
+  Query q[CasterBvh::packet_lanes];
+  ShadowSegment segments[CasterBvh::packet_lanes];
+  for (int l = 0; l < count; ++l) {
+    q[l] = start(*samples[l], candidates[l], false);
+    segments[l] = q[l].segment;
+  }
+  casters_.visit_packet(segments, count, class_length_, [&](int lane, std::uint32_t triangle) {
+    return consider(q[lane], triangle, true);
+  });
+  for (int l = 0; l < count; ++l) truths[l] = finish(q[l], false);
+}
+
+// The rest of classify() after the first gather (stopped at the first blocker).
+SampleTruth ExactBandClassifier::finish(Query& q, bool with_exponent) const {
+  std::vector<BandCandidate>& candidates = *q.candidates;
   q.shadowed = q.first_blocker.triangle != no_triangle;
+  const MovedPoint at_p{q.position, 0.0, {0, 0, 0}};
 
   SampleTruth truth;
   truth.shadowed = q.shadowed;
@@ -231,7 +267,7 @@ SampleTruth ExactBandClassifier::classify(const ViewSample& sample,
     truth.robust_exponent = band_max_exponent;
     return truth;
   }
-  if (q.shadowed) gather(false);  // the candidate set is complete only after a full traversal
+  if (q.shadowed) gather(q, false);  // the candidate set is complete only after a full traversal
   std::sort(candidates.begin(), candidates.end(),
             [](const BandCandidate& a, const BandCandidate& b) {
               if (a.separation != b.separation) return a.separation < b.separation;

@@ -74,9 +74,18 @@ class ExactBandClassifier {
   // is robust_exponent_unknown. Both give the same answer and class.
   SampleTruth classify(const ViewSample& sample, std::vector<BandCandidate>& candidates,
                        bool with_exponent) const;
+  // classify(samples[l], candidates[l], false) for up to CasterBvh::packet_lanes samples at once
+  // (neighbours, whose queries visit much the same part of the tree): the same truths.
+  void classify_packet(const ViewSample* const* samples, int count,
+                       std::vector<BandCandidate>* candidates, SampleTruth* truths) const;
 
  private:
   struct Query;
+  Query start(const ViewSample& sample, std::vector<BandCandidate>& candidates,
+              bool with_exponent) const;
+  bool consider(Query& q, std::uint32_t triangle, bool stop_at_first_blocker) const;
+  void gather(Query& q, bool stop_at_first_blocker) const;
+  SampleTruth finish(Query& q, bool with_exponent) const;
   bool cube_in_shadow_of(const Query& q, const BandCandidate& blocker, double delta) const;
   bool blocks(const Query& q, const BandCandidate& candidate, const MovedPoint& x) const;
   std::size_t active_candidates(const Query& q, double delta) const;

@@ -115,18 +115,32 @@ HardShadowTruth exact_hard_shadow_oracle(const Case& c, const ViewSamples& sampl
   run_with_thread_limit(c.parameters.threads, [&] {
     // Every sample is classified on its own: the result does not depend on the partitioning.
     phase_progress::begin(n);
+    // Neighbouring regular samples in packets: their queries share the tree's nodes.
+    constexpr int lanes = CasterBvh::packet_lanes;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256),
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         phase_progress::advance(range.size());
-                        std::vector<BandCandidate> candidates;
+                        std::vector<BandCandidate> candidates[lanes];
+                        const ViewSample* packet[lanes];
+                        std::size_t index[lanes];
+                        SampleTruth truths[lanes];
+                        int count = 0;
+                        const auto classify_packet = [&] {
+                          classifier.classify_packet(packet, count, candidates, truths);
+                          for (int l = 0; l < count; ++l) {
+                            truth.shadowed[index[l]] = truths[l].shadowed ? 1 : 0;
+                            truth.band[index[l]] = truths[l].band;
+                            truth.robust_exponent[index[l]] = truths[l].robust_exponent;
+                          }
+                          count = 0;
+                        };
                         for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                          const ViewSample& sample = samples.samples[i];
-                          if (sample.sample_class != SampleClass::regular) continue;
-                          const SampleTruth t = classifier.classify(sample, candidates, false);
-                          truth.shadowed[i] = t.shadowed ? 1 : 0;
-                          truth.band[i] = t.band;
-                          truth.robust_exponent[i] = t.robust_exponent;
+                          if (samples.samples[i].sample_class != SampleClass::regular) continue;
+                          packet[count] = &samples.samples[i];
+                          index[count++] = i;
+                          if (count == lanes) classify_packet();
                         }
+                        if (count > 0) classify_packet();
                       });
   });
   truth.lazy = lazy;
