@@ -355,8 +355,11 @@ class Progress {
     line << step_ << " — ";
     if (p.total > 0) {
       const double fraction = std::min(1.0, double(p.done) / double(p.total));
-      line << p.done << " / " << p.total << " (" << std::fixed << std::setprecision(1)
-           << 100.0 * fraction << " %), " << duration_text(elapsed);
+      line << p.done << " / " << p.total;
+      if (*p.unit != '\0') line << " " << p.unit;
+      if (*p.of != '\0') line << " of " << p.of;
+      line << " (" << std::fixed << std::setprecision(1) << 100.0 * fraction << " %), "
+           << duration_text(elapsed);
       if (fraction > 0.0 && fraction < 1.0)
         line << ", ETA " << duration_text(elapsed * (1.0 - fraction) / fraction);
     } else {
