@@ -16,6 +16,7 @@
 #include "reference/shadowmap/rasterizer.h"
 #include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/phase_clock.h"
+#include "shadowcts/phase_progress.h"
 #include "shadowcts/thread_limit.h"
 
 namespace shadowcts {
@@ -63,6 +64,7 @@ void look_up(const LightView& view, const DepthMap& map, const DepthBias& bias,
           const double b = depth_bias(bias, view.texel_size(q.z), cos_theta);
           shadowed[indices[k]] = q.z - b > double(map.at(column, row)) ? 1 : 0;
         }
+        phase_progress::advance(range.size());
       });
 }
 
@@ -118,6 +120,9 @@ class ShadowMapAlgorithm final : public Algorithm {
 
     AlgorithmOutput output;
     output.shadowed.assign(samples.samples.size(), 0);
+    // Samples looked up, map by map (a map is drawn before its samples are looked up, so a point
+    // light's progress moves in up to six steps).
+    phase_progress::begin(scene.samples.size(), "regular samples");
     RasterCounters totals;
     std::uint64_t maps = 0;
     run_with_thread_limit(c.parameters.threads, [&] {
