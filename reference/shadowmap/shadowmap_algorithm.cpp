@@ -64,7 +64,6 @@ void look_up(const LightView& view, const DepthMap& map, const DepthBias& bias,
           const double b = depth_bias(bias, view.texel_size(q.z), cos_theta);
           shadowed[indices[k]] = q.z - b > double(map.at(column, row)) ? 1 : 0;
         }
-        phase_progress::advance(range.size());
       });
 }
 
@@ -120,9 +119,6 @@ class ShadowMapAlgorithm final : public Algorithm {
 
     AlgorithmOutput output;
     output.shadowed.assign(samples.samples.size(), 0);
-    // Samples looked up, map by map (a map is drawn before its samples are looked up, so a point
-    // light's progress moves in up to six steps).
-    phase_progress::begin(scene.samples.size(), "regular samples");
     RasterCounters totals;
     std::uint64_t maps = 0;
     run_with_thread_limit(c.parameters.threads, [&] {
@@ -143,8 +139,12 @@ class ShadowMapAlgorithm final : public Algorithm {
         for (std::size_t i = 0; i < samples.samples.size(); ++i)
           if (samples.samples[i].sample_class == SampleClass::regular) regular.push_back(i);
         clock.lap(query_phase);
-        if (!regular.empty())
+        if (!regular.empty()) {
+          // Rasterization is the long part (every band of rows against every caster): rows
+          // filled.
+          phase_progress::begin(v.resolution, "depth-map rows");
           draw_and_look_up(orthographic_view(light.direction, samples, v.resolution), regular);
+        }
       } else {
         std::array<std::vector<std::size_t>, cube_faces> by_face;
         for (std::size_t i = 0; i < samples.samples.size(); ++i)
@@ -153,6 +153,11 @@ class ShadowMapAlgorithm final : public Algorithm {
                 .push_back(i);
         const double near = cube_near_fraction * c.scale();
         clock.lap(query_phase);
+        // Rasterization is the long part (every band of rows against every caster): rows filled
+        // of every face that has samples.
+        const auto faces = std::uint64_t(std::count_if(
+            by_face.begin(), by_face.end(), [](const auto& face) { return !face.empty(); }));
+        if (faces != 0) phase_progress::begin(faces * v.resolution, "depth-map rows");
         // One face at a time: only one map is alive.
         for (int face = 0; face < cube_faces; ++face)
           if (!by_face[face].empty())
