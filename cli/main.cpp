@@ -137,6 +137,11 @@ int main(int argc, char** argv) {
   bool no_images = false;
   run->add_flag("--no-images", no_images,
                 "Write no PNG/EXR images (CI gating on the verdicts; results and report as usual)");
+  int progress_seconds = 60;
+  run->add_option("--progress-seconds", progress_seconds,
+                  "Seconds between the plain `progress:` lines written while a step runs when "
+                  "stderr is no terminal (default 60)")
+      ->check(CLI::Range(1, 3600));
 
   std::string gbuffer_case, gbuffer_fixture, gbuffer_out;
   CLI::App* gbuffer = app.add_subcommand(
@@ -369,6 +374,7 @@ int main(int argc, char** argv) {
     options.images = !no_images;
     options.progress = isatty(STDERR_FILENO) != 0;
     options.progress_lines = !options.progress;
+    options.progress_line_seconds = progress_seconds;
     return run_suite(options, builtin_registry(), std::cout, std::cerr);
   } catch (const InputError& e) {
     std::cerr << "shadowcts: bad input: " << e.what() << "\n";

@@ -57,7 +57,7 @@ ViewSamples generate_view_samples(const Case& c) {
   out.samples.resize(std::size_t(cam.width) * cam.height);
 
   // Rows are independent and every sample is written by exactly one task: deterministic.
-  phase_progress::begin(cam.height);
+  phase_progress::begin(cam.height, "pixel rows");
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, cam.height), [&](const auto& rows) {
     phase_progress::advance(rows.size());
     RTCIntersectContext context;

@@ -68,7 +68,7 @@ HardShadowTruth embree_hard_shadow_oracle(const Case& c, const ViewSamples& samp
   run_with_thread_limit(c.parameters.threads, [&] {
     const EmbreeShadowRays rays(c);
     const ExactShadowPredicate predicate(hard_shadow_light(c), scale);
-    phase_progress::begin(n);
+    phase_progress::begin(n, "view samples");
     tbb::parallel_for(
         tbb::blocked_range<std::size_t>(0, n, 256),
         [&](const tbb::blocked_range<std::size_t>& range) {

@@ -114,7 +114,7 @@ HardShadowTruth exact_hard_shadow_oracle(const Case& c, const ViewSamples& sampl
   const ExactBandClassifier& classifier = lazy->classifier();
   run_with_thread_limit(c.parameters.threads, [&] {
     // Every sample is classified on its own: the result does not depend on the partitioning.
-    phase_progress::begin(n);
+    phase_progress::begin(n, "view samples");
     // Neighbouring regular samples in packets: their queries share the tree's nodes.
     constexpr int lanes = CasterBvh::packet_lanes;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256),

@@ -327,6 +327,13 @@ class Progress {
     last_plain_ = step_start_;
     if (terminal_) err_ << "\r\033[K" << step_ << std::flush;
   }
+  // The next run of the same step (the warm-up, then each timed repeat): the line names it, and
+  // its phases begin anew; the step's elapsed time and the plain lines' rhythm go on.
+  void show_run(const std::string& step) {
+    phase_progress::begin(0);
+    std::lock_guard<std::mutex> lock(mutex_);
+    step_ = step;
+  }
   ~Progress() {
     {
       std::lock_guard<std::mutex> lock(mutex_);
@@ -348,17 +355,36 @@ class Progress {
     return out.str();
   }
 
-  std::string status_line(std::chrono::steady_clock::time_point now) const {
-    const double elapsed = std::chrono::duration<double>(now - step_start_).count();
+  // Notes when a new phase began (seen at every wake-up, a quarter second at most after it did):
+  // a step may run several phases (one per emulated kernel launch), and the ETA is the current
+  // phase's, from its own rate.
+  phase_progress::Snapshot observe(std::chrono::steady_clock::time_point now) {
     const phase_progress::Snapshot p = phase_progress::snapshot();
+    if (p.generation != phase_generation_) {
+      phase_generation_ = p.generation;
+      phase_start_ = now;
+      phase_start_done_ = p.done;
+    }
+    return p;
+  }
+
+  // The step's elapsed time, the phase's done / total and the ETA of the phase.
+  std::string status_line(std::chrono::steady_clock::time_point now,
+                          const phase_progress::Snapshot& p) const {
+    const double elapsed = std::chrono::duration<double>(now - step_start_).count();
+    const double phase_elapsed = std::chrono::duration<double>(now - phase_start_).count();
     std::ostringstream line;
     line << step_ << " — ";
     if (p.total > 0) {
       const double fraction = std::min(1.0, double(p.done) / double(p.total));
-      line << p.done << " / " << p.total << " (" << std::fixed << std::setprecision(1)
-           << 100.0 * fraction << " %), " << duration_text(elapsed);
-      if (fraction > 0.0 && fraction < 1.0)
-        line << ", ETA " << duration_text(elapsed * (1.0 - fraction) / fraction);
+      line << p.done << " / " << p.total;
+      if (*p.unit != '\0') line << " " << p.unit;
+      if (*p.of != '\0') line << " of " << p.of;
+      line << " (" << std::fixed << std::setprecision(1) << 100.0 * fraction << " %), "
+           << duration_text(elapsed);
+      const std::uint64_t since = p.done > phase_start_done_ ? p.done - phase_start_done_ : 0;
+      if (since > 0 && p.done < p.total && phase_elapsed > 0.0)
+        line << ", ETA " << duration_text(phase_elapsed * double(p.total - p.done) / double(since));
     } else {
       line << duration_text(elapsed);
     }
@@ -372,10 +398,11 @@ class Progress {
                                                                    plain_interval_));
       if (stop_ || step_.empty()) continue;
       const auto now = std::chrono::steady_clock::now();
+      const phase_progress::Snapshot p = observe(now);
       if (terminal_ && now - step_start_ > std::chrono::milliseconds(500)) {
-        err_ << "\r\033[K" << status_line(now) << std::flush;
+        err_ << "\r\033[K" << status_line(now, p) << std::flush;
       } else if (plain_lines_ && now - last_plain_ >= plain_interval_) {
-        err_ << "progress: " << status_line(now) << "\n" << std::flush;
+        err_ << "progress: " << status_line(now, p) << "\n" << std::flush;
         last_plain_ = now;
       }
     }
@@ -388,7 +415,8 @@ class Progress {
   std::condition_variable wake_;
   bool stop_ = false;
   std::string step_;
-  std::chrono::steady_clock::time_point step_start_{}, last_plain_{};
+  std::chrono::steady_clock::time_point step_start_{}, last_plain_{}, phase_start_{};
+  std::uint64_t phase_generation_ = 0, phase_start_done_ = 0;
   std::thread reporter_;
 };
 
@@ -699,7 +727,13 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
       const AlgorithmInfo& meta = p.algorithm->info();
       RunRecord record =
           new_record(c, selectors[case_index], image_folders[case_index], *p.algorithm, p.variant);
-      progress.show(step + meta.id + ":" + p.variant + " [" + meta.backend + "]");
+      const std::string algorithm_step =
+          step + meta.id + ":" + p.variant + " [" + meta.backend + "]";
+      progress.show(algorithm_step);
+      const std::uint32_t runs = 1 + c.parameters.repeats;
+      const auto run_step = [&](std::uint32_t run) {
+        return algorithm_step + ", run " + std::to_string(run) + " of " + std::to_string(runs);
+      };
       const PreparedScene& scene =
           record.output == OutputKind::hard_shadow ? *hard_scene : *full_scene;
       try {
@@ -707,9 +741,11 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
         for (const std::string& name : declared) record.phases.push_back({name, {}, 0});
         // An untimed warm-up run gives the output that is judged; the timed repeats after it
         // must reproduce it exactly. Phases are timed inside run(), so within each repeat.
+        if (runs > 1) progress.show_run(run_step(1));
         const AlgorithmOutput first = p.algorithm->run(scene, p.variant);
         check_phases(declared, first);
         for (std::uint32_t r = 0; r < c.parameters.repeats; ++r) {
+          progress.show_run(run_step(r + 2));
           const auto start = Clock::now();
           const AlgorithmOutput again = p.algorithm->run(scene, p.variant);
           record.run_ms.push_back(elapsed_ms(start));

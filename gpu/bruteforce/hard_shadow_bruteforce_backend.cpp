@@ -11,6 +11,7 @@
 #include "reference/bruteforce/hard_shadow_bruteforce.h"
 #include "reference/light_on_caster.h"
 #include "shadowcts/hard_shadow_inputs.h"
+#include "shadowcts/phase_progress.h"
 #include "shadowcts/thread_limit.h"
 
 namespace shadowcts {
@@ -59,6 +60,7 @@ ExactFallback decide_exactly(const PreparedScene& scene, const std::vector<std::
   const ExactBruteforce exact(scene);
   fallback.samples = unsure.size();
   std::atomic<std::uint64_t> predicate_calls{0};
+  phase_progress::begin(unsure.size(), "samples", "the exact fallback");
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, unsure.size(), 16),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       std::uint64_t pairs = 0, calls = 0;
@@ -67,6 +69,7 @@ ExactFallback decide_exactly(const PreparedScene& scene, const std::vector<std::
                         shadowed[scene.samples.index[i]] = exact.shadowed(i, pairs, calls) ? 1 : 0;
                       }
                       predicate_calls += calls;  // an integer sum: independent of the split
+                      phase_progress::advance(range.size());
                     });
   fallback.predicate_calls = predicate_calls.load();
   return fallback;

@@ -32,6 +32,8 @@
 #include <boost/context/fiber.hpp>
 #include <boost/context/protected_fixedsize_stack.hpp>
 
+#include "shadowcts/phase_progress.h"
+
 namespace shadowcts::emu {
 
 namespace ctx = boost::context;
@@ -1017,6 +1019,9 @@ void launch(const char* kernel, Dim3 grid, Dim3 block, std::size_t dynamic_share
   std::mutex mutex;
   std::atomic<std::size_t> first_failure{std::numeric_limits<std::size_t>::max()};
   std::exception_ptr error;
+  // Every launch is a phase of the progress line: blocks finished of the grid's, named by the
+  // kernel (the long launches of an emulated algorithm are the ones the line shows).
+  shadowcts::phase_progress::begin(blocks, "blocks", name);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 1),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       for (std::size_t b = range.begin(); b != range.end(); ++b) {
@@ -1030,6 +1035,7 @@ void launch(const char* kernel, Dim3 grid, Dim3 block, std::size_t dynamic_share
                             error = std::current_exception();
                           }
                         }
+                        shadowcts::phase_progress::advance(1);
                       }
                     });
   if (error) std::rethrow_exception(error);

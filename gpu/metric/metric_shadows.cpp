@@ -10,6 +10,7 @@
 
 #include "reference/metric/traversal.h"
 #include "shadowcts/hard_shadow_inputs.h"
+#include "shadowcts/phase_progress.h"
 #include "shadowcts/thread_limit.h"
 
 namespace shadowcts::gpu_metric {
@@ -172,6 +173,8 @@ GpuMetricRun run_metric(const PreparedScene& scene, const GpuMetricOptions& opti
     traversal.frame = structure.frame;
     traversal.ray_length = input.frame.ray_length;
     std::atomic<std::uint64_t> nodes_visited{0}, clusters_without_hit{0}, triangle_tests{0};
+    if (!handed_back.empty())
+      phase_progress::begin(handed_back.size(), "samples", "the host's traversal");
     tbb::parallel_for(
         tbb::blocked_range<std::size_t>(0, handed_back.size(), 16),
         [&](const tbb::blocked_range<std::size_t>& range) {
@@ -186,6 +189,7 @@ GpuMetricRun run_metric(const PreparedScene& scene, const GpuMetricOptions& opti
           nodes_visited += local.nodes_visited;
           clusters_without_hit += local.clusters_tested_without_hit;
           triangle_tests += local.triangle_tests;
+          phase_progress::advance(range.size());
         });
     run.output.shadowed = scene.per_view_sample(shadowed, std::uint8_t(0));
     run.traversal_seconds = seconds_since(start);

@@ -14,6 +14,7 @@
 #include "shadowcts/geometry/exact_segment_triangle.h"
 #include "shadowcts/geometry/receiver_half_space.h"
 #include "shadowcts/hard_shadow_inputs.h"
+#include "shadowcts/phase_progress.h"
 #include "shadowcts/thread_limit.h"
 
 namespace shadowcts {
@@ -114,6 +115,7 @@ class BruteforceHardShadow final : public Algorithm {
     const RegularSamples& samples = scene.samples;
     std::vector<std::uint8_t> shadowed(samples.size(), 0);
     std::atomic<std::uint64_t> pair_tests{0}, exact_predicate_calls{0};
+    phase_progress::begin(samples.size(), "regular samples");
     run_with_thread_limit(scene.source.parameters.threads, [&] {
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size(), 64),
                         [&](const tbb::blocked_range<std::size_t>& range) {
@@ -123,6 +125,7 @@ class BruteforceHardShadow final : public Algorithm {
                           // Sums of integers: the totals do not depend on the partitioning.
                           pair_tests += pairs;
                           exact_predicate_calls += calls;
+                          phase_progress::advance(range.size());
                         });
     });
     AlgorithmOutput output;

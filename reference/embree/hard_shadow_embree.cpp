@@ -14,6 +14,7 @@
 #include "reference/embree/shadow_ray_packets.h"
 #include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/phase_clock.h"
+#include "shadowcts/phase_progress.h"
 #include "shadowcts/thread_limit.h"
 
 namespace shadowcts {
@@ -91,6 +92,7 @@ class EmbreeHardShadow final : public Algorithm {
       clock.restart();
       const ShadowRayPackets tracer(c);
       clock.lap(build_phase);
+      phase_progress::begin(scene.samples.size(), "regular samples");
       // Packets of consecutive regular samples: neighbouring pixels, coherent rays.
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.samples.size(), 256),
                         [&](const tbb::blocked_range<std::size_t>& range) {
@@ -112,6 +114,7 @@ class EmbreeHardShadow final : public Algorithm {
                             traced += filled;
                           }
                           rays += traced;
+                          phase_progress::advance(traced);
                         });
       clock.lap(query_phase);
     });

@@ -20,6 +20,7 @@
 #include "shadowcts/geometry/receiver_half_space.h"
 #include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/phase_clock.h"
+#include "shadowcts/phase_progress.h"
 #include "shadowcts/thread_limit.h"
 
 namespace shadowcts {
@@ -177,6 +178,7 @@ class EmbreeSoftShadow final : public Algorithm {
         if (scene.casters.casts[t]) casters.push_back(t);
       const EmbreeScene embree(c, std::move(casters), filter_hits);
       clock.lap(build_phase);
+      phase_progress::begin(regular.size(), "regular samples");
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, regular.size(), 64),
                         [&](const tbb::blocked_range<std::size_t>& range) {
                           std::uint64_t occluded_here = 0;
@@ -220,6 +222,7 @@ class EmbreeSoftShadow final : public Algorithm {
                             fraction[j] = float(rays - blocked) / float(rays);
                           }
                           occluded_total += occluded_here;
+                          phase_progress::advance(range.size());
                         });
       clock.lap(query_phase);
     });

@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 
 #include "shadowcts/algorithm.h"
+#include "shadowcts/phase_progress.h"
 #include "shadowcts/view_samples.h"
 
 namespace shadowcts {
@@ -36,14 +37,18 @@ ListWork build_light_lists(std::size_t list_count, LightLists& out, Fill&& fill)
     ListWork work;
   };
   std::vector<Block> results(blocks);
+  // The assignment, the long part of every variant: lists filled of all.
+  phase_progress::begin(list_count, "light lists");
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 1), [&](const auto& r) {
     for (std::size_t b = r.begin(); b != r.end(); ++b) {
       Block& result = results[b];
-      for (std::size_t list = b * block; list < std::min(list_count, (b + 1) * block); ++list) {
+      const std::size_t end = std::min(list_count, (b + 1) * block);
+      for (std::size_t list = b * block; list < end; ++list) {
         const std::size_t before = result.lights.size();
         result.work += fill(list, result.lights);
         result.sizes.push_back(std::uint32_t(result.lights.size() - before));
       }
+      phase_progress::advance(end - b * block);
     }
   });
   ListWork work;

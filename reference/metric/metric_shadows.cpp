@@ -13,6 +13,7 @@
 #include "reference/metric/seeded_random.h"
 #include "reference/metric/traversal.h"
 #include "shadowcts/hard_shadow_inputs.h"
+#include "shadowcts/phase_progress.h"
 #include "shadowcts/thread_limit.h"
 
 namespace shadowcts::metric {
@@ -163,6 +164,7 @@ MetricRun run_metric(const Case& c, const ViewSamples& samples, const MetricOpti
 
     run.output.shadowed.assign(samples.samples.size(), 0);
     std::atomic<std::uint64_t> nodes_visited{0}, clusters_without_hit{0}, triangle_tests{0};
+    phase_progress::begin(samples.samples.size(), "view samples");
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.samples.size(), 64),
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         TraversalCounters local;
@@ -177,6 +179,7 @@ MetricRun run_metric(const Case& c, const ViewSamples& samples, const MetricOpti
                         nodes_visited += local.nodes_visited;
                         clusters_without_hit += local.clusters_tested_without_hit;
                         triangle_tests += local.triangle_tests;
+                        phase_progress::advance(range.size());
                       });
     run.traversal_seconds = seconds_since(start);
 

@@ -134,7 +134,7 @@ PsvResult psv_hard_shadows(const Case& c, const ViewSamples& samples, const PsvO
   result.nodes_visited.assign(samples.samples.size(), 0);
   std::atomic<std::uint64_t> queries{0}, visited_total{0}, visited_max{0}, high_water{0},
       overflows{0}, switches{0};
-  phase_progress::begin(samples.samples.size());  // the queries: samples done of all
+  phase_progress::begin(samples.samples.size(), "view samples");  // the queries
   run_with_thread_limit(c.parameters.threads, [&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.samples.size(), 64),
                       [&](const tbb::blocked_range<std::size_t>& range) {

@@ -21,6 +21,7 @@
 #include "shadowcts/errors.h"
 #include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/phase_clock.h"
+#include "shadowcts/phase_progress.h"
 
 namespace shadowcts {
 namespace {
@@ -139,8 +140,14 @@ class Ptsv final : public Algorithm {
       const NodeTolerances tolerances =
           NodeTolerances::for_bounds(std::max(bound, buffer.corner_bound()), bound);
       clock.lap(build_phase);
-      for (const ShadowVolume& volume : volumes)
-        buffer.traverse(volume, tolerances, output.shadowed, counters);
+      phase_progress::begin(volumes.size(), "shadow volumes");
+      {
+        phase_progress::Batch done;
+        for (const ShadowVolume& volume : volumes) {
+          buffer.traverse(volume, tolerances, output.shadowed, counters);
+          done.add();
+        }
+      }
       buffer.merge(output.shadowed);
       clock.lap(query_phase);
       for (int l = 0; l < buffer.level_count(); ++l)
@@ -164,7 +171,12 @@ class Ptsv final : public Algorithm {
       if (config.two_pass) {
         traverse_two_pass(traversal, volumes, default_job_level(hierarchy.leaf_level()), counters);
       } else {
-        for (const ShadowVolume& volume : volumes) traversal.traverse_from_root(volume);
+        phase_progress::begin(volumes.size(), "shadow volumes");
+        phase_progress::Batch done;
+        for (const ShadowVolume& volume : volumes) {
+          traversal.traverse_from_root(volume);
+          done.add();
+        }
       }
       traversal.mark_trivially_accepted(keys.key);
       clock.lap(query_phase);

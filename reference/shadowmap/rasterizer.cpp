@@ -9,6 +9,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "shadowcts/phase_progress.h"
+
 namespace shadowcts::shadowmap {
 namespace {
 
@@ -197,6 +199,7 @@ RasterCounters rasterize_depth(const LightView& view, const std::vector<Triangle
                         for (const RasterTriangle& r : triangles)
                           if (r.row_max >= row_begin && r.row_min < row_end)
                             count += fill(r, view.perspective, row_begin, row_end, map);
+                        phase_progress::advance(std::uint64_t(row_end - row_begin));
                       }
                       written += count;
                     });

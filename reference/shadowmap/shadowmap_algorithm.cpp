@@ -16,6 +16,7 @@
 #include "reference/shadowmap/rasterizer.h"
 #include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/phase_clock.h"
+#include "shadowcts/phase_progress.h"
 #include "shadowcts/thread_limit.h"
 
 namespace shadowcts {
@@ -138,8 +139,12 @@ class ShadowMapAlgorithm final : public Algorithm {
         for (std::size_t i = 0; i < samples.samples.size(); ++i)
           if (samples.samples[i].sample_class == SampleClass::regular) regular.push_back(i);
         clock.lap(query_phase);
-        if (!regular.empty())
+        if (!regular.empty()) {
+          // Rasterization is the long part (every band of rows against every caster): rows
+          // filled.
+          phase_progress::begin(v.resolution, "depth-map rows");
           draw_and_look_up(orthographic_view(light.direction, samples, v.resolution), regular);
+        }
       } else {
         std::array<std::vector<std::size_t>, cube_faces> by_face;
         for (std::size_t i = 0; i < samples.samples.size(); ++i)
@@ -148,6 +153,11 @@ class ShadowMapAlgorithm final : public Algorithm {
                 .push_back(i);
         const double near = cube_near_fraction * c.scale();
         clock.lap(query_phase);
+        // Rasterization is the long part (every band of rows against every caster): rows filled
+        // of every face that has samples.
+        const auto faces = std::uint64_t(std::count_if(
+            by_face.begin(), by_face.end(), [](const auto& face) { return !face.empty(); }));
+        if (faces != 0) phase_progress::begin(faces * v.resolution, "depth-map rows");
         // One face at a time: only one map is alive.
         for (int face = 0; face < cube_faces; ++face)
           if (!by_face[face].empty())

@@ -15,6 +15,7 @@
 #include "reference/softtile/softtile_variant.h"
 #include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/phase_clock.h"
+#include "shadowcts/phase_progress.h"
 #include "shadowcts/thread_limit.h"
 
 namespace shadowcts {
@@ -70,6 +71,7 @@ class Softtile final : public Algorithm {
     const std::uint32_t tiles_y = tiles_across(samples.height);
     std::vector<TileCounters> tile_counters(std::size_t(tiles_x) * tiles_y);
 
+    phase_progress::begin(tile_counters.size(), "screen tiles");
     run_with_thread_limit(c.parameters.threads, [&] {
       tbb::parallel_for(
           tbb::blocked_range<std::size_t>(0, tile_counters.size()),
@@ -117,6 +119,7 @@ class Softtile final : public Algorithm {
                     std::max(counters.rasterized_max, rasterized_per_pixel[j]);
               }
             }
+            phase_progress::advance(range.size());
           });
     });
     clock.lap(query_phase);

@@ -15,6 +15,7 @@
 #include "reference/stencil/volume_counting.h"
 #include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/phase_clock.h"
+#include "shadowcts/phase_progress.h"
 #include "shadowcts/thread_limit.h"
 
 namespace shadowcts {
@@ -122,6 +123,7 @@ class StencilAlgorithm final : public Algorithm {
         candidates += outcome.candidates;
         return outcome.every_cap_rejected ? 0 : winding - outcome.rejected;
       };
+      phase_progress::begin(samples.samples.size(), "view samples");
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.samples.size(), 256),
                         [&](const tbb::blocked_range<std::size_t>& range) {
                           FaceTally tally;
@@ -139,6 +141,7 @@ class StencilAlgorithm final : public Algorithm {
                           caps_tested += tally.caps;
                           rule_samples += asked;
                           rule_candidates += candidates;
+                          phase_progress::advance(range.size());
                         });
       light_on_caster = shadow_samples_by_light_on_caster(c, samples, output.shadowed);
       clock.lap(query_phase);

@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 
 #include "reference/metric/seeded_random.h"
+#include "shadowcts/phase_progress.h"
 #include "simd/metric/metric_tree.h"
 #include "simd/metric/traversal.h"
 
@@ -178,6 +179,7 @@ SimdMetricRun run_metric(const PreparedScene& scene, const SimdMetricOptions& op
   traversal.decision_window = options.decision_window;
   std::vector<std::uint8_t> shadowed(scene.samples.size(), 0);
   std::atomic<std::uint64_t> nodes_visited{0}, clusters_without_hit{0}, triangle_tests{0};
+  phase_progress::begin(tiles.size(), "sample tiles");
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tiles.size(), 16),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       ref::TraversalCounters local;
@@ -186,6 +188,7 @@ SimdMetricRun run_metric(const PreparedScene& scene, const SimdMetricOptions& op
                       nodes_visited += local.nodes_visited;
                       clusters_without_hit += local.clusters_tested_without_hit;
                       triangle_tests += local.triangle_tests;
+                      phase_progress::advance(range.size());
                     });
   run.output.shadowed = scene.per_view_sample(shadowed, std::uint8_t(0));
   run.traversal_seconds = seconds_since(start);

@@ -67,7 +67,7 @@ SimdPsvResult psv_hard_shadows(const PreparedScene& scene, const SimdPsvOptions&
   const std::uint32_t packet = std::clamp<std::uint32_t>(options.packet, 1, max_packet);
   const Packets packets = tile_packets(samples, scene.source.camera.width, packet);
   tbb::combinable<ref::PsvQueryTotals> partial;
-  phase_progress::begin(samples.size());  // the queries: regular samples done of all
+  phase_progress::begin(samples.size(), "regular samples");  // the queries
   run_with_thread_limit(scene.source.parameters.threads, [&] {
     // Whole packets per range: a packet never depends on the partitioning.
     tbb::parallel_for(

@@ -10,6 +10,7 @@
 #include <atomic>
 #include <bit>
 #include <cstdint>
+#include <iterator>
 #include <vector>
 
 #include <tbb/blocked_range.h>
@@ -17,11 +18,22 @@
 
 #include "reference/ptsv/node_test.h"
 #include "shadowcts/geometry/receiver_half_space.h"
+#include "shadowcts/phase_progress.h"
 #include "simd/ptsv/traversal.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace shadowcts::simd::ptsv::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
+
+// What the progress line counts the visits of (static strings: phase_progress keeps the pointer).
+inline const char* level_name(int level) {
+  static constexpr const char* names[] = {
+      "hierarchy level 0",  "hierarchy level 1",  "hierarchy level 2",  "hierarchy level 3",
+      "hierarchy level 4",  "hierarchy level 5",  "hierarchy level 6",  "hierarchy level 7",
+      "hierarchy level 8",  "hierarchy level 9",  "hierarchy level 10", "hierarchy level 11",
+      "hierarchy level 12", "hierarchy level 13", "hierarchy level 14", "hierarchy level 15"};
+  return level >= 0 && level < int(std::size(names)) ? names[level] : "a hierarchy level";
+}
 
 using D = hn::ScalableTag<double>;
 using V = hn::Vec<D>;
@@ -245,6 +257,8 @@ class Engine {
         counters.first_pass_jobs += visits;
         counters.second_pass_jobs += visits;
       }
+      // Breadth first: a level's visits are known when it starts, not the next level's.
+      if (visits != 0) phase_progress::begin(visits, "volume visits", level_name(l));
       if (l == leaves) {
         tbb::parallel_for(
             tbb::blocked_range<std::size_t>(0, L.size(), 1),
@@ -261,6 +275,7 @@ class Engine {
                                       if (i + 4 < v.end()) prefetch(vols_.slot[visitors[i + 4]]);
                                       test_samples(vols_.slot[visitors[i]], std::uint32_t(p));
                                     }
+                                    phase_progress::advance(v.size());
                                   });
               }
             });
@@ -291,6 +306,7 @@ class Engine {
                                                       : test_children(vols_.slot[visitors[i]],
                                                                       l + 1, first, count, start);
                                   }
+                                  phase_progress::advance(v.size());
                                 });
               // In volume order: what each visitor tests is what its predecessors left.
               std::uint32_t mask = start;

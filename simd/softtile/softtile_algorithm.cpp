@@ -10,6 +10,7 @@
 #include "reference/softtile/softtile_variant.h"
 #include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/phase_clock.h"
+#include "shadowcts/phase_progress.h"
 #include "shadowcts/thread_limit.h"
 #include "simd/softtile/shadow_cone.h"
 
@@ -118,6 +119,7 @@ class SimdSofttile final : public Algorithm {
         std::size_t(ref::tiles_across(samples.width)) * ref::tiles_across(samples.height);
     std::vector<TileCounters> tile_counters(tiles);
 
+    phase_progress::begin(tiles, "screen tiles");
     run_with_thread_limit(c.parameters.threads, [&] {
       tbb::parallel_for(
           tbb::blocked_range<std::size_t>(0, tiles), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -146,6 +148,7 @@ class SimdSofttile final : public Algorithm {
                 output.visible_fraction[tile.pixels[j]] =
                     float(result.masks[j].lit_cells()) / float(raster.disk_cells());
             }
+            phase_progress::advance(r.size());
           });
     });
     clock.lap(query_phase);
