@@ -13,6 +13,7 @@
 #include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/phase_progress.h"
 #include "shadowcts/thread_limit.h"
+#include "shadowcts/variant_table_algorithm.h"
 
 namespace shadowcts {
 
@@ -75,43 +76,28 @@ ExactFallback decide_exactly(const PreparedScene& scene, const std::vector<std::
   return fallback;
 }
 
-AlgorithmInfo kernel_info(const BruteforceKernelBackend& backend) {
-  AlgorithmInfo info;
-  info.id = "bruteforce";
-  info.backend = backend.backend;
-  info.variants = {"float32"};
-  info.summary = backend.summary;
-  info.capabilities.output = OutputKind::hard_shadow;
-  info.capabilities.point_light = true;
-  info.capabilities.directional_light = true;
-  info.capabilities.max_sample_triangle_pairs = backend.max_sample_triangle_pairs;
-  return info;
-}
-
-class BruteforceKernelAlgorithm final : public Algorithm {
+class BruteforceKernelAlgorithm final : public VariantTableAlgorithm<> {
  public:
   explicit BruteforceKernelAlgorithm(BruteforceKernelBackend backend)
-      : backend_(std::move(backend)), info_(kernel_info(backend_)) {}
+      : VariantTableAlgorithm(
+            {.id = "bruteforce",
+             .backend = backend.backend,
+             .summary = backend.summary,
+             .capabilities = {.output = OutputKind::hard_shadow,
+                              .point_light = true,
+                              .directional_light = true,
+                              .max_sample_triangle_pairs = backend.max_sample_triangle_pairs},
+             .unavailable_reason = backend.unavailable_reason},
+            {{.name = "float32", .phases = {}}}),
+        backend_(std::move(backend)) {}
 
-  const AlgorithmInfo& info() const override { return info_; }
-
-  std::optional<std::string> unsupported_reason(const Case& c, const ViewSamples& samples,
-                                                const std::string& variant) const override {
-    if (auto reason = Algorithm::unsupported_reason(c, samples, variant)) return reason;
-    return backend_.unavailable_reason ? backend_.unavailable_reason() : std::nullopt;
-  }
-
-  AlgorithmOutput run(const PreparedScene& scene, const std::string& variant) const override {
+ private:
+  AlgorithmOutput run_variant(const PreparedScene& scene, const Variant&) const override {
     const Case& c = scene.source;
     const ViewSamples& samples = scene.view_samples;
-    const std::string name = "bruteforce/" + backend_.backend;
-    if (variant != info_.variants.front()) {
-      throw std::invalid_argument(name + ": unknown variant '" + variant + "'");
-    }
-    if (backend_.unavailable_reason) {
-      if (auto reason = backend_.unavailable_reason()) throw std::runtime_error(*reason);
-    }
-    if (!c.light) throw std::invalid_argument(name + ": the case has no shadow light");
+    if (!c.light)
+      throw std::invalid_argument("bruteforce/" + backend_.backend +
+                                  ": the case has no shadow light");
     check_receivers(c, samples);
     std::vector<std::size_t> regular_samples;
     const BruteforceShadowInput input = bruteforce_kernel_input(c, samples, regular_samples);
@@ -147,9 +133,7 @@ class BruteforceKernelAlgorithm final : public Algorithm {
     return output;
   }
 
- private:
   BruteforceKernelBackend backend_;
-  AlgorithmInfo info_;
 };
 
 }  // namespace

@@ -82,42 +82,26 @@ LightAssignKernelInput lightassign_kernel_input(const PreparedScene& scene,
 
 namespace {
 
-class LightAssignKernelAlgorithm final : public Algorithm {
+class LightAssignKernelAlgorithm final : public LightAssignAlgorithm {
  public:
   explicit LightAssignKernelAlgorithm(LightAssignKernelBackend backend)
-      : backend_(std::move(backend)), reference_(make_lightassign()) {
-    info_.id = "lightassign";
-    info_.backend = backend_.backend;
-    info_.variants = {"tiled", "clustered", "clustered+eb", "clustered+en", "clustered+nk3"};
-    info_.summary = backend_.summary;
-    info_.capabilities.output = OutputKind::light_lists;
-    info_.capabilities.ranged_lights = true;
-  }
+      : LightAssignAlgorithm(
+            {.id = "lightassign",
+             .backend = backend.backend,
+             .summary = backend.summary,
+             .capabilities = {.output = OutputKind::light_lists, .ranged_lights = true},
+             .unavailable_reason = backend.unavailable_reason},
+            select_variants(lightassign_variants(), {"tiled", "clustered", "clustered+eb",
+                                                     "clustered+en", "clustered+nk3"})),
+        backend_(std::move(backend)) {}
 
-  const AlgorithmInfo& info() const override { return info_; }
-
-  std::vector<std::string> timed_phases(const std::string&) const override {
-    return build_and_query_phases();
-  }
-
-  // The reference's reasons (sample behind the camera, key bits, light count), then the device.
-  std::optional<std::string> unsupported_reason(const Case& c, const ViewSamples& samples,
-                                                const std::string& variant) const override {
-    if (auto why = reference_->unsupported_reason(c, samples, variant)) return why;
-    return backend_.unavailable_reason ? backend_.unavailable_reason() : std::nullopt;
-  }
-
-  AlgorithmOutput run(const PreparedScene& scene, const std::string& variant) const override {
+ private:
+  AlgorithmOutput run_variant(const PreparedScene& scene, const Variant& variant) const override {
     const Case& c = scene.source;
     const ViewSamples& samples = scene.view_samples;
     if (samples.samples.size() != std::size_t(samples.width) * samples.height)
       throw std::invalid_argument("lightassign: sample count is not width x height");
-    if (std::find(info_.variants.begin(), info_.variants.end(), variant) == info_.variants.end())
-      throw std::invalid_argument("lightassign/" + backend_.backend + ": unknown variant '" +
-                                  variant + "'");
-    if (backend_.unavailable_reason)
-      if (auto why = backend_.unavailable_reason()) throw std::runtime_error(*why);
-    const LightAssignKernelInput input = lightassign_kernel_input(scene, variant);
+    const LightAssignKernelInput input = lightassign_kernel_input(scene, variant.name);
     LightAssignKernelResult result;
     // The emulator spreads blocks over oneTBB, and Thrust's TBB system runs there too: both keep
     // to the case's thread limit, as the reference does.
@@ -150,10 +134,7 @@ class LightAssignKernelAlgorithm final : public Algorithm {
     return output;
   }
 
- private:
   LightAssignKernelBackend backend_;
-  std::unique_ptr<Algorithm> reference_;
-  AlgorithmInfo info_;
 };
 
 }  // namespace

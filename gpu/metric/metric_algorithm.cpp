@@ -1,10 +1,9 @@
 #include "gpu/metric/metric_algorithm.h"
 
-#include <stdexcept>
 #include <utility>
 
 #include "reference/light_on_caster.h"
-#include "shadowcts/phase_clock.h"
+#include "shadowcts/variant_table_algorithm.h"
 
 namespace shadowcts {
 namespace {
@@ -13,35 +12,24 @@ namespace {
 // its own phase, apart from the per-frame build and query.
 constexpr const char* clustering_phase = "clustering";
 
-class MetricKernelAlgorithm final : public Algorithm {
+class MetricKernelAlgorithm final : public VariantTableAlgorithm<gpu_metric::GpuMetricOptions> {
  public:
-  explicit MetricKernelAlgorithm(MetricKernelBackend backend) : backend_(std::move(backend)) {
-    info_.id = "metric";
-    info_.backend = backend_.backend;
-    info_.variants = {"capsules", "spheres", "capsules16"};
-    info_.summary = backend_.summary;
-    info_.capabilities.output = OutputKind::hard_shadow;
-    info_.capabilities.point_light = true;
-    info_.capabilities.directional_light = true;
-  }
+  explicit MetricKernelAlgorithm(MetricKernelBackend backend)
+      : VariantTableAlgorithm(
+            {.id = "metric",
+             .backend = backend.backend,
+             .summary = backend.summary,
+             .capabilities = point_and_directional_hard_shadows,
+             .unavailable_reason = backend.unavailable_reason},
+            variant_table({"capsules", "spheres", "capsules16"},
+                          gpu_metric::parse_gpu_metric_variant,
+                          {.phases = {clustering_phase, build_phase, query_phase}})),
+        backend_(std::move(backend)) {}
 
-  const AlgorithmInfo& info() const override { return info_; }
-
-  std::optional<std::string> unsupported_reason(const Case& c, const ViewSamples& samples,
-                                                const std::string& variant) const override {
-    if (auto reason = Algorithm::unsupported_reason(c, samples, variant)) return reason;
-    return backend_.unavailable_reason ? backend_.unavailable_reason() : std::nullopt;
-  }
-
-  std::vector<std::string> timed_phases(const std::string&) const override {
-    return {clustering_phase, build_phase, query_phase};
-  }
-
-  AlgorithmOutput run(const PreparedScene& scene, const std::string& variant) const override {
-    if (backend_.unavailable_reason)
-      if (auto reason = backend_.unavailable_reason()) throw std::runtime_error(*reason);
-    gpu_metric::GpuMetricRun run = gpu_metric::run_metric(
-        scene, gpu_metric::parse_gpu_metric_variant(variant), backend_.run_kernel);
+ private:
+  AlgorithmOutput run_variant(const PreparedScene& scene, const Variant& variant) const override {
+    gpu_metric::GpuMetricRun run =
+        gpu_metric::run_metric(scene, variant.config, backend_.run_kernel);
     run.output.phase_ms = {{clustering_phase, 1e3 * run.clustering_seconds},
                            {build_phase, 1e3 * run.build_seconds},
                            {query_phase, 1e3 * run.traversal_seconds}};
@@ -52,9 +40,7 @@ class MetricKernelAlgorithm final : public Algorithm {
     return std::move(run.output);
   }
 
- private:
   MetricKernelBackend backend_;
-  AlgorithmInfo info_;
 };
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "reference/light_on_caster.h"
 #include "reference/ptsv/cluster_keys.h"
 #include "reference/ptsv/node_test.h"
+#include "reference/ptsv/ptsv_algorithm.h"
 #include "reference/ptsv/receiver_rule.h"
 #include "reference/ptsv/triangle_setup.h"
 #include "reference/ptsv/two_pass.h"
@@ -18,34 +19,25 @@
 #include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/phase_clock.h"
 #include "shadowcts/thread_limit.h"
+#include "shadowcts/variant_table_algorithm.h"
 
 namespace shadowcts {
 namespace {
 
 namespace ref = ::shadowcts::ptsv;
 
-struct VariantConfig {
-  const char* name;
-  bool implicit_cells;
-  bool extra_planes;
-  bool two_pass;
-};
+using ref::VariantConfig;
 
-// The reference's variant_table rows that this backend ports.
-constexpr VariantConfig variant_table[] = {
-    {"twopass", false, true, true},
-    {"explicit+planes", false, true, false},
-    {"implicit", true, false, false},
-};
+// The reference's variants that this backend ports.
+const std::vector<AlgorithmVariant<VariantConfig>> ported_variants =
+    select_variants(ptsv_variants(), {"twopass", "explicit+planes", "implicit"});
+
+const VariantConfig& variant_config(const std::string& variant) {
+  return find_variant(ported_variants, variant, "ptsv/cuda").config;
+}
 
 // The device looks depth slices up in a table of 2^depth_bits + 1 slice starts.
 constexpr int max_depth_bits = 24;
-
-const VariantConfig& variant_config(const std::string& variant) {
-  for (const VariantConfig& v : variant_table)
-    if (variant == v.name) return v;
-  throw std::invalid_argument("ptsv cuda: unknown variant '" + variant + "'");
-}
 
 double max_abs(const glm::dvec3& v) {
   return std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
@@ -178,7 +170,7 @@ HostSetup prepare(const PreparedScene& scene, const VariantConfig& config, Phase
       out.half_space = it->second;
     }
   }
-  in.implicit_cells = config.implicit_cells;
+  in.implicit_cells = config.implicit_cells();
   in.extra_planes = config.extra_planes;
   in.job_level = config.two_pass ? ref::default_job_level(L.mask_levels()) : -1;
   in.scene_bound = bound;
@@ -196,24 +188,20 @@ HostSetup prepare(const PreparedScene& scene, const VariantConfig& config, Phase
   return s;
 }
 
-class KernelPtsv final : public Algorithm {
+class KernelPtsv final : public VariantTableAlgorithm<VariantConfig> {
  public:
-  explicit KernelPtsv(PtsvKernelBackend backend) : backend_(std::move(backend)) {
-    info_.id = "ptsv";
-    info_.backend = backend_.backend;
-    for (const VariantConfig& v : variant_table) info_.variants.push_back(v.name);
-    info_.summary = backend_.summary;
-    info_.capabilities.output = OutputKind::hard_shadow;
-    info_.capabilities.point_light = true;
-    info_.capabilities.directional_light = true;
-    info_.capabilities.max_sample_triangle_pairs = backend_.max_sample_triangle_pairs;
-  }
-
-  const AlgorithmInfo& info() const override { return info_; }
-
-  std::vector<std::string> timed_phases(const std::string&) const override {
-    return build_and_query_phases();
-  }
+  explicit KernelPtsv(PtsvKernelBackend backend)
+      : VariantTableAlgorithm(
+            {.id = "ptsv",
+             .backend = backend.backend,
+             .summary = backend.summary,
+             .capabilities = {.output = OutputKind::hard_shadow,
+                              .point_light = true,
+                              .directional_light = true,
+                              .max_sample_triangle_pairs = backend.max_sample_triangle_pairs},
+             .unavailable_reason = backend.unavailable_reason},
+            ported_variants),
+        backend_(std::move(backend)) {}
 
   std::optional<std::string> unsupported_reason(const Case& c, const ViewSamples& samples,
                                                 const std::string& variant) const override {
@@ -226,16 +214,15 @@ class KernelPtsv final : public Algorithm {
              std::to_string(backend_.max_sample_triangle_pairs) + "); " +
              backend_.size_limit_reason;
     if (auto why = Algorithm::unsupported_reason(c, samples, variant)) return why;
-    if (backend_.unavailable_reason)
-      if (auto why = backend_.unavailable_reason()) return why;
-    const VariantConfig& config = variant_config(variant);
+    if (auto why = unavailable_reason()) return why;
+    const VariantConfig& config = this->variant(variant).config;
     if (!one_sample_per_pixel(samples)) return "the view samples are not one per pixel";
     const ref::ViewFrame frame = ref::make_view_frame(c.camera, samples.width, samples.height);
     const ref::KeyLayoutResult layout =
         ref::make_cluster_key_layout(c.camera, samples.width, samples.height);
     if (!layout.problem.empty()) return layout.problem;
     const std::string problem =
-        ref::assign_cluster_keys(layout.layout, frame, samples, config.implicit_cells).problem;
+        ref::assign_cluster_keys(layout.layout, frame, samples, config.implicit_cells()).problem;
     if (!problem.empty()) return problem;
     if (layout.layout.depth_bits > max_depth_bits)
       return "the key layout has " + std::to_string(layout.layout.depth_bits) +
@@ -244,12 +231,11 @@ class KernelPtsv final : public Algorithm {
     return std::nullopt;
   }
 
-  AlgorithmOutput run(const PreparedScene& scene, const std::string& variant) const override {
+ private:
+  AlgorithmOutput run_variant(const PreparedScene& scene, const Variant& variant) const override {
     const Case& c = scene.source;
     const ViewSamples& samples = scene.view_samples;
-    const VariantConfig& config = variant_config(variant);
-    if (backend_.unavailable_reason)
-      if (auto why = backend_.unavailable_reason()) throw std::runtime_error(*why);
+    const VariantConfig& config = variant.config;
     PhaseClock clock;
     const HostSetup setup = prepare(scene, config, &clock);
     gpu_ptsv::KernelResult result;
@@ -262,7 +248,7 @@ class KernelPtsv final : public Algorithm {
       const ref::ViewFrame frame = ref::make_view_frame(c.camera, samples.width, samples.height);
       throw InputError(
           c.source, "view samples",
-          ref::assign_cluster_keys(setup.layout, frame, samples, config.implicit_cells).problem);
+          ref::assign_cluster_keys(setup.layout, frame, samples, config.implicit_cells()).problem);
     }
 
     AlgorithmOutput output;
@@ -298,9 +284,7 @@ class KernelPtsv final : public Algorithm {
     return output;
   }
 
- private:
   PtsvKernelBackend backend_;
-  AlgorithmInfo info_;
 };
 
 }  // namespace

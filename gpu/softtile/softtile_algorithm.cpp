@@ -16,6 +16,7 @@
 #include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/phase_clock.h"
 #include "shadowcts/thread_limit.h"
+#include "shadowcts/variant_table_algorithm.h"
 
 namespace shadowcts {
 namespace {
@@ -120,41 +121,23 @@ void add_pixels(const Case& c, const ViewSamples& samples, const ref::Gathered& 
                     });
 }
 
-class SofttileKernelAlgorithm final : public Algorithm {
+class SofttileKernelAlgorithm final : public VariantTableAlgorithm<ref::Variant> {
  public:
-  explicit SofttileKernelAlgorithm(SofttileKernelBackend backend) : backend_(std::move(backend)) {
-    info_ = make_softtile()->info();
-    info_.backend = backend_.backend;
-    info_.variants = kernel_variants();
-    info_.summary = backend_.summary;
-  }
+  explicit SofttileKernelAlgorithm(SofttileKernelBackend backend)
+      : VariantTableAlgorithm(
+            {.id = "softtile",
+             .backend = backend.backend,
+             .summary = backend.summary,
+             .capabilities = {.output = OutputKind::soft_shadow, .sun_disk = true},
+             .unavailable_reason = backend.unavailable_reason},
+            select_variants(softtile_variants(), kernel_variants())),
+        backend_(std::move(backend)) {}
 
-  const AlgorithmInfo& info() const override { return info_; }
-
-  std::optional<std::string> unsupported_reason(const Case& c, const ViewSamples& samples,
-                                                const std::string& variant) const override {
-    if (auto reason = Algorithm::unsupported_reason(c, samples, variant)) return reason;
-    return backend_.unavailable_reason ? backend_.unavailable_reason() : std::nullopt;
-  }
-
-  std::vector<std::string> timed_phases(const std::string&) const override {
-    return build_and_query_phases();
-  }
-
-  SoftErrorBudget soft_error_budget(const std::string& variant) const override {
-    return softtile_error_budget(variant);
-  }
-
-  AlgorithmOutput run(const PreparedScene& scene, const std::string& variant_name) const override {
+ private:
+  AlgorithmOutput run_variant(const PreparedScene& scene, const Variant& row) const override {
     const Case& c = scene.source;
     const ViewSamples& samples = scene.view_samples;
-    const std::string name = "softtile/" + backend_.backend;
-    if (std::find(info_.variants.begin(), info_.variants.end(), variant_name) ==
-        info_.variants.end())
-      throw std::invalid_argument(name + ": unknown variant '" + variant_name + "'");
-    if (backend_.unavailable_reason)
-      if (auto reason = backend_.unavailable_reason()) throw std::runtime_error(*reason);
-    const ref::Variant variant = ref::parse_variant(variant_name);
+    const ref::Variant& variant = row.config;
     check_receivers(c, samples);
     PhaseClock clock;
     AlgorithmOutput output;
@@ -212,9 +195,7 @@ class SofttileKernelAlgorithm final : public Algorithm {
     return output;
   }
 
- private:
   SofttileKernelBackend backend_;
-  AlgorithmInfo info_;
 };
 
 }  // namespace

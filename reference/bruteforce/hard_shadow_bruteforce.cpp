@@ -4,7 +4,6 @@
 #include <atomic>
 #include <cmath>
 #include <optional>
-#include <stdexcept>
 #include <vector>
 
 #include <tbb/blocked_range.h>
@@ -16,6 +15,7 @@
 #include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/phase_progress.h"
 #include "shadowcts/thread_limit.h"
+#include "shadowcts/variant_table_algorithm.h"
 
 namespace shadowcts {
 
@@ -87,30 +87,12 @@ bool ExactBruteforce::shadowed(std::size_t i, std::uint64_t& pairs, std::uint64_
 
 namespace {
 
-class BruteforceHardShadow final : public Algorithm {
+class BruteforceHardShadow final : public VariantTableAlgorithm<> {
  public:
-  BruteforceHardShadow() {
-    info_.id = "bruteforce";
-    info_.backend = "reference";
-    info_.variants = {"exact"};
-    info_.summary =
-        "every sample against every caster: exact box test, then the exact segment/ray-triangle "
-        "predicate of the shared geometry (orientations by expansions) and the exact receiver "
-        "half-space rule";
-    info_.capabilities.output = OutputKind::hard_shadow;
-    info_.capabilities.point_light = true;
-    info_.capabilities.directional_light = true;
-    // About 8 ns per pair on one core (measured, 100k triangles): 3e8 pairs take ~1 s on two, and
-    // every run is repeated (warm-up plus timed repeats). Larger cases belong to the
-    // hierarchical algorithms; brute force stays the readable exact reference.
-    info_.capabilities.max_sample_triangle_pairs = 300'000'000ull;
-  }
+  using VariantTableAlgorithm::VariantTableAlgorithm;
 
-  const AlgorithmInfo& info() const override { return info_; }
-
-  AlgorithmOutput run(const PreparedScene& scene, const std::string& variant) const override {
-    if (variant != "exact")
-      throw std::invalid_argument("bruteforce: unknown variant '" + variant + "'");
+ private:
+  AlgorithmOutput run_variant(const PreparedScene& scene, const Variant&) const override {
     const ExactBruteforce exact(scene);
     const RegularSamples& samples = scene.samples;
     std::vector<std::uint8_t> shadowed(samples.size(), 0);
@@ -134,15 +116,26 @@ class BruteforceHardShadow final : public Algorithm {
                        {"exact_predicate_calls", exact_predicate_calls.load()}};
     return output;
   }
-
- private:
-  AlgorithmInfo info_;
 };
 
 }  // namespace
 
 std::unique_ptr<Algorithm> make_bruteforce_hard_shadow() {
-  return std::make_unique<BruteforceHardShadow>();
+  return std::make_unique<BruteforceHardShadow>(
+      AlgorithmDescription{
+          .id = "bruteforce",
+          .backend = "reference",
+          .summary = "every sample against every caster: exact box test, then the exact "
+                     "segment/ray-triangle predicate of the shared geometry (orientations by "
+                     "expansions) and the exact receiver half-space rule",
+          // About 8 ns per pair on one core (measured, 100k triangles): 3e8 pairs take ~1 s on
+          // two, and every run is repeated (warm-up plus timed repeats). Larger cases belong to
+          // the hierarchical algorithms; brute force stays the readable exact reference.
+          .capabilities = {.output = OutputKind::hard_shadow,
+                           .point_light = true,
+                           .directional_light = true,
+                           .max_sample_triangle_pairs = 300'000'000ull}},
+      std::vector<AlgorithmVariant<>>{{.name = "exact", .phases = {}}});
 }
 
 }  // namespace shadowcts

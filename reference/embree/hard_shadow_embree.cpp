@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstdio>
 #include <span>
-#include <stdexcept>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -16,6 +15,7 @@
 #include "shadowcts/phase_clock.h"
 #include "shadowcts/phase_progress.h"
 #include "shadowcts/thread_limit.h"
+#include "shadowcts/variant_table_algorithm.h"
 
 namespace shadowcts {
 namespace {
@@ -26,27 +26,15 @@ std::string power_of_two(double x) {
   return text;
 }
 
-class EmbreeHardShadow final : public Algorithm {
+class EmbreeHardShadow final : public VariantTableAlgorithm<> {
  public:
-  EmbreeHardShadow() {
-    info_.id = "embree";
-    info_.backend = "embree";
-    info_.variants = {"robust"};
-    info_.summary =
-        "Embree 3 occlusion rays in robust mode; a filter ignores the receiver and applies the "
-        "receiver half-space rule";
-    info_.capabilities.output = OutputKind::hard_shadow;
-    info_.capabilities.point_light = true;
-    info_.capabilities.directional_light = true;
-  }
+  using VariantTableAlgorithm::VariantTableAlgorithm;
 
-  const AlgorithmInfo& info() const override { return info_; }
-
+ private:
   // Embree intersects in float32, so its answers hold only where its products stay normal
   // floats: see embree_min_scale_exponent in the header and docs/specification.md.
-  std::optional<std::string> unsupported_reason(const Case& c, const ViewSamples& samples,
-                                                const std::string& variant) const override {
-    if (auto why = Algorithm::unsupported_reason(c, samples, variant)) return why;
+  std::optional<std::string> input_problem(const Case& c, const ViewSamples&,
+                                           const Variant&) const override {
     const double scale = c.scale();
     const double low = std::ldexp(1.0, embree_min_scale_exponent);
     const double high = std::ldexp(1.0, embree_max_scale_exponent);
@@ -74,15 +62,9 @@ class EmbreeHardShadow final : public Algorithm {
   }
 
   // build: the Embree device and scene (geometry, BVH build, commit); query: the shadow rays.
-  std::vector<std::string> timed_phases(const std::string&) const override {
-    return build_and_query_phases();
-  }
-
-  AlgorithmOutput run(const PreparedScene& scene, const std::string& variant) const override {
+  AlgorithmOutput run_variant(const PreparedScene& scene, const Variant&) const override {
     const Case& c = scene.source;
     const ViewSamples& samples = scene.view_samples;
-    if (variant != "robust")
-      throw std::invalid_argument("embree: unknown variant '" + variant + "'");
     check_receivers(c, samples);
     AlgorithmOutput output;
     output.shadowed.assign(samples.samples.size(), 0);
@@ -122,15 +104,19 @@ class EmbreeHardShadow final : public Algorithm {
     output.phase_ms = clock.times();
     return output;
   }
-
- private:
-  AlgorithmInfo info_;
 };
 
 }  // namespace
 
 std::unique_ptr<Algorithm> make_embree_hard_shadow() {
-  return std::make_unique<EmbreeHardShadow>();
+  return std::make_unique<EmbreeHardShadow>(
+      AlgorithmDescription{.id = "embree",
+                           .backend = "embree",
+                           .summary =
+                               "Embree 3 occlusion rays in robust mode; a filter ignores the "
+                               "receiver and applies the receiver half-space rule",
+                           .capabilities = point_and_directional_hard_shadows},
+      std::vector<AlgorithmVariant<>>{{"robust"}});
 }
 
 }  // namespace shadowcts

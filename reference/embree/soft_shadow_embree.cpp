@@ -22,6 +22,7 @@
 #include "shadowcts/phase_clock.h"
 #include "shadowcts/phase_progress.h"
 #include "shadowcts/thread_limit.h"
+#include "shadowcts/variant_table_algorithm.h"
 
 namespace shadowcts {
 namespace {
@@ -121,26 +122,15 @@ void filter_hits(const RTCFilterFunctionNArguments* args) {
   }
 }
 
-class EmbreeSoftShadow final : public Algorithm {
+class EmbreeSoftShadow final : public VariantTableAlgorithm<std::uint32_t> {
  public:
-  EmbreeSoftShadow() {
-    info_.id = "embree_soft";
-    info_.backend = "embree";
-    for (const VariantRays& v : variants) info_.variants.emplace_back(v.name);
-    info_.summary =
-        "Embree 3 robust occlusion rays towards N stratified points of the sun disk (gnomonic "
-        "measure, equal-area strata, fixed seed); receiver half-space rule per ray";
-    info_.capabilities.output = OutputKind::soft_shadow;
-    info_.capabilities.sun_disk = true;
-  }
+  using VariantTableAlgorithm::VariantTableAlgorithm;
 
-  const AlgorithmInfo& info() const override { return info_; }
-
+ private:
   // Embree's float32 range, as for the hard-shadow peer (hard_shadow_embree.h); the ray
   // directions are unit vectors, so the case scale alone decides.
-  std::optional<std::string> unsupported_reason(const Case& c, const ViewSamples& samples,
-                                                const std::string& variant) const override {
-    if (auto why = Algorithm::unsupported_reason(c, samples, variant)) return why;
+  std::optional<std::string> input_problem(const Case& c, const ViewSamples&,
+                                           const Variant&) const override {
     const double scale = c.scale();
     if (!(scale >= std::ldexp(1.0, embree_min_scale_exponent)) ||
         scale > std::ldexp(1.0, embree_max_scale_exponent))
@@ -150,17 +140,9 @@ class EmbreeSoftShadow final : public Algorithm {
     return std::nullopt;
   }
 
-  SoftErrorBudget soft_error_budget(const std::string& variant) const override {
-    return embree_soft_error_budget(variant);
-  }
-
   // build: the Embree scene of the casters (BVH build, commit); query: the rays.
-  std::vector<std::string> timed_phases(const std::string&) const override {
-    return build_and_query_phases();
-  }
-
-  AlgorithmOutput run(const PreparedScene& scene, const std::string& variant) const override {
-    const std::uint32_t rays = embree_soft_rays(variant);
+  AlgorithmOutput run_variant(const PreparedScene& scene, const Variant& variant) const override {
+    const std::uint32_t rays = variant.config;
     const Case& c = scene.source;
     const ViewSamples& samples = scene.view_samples;
     if (!scene.light || scene.light->kind != ShadowLightKind::sun_disk)
@@ -233,15 +215,24 @@ class EmbreeSoftShadow final : public Algorithm {
     output.phase_ms = clock.times();
     return output;
   }
-
- private:
-  AlgorithmInfo info_;
 };
 
 }  // namespace
 
 std::unique_ptr<Algorithm> make_embree_soft_shadow() {
-  return std::make_unique<EmbreeSoftShadow>();
+  std::vector<AlgorithmVariant<std::uint32_t>> table;
+  for (const VariantRays& v : variants)
+    table.push_back(
+        {.name = v.name, .config = v.rays, .soft_error_budget = embree_soft_error_budget(v.name)});
+  return std::make_unique<EmbreeSoftShadow>(
+      AlgorithmDescription{
+          .id = "embree_soft",
+          .backend = "embree",
+          .summary = "Embree 3 robust occlusion rays towards N stratified points of the sun disk "
+                     "(gnomonic measure, equal-area strata, fixed seed); receiver half-space rule "
+                     "per ray",
+          .capabilities = {.output = OutputKind::soft_shadow, .sun_disk = true}},
+      std::move(table));
 }
 
 std::uint32_t embree_soft_rays(const std::string& variant) {

@@ -14,80 +14,74 @@
 namespace shadowcts {
 namespace {
 
-class LightAssign final : public Algorithm {
+class LightAssign final : public LightAssignAlgorithm {
  public:
-  LightAssign() {
-    info_.id = "lightassign";
-    info_.backend = "reference";
-    info_.variants = {"tiled",        "clustered",     "clustered+eb",
-                      "clustered+en", "clustered+nk3", "brute"};
-    info_.summary =
-        "tiled (Paper I) and clustered (Paper II) light assignment: tiles with min/max depth, "
-        "exponential depth slices, explicit bounds, normal cones, 32-wide light BVH; brute: "
-        "per-sample exact sets";
-    info_.capabilities.output = OutputKind::light_lists;
-    info_.capabilities.ranged_lights = true;
-  }
+  using LightAssignAlgorithm::LightAssignAlgorithm;
 
-  const AlgorithmInfo& info() const override { return info_; }
-
+ private:
   // build: tiles/clusters with their bounds (and cones), clustered: the light BVH; query: the
-  // assignment of lights to the lists. brute has no structure to build: only the whole call.
-  std::vector<std::string> timed_phases(const std::string& variant) const override {
-    if (variant == "brute") return {};
-    return build_and_query_phases();
-  }
-
-  std::optional<std::string> unsupported_reason(const Case& c, const ViewSamples& samples,
-                                                const std::string& variant) const override {
-    if (auto why = Algorithm::unsupported_reason(c, samples, variant)) return why;
-    if (c.ranged_lights.size() > 0xFFFFFFFEull) return "more than 2^32 - 2 ranged lights";
-    if (variant == "brute") return std::nullopt;
-    // Tiles and slices need every regular sample in front of the eye.
-    const ViewFrustum frustum(c.camera);
-    double deepest = 0.0;
-    for (const ViewSample& s : samples.samples) {
-      if (s.sample_class != SampleClass::regular) continue;
-      const double d = frustum.depth(glm::dvec3(s.position));
-      if (!(d > 0.0))
-        return "sample at pixel (" + std::to_string(s.pixel_x) + ", " + std::to_string(s.pixel_y) +
-               ") lies behind the camera plane";
-      deepest = std::max(deepest, d);
-    }
-    if (const auto settings = clustered_settings(variant)) {
-      const ClusterGrid grid(c.camera, settings->tile_size, settings->normal_divisions, deepest);
-      if (auto why = grid.overflow_reason()) return why;
-    }
-    return std::nullopt;
-  }
-
-  AlgorithmOutput run(const PreparedScene& scene, const std::string& variant) const override {
+  // assignment of lights to the lists.
+  AlgorithmOutput run_variant(const PreparedScene& scene, const Variant& variant) const override {
     const Case& c = scene.source;
     const ViewSamples& samples = scene.view_samples;
     if (samples.samples.size() != std::size_t(samples.width) * samples.height)
       throw std::invalid_argument("lightassign: sample count is not width x height");
     AlgorithmOutput output;
     run_with_thread_limit(c.parameters.threads, [&] {
-      if (variant == "tiled")
+      if (variant.config)
+        output = assign_lights_clustered(c, samples, *variant.config);
+      else if (variant.name == "tiled")
         output = assign_lights_tiled(c, samples, lightassign_tile_size);
-      else if (variant == "brute")
-        output = assign_lights_brute(c, samples);
-      else if (const auto settings = clustered_settings(variant))
-        output = assign_lights_clustered(c, samples, *settings);
       else
-        throw std::invalid_argument("lightassign: unknown variant '" + variant + "'");
+        output = assign_lights_brute(c, samples);
     });
     return output;
   }
-
- private:
-  AlgorithmInfo info_;
 };
 
 }  // namespace
 
+std::optional<std::string> LightAssignAlgorithm::input_problem(const Case& c,
+                                                               const ViewSamples& samples,
+                                                               const Variant& variant) const {
+  if (c.ranged_lights.size() > 0xFFFFFFFEull) return "more than 2^32 - 2 ranged lights";
+  if (variant.name == "brute") return std::nullopt;
+  // Tiles and slices need every regular sample in front of the eye.
+  const ViewFrustum frustum(c.camera);
+  double deepest = 0.0;
+  for (const ViewSample& s : samples.samples) {
+    if (s.sample_class != SampleClass::regular) continue;
+    const double d = frustum.depth(glm::dvec3(s.position));
+    if (!(d > 0.0))
+      return "sample at pixel (" + std::to_string(s.pixel_x) + ", " + std::to_string(s.pixel_y) +
+             ") lies behind the camera plane";
+    deepest = std::max(deepest, d);
+  }
+  if (const auto& settings = variant.config) {
+    const ClusterGrid grid(c.camera, settings->tile_size, settings->normal_divisions, deepest);
+    if (auto why = grid.overflow_reason()) return why;
+  }
+  return std::nullopt;
+}
+
+std::vector<AlgorithmVariant<std::optional<ClusteredSettings>>> lightassign_variants() {
+  auto table = variant_table(
+      {"tiled", "clustered", "clustered+eb", "clustered+en", "clustered+nk3", "brute"},
+      clustered_settings);
+  table.back().phases = {};  // brute
+  return table;
+}
+
 std::unique_ptr<Algorithm> make_lightassign() {
-  return std::make_unique<LightAssign>();
+  return std::make_unique<LightAssign>(
+      AlgorithmDescription{
+          .id = "lightassign",
+          .backend = "reference",
+          .summary = "tiled (Paper I) and clustered (Paper II) light assignment: tiles with "
+                     "min/max depth, exponential depth slices, explicit bounds, normal cones, "
+                     "32-wide light BVH; brute: per-sample exact sets",
+          .capabilities = {.output = OutputKind::light_lists, .ranged_lights = true}},
+      lightassign_variants());
 }
 
 std::optional<ClusteredSettings> clustered_settings(const std::string& variant) {

@@ -1,39 +1,22 @@
 #include "reference/psv/psv_algorithm.h"
 
-#include <stdexcept>
-
 #include "reference/light_on_caster.h"
 #include "reference/psv/psv_shadows.h"
-#include "shadowcts/phase_clock.h"
+#include "shadowcts/variant_table_algorithm.h"
 
 namespace shadowcts {
 namespace {
 
-class PsvAlgorithm final : public Algorithm {
+class PsvAlgorithm final : public VariantTableAlgorithm<psv::PsvOptions> {
  public:
-  PsvAlgorithm() {
-    info_.id = "psv";
-    info_.backend = "reference";
-    info_.variants = psv::psv_variants();
-    info_.summary =
-        "partitioned shadow volumes: TOP tree with exact plane sides; PSV, D-PSV, D-Stackless "
-        "and D-Hybrid queries (Mora 2016)";
-    info_.capabilities.output = OutputKind::hard_shadow;
-    info_.capabilities.point_light = true;
-    info_.capabilities.directional_light = true;
-  }
+  using VariantTableAlgorithm::VariantTableAlgorithm;
 
-  const AlgorithmInfo& info() const override { return info_; }
-
+ private:
   // build: insertion order and TOP tree; query: the per-sample queries.
-  std::vector<std::string> timed_phases(const std::string&) const override {
-    return build_and_query_phases();
-  }
-
-  AlgorithmOutput run(const PreparedScene& scene, const std::string& variant) const override {
+  AlgorithmOutput run_variant(const PreparedScene& scene, const Variant& variant) const override {
     const Case& c = scene.source;
     const ViewSamples& samples = scene.view_samples;
-    psv::PsvOptions options = psv::psv_variant_options(variant);
+    psv::PsvOptions options = variant.config;
     options.seed = c.parameters.seed;
     psv::PsvResult result = psv::psv_hard_shadows(c, samples, options);
     AlgorithmOutput output;
@@ -44,15 +27,19 @@ class PsvAlgorithm final : public Algorithm {
                                shadow_samples_by_light_on_caster(c, samples, output.shadowed)});
     return output;
   }
-
- private:
-  AlgorithmInfo info_;
 };
 
 }  // namespace
 
 std::unique_ptr<Algorithm> make_psv() {
-  return std::make_unique<PsvAlgorithm>();
+  return std::make_unique<PsvAlgorithm>(
+      AlgorithmDescription{.id = "psv",
+                           .backend = "reference",
+                           .summary =
+                               "partitioned shadow volumes: TOP tree with exact plane sides; "
+                               "PSV, D-PSV, D-Stackless and D-Hybrid queries (Mora 2016)",
+                           .capabilities = point_and_directional_hard_shadows},
+      variant_table(psv::psv_variants(), psv::psv_variant_options));
 }
 
 }  // namespace shadowcts

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -22,34 +21,12 @@
 #include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/phase_clock.h"
 #include "shadowcts/phase_progress.h"
+#include "shadowcts/variant_table_algorithm.h"
 
 namespace shadowcts {
 namespace {
 
 using namespace ptsv;
-
-struct VariantConfig {
-  const char* name;
-  bool depth_buffer_2011;
-  NodeBounds bounds;
-  bool extra_planes;
-  bool two_pass;
-};
-
-constexpr VariantConfig variant_table[] = {
-    {"twopass", false, NodeBounds::explicit_boxes, true, true},
-    {"implicit", false, NodeBounds::implicit_cells, false, false},
-    {"implicit+planes", false, NodeBounds::implicit_cells, true, false},
-    {"explicit", false, NodeBounds::explicit_boxes, false, false},
-    {"explicit+planes", false, NodeBounds::explicit_boxes, true, false},
-    {"hdb2011", true, NodeBounds::implicit_cells, false, false},
-};
-
-const VariantConfig& variant_config(const std::string& variant) {
-  for (const VariantConfig& v : variant_table)
-    if (variant == v.name) return v;
-  throw std::invalid_argument("ptsv: unknown variant '" + variant + "'");
-}
 
 double max_abs(const glm::dvec3& v) {
   return std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
@@ -76,41 +53,25 @@ double implicit_corner_bound(const ClusterHierarchy& h, const ViewFrame& frame) 
   return bound;
 }
 
-class Ptsv final : public Algorithm {
+class Ptsv final : public VariantTableAlgorithm<VariantConfig> {
  public:
-  Ptsv() {
-    info_.id = "ptsv";
-    info_.backend = "reference";
-    for (const VariantConfig& v : variant_table) info_.variants.push_back(v.name);
-    info_.summary =
-        "per-triangle shadow volumes through the view-sample cluster hierarchy (Sintorn 2014): "
-        "implicit/explicit bounds, extra culling planes, two-pass traversal; hdb2011: the 2011 "
-        "hierarchical-depth-buffer PTSV. Front-face culling for closed meshes clear of the camera";
-    info_.capabilities.output = OutputKind::hard_shadow;
-    info_.capabilities.point_light = true;
-    info_.capabilities.directional_light = true;
-  }
+  using VariantTableAlgorithm::VariantTableAlgorithm;
 
-  const AlgorithmInfo& info() const override { return info_; }
-
-  // build: cluster keys and the hierarchy (hdb2011: the hierarchical depth buffer); query: the
-  // per-triangle work, shadow-volume setup and traversal (one kernel in the paper).
-  std::vector<std::string> timed_phases(const std::string&) const override {
-    return build_and_query_phases();
-  }
-
-  std::optional<std::string> unsupported_reason(const Case& c, const ViewSamples& samples,
-                                                const std::string& variant) const override {
-    if (auto why = Algorithm::unsupported_reason(c, samples, variant)) return why;
-    const std::string problem = input_problem(c, samples, variant_config(variant));
+ private:
+  // Why the variant's structures cannot hold these samples.
+  std::optional<std::string> input_problem(const Case& c, const ViewSamples& samples,
+                                           const Variant& variant) const override {
+    const std::string problem = structure_problem(c, samples, variant.config);
     if (!problem.empty()) return problem;
     return std::nullopt;
   }
 
-  AlgorithmOutput run(const PreparedScene& scene, const std::string& variant) const override {
+  // build: cluster keys and the hierarchy (hdb2011: the hierarchical depth buffer); query: the
+  // per-triangle work, shadow-volume setup and traversal (one kernel in the paper).
+  AlgorithmOutput run_variant(const PreparedScene& scene, const Variant& variant) const override {
     const Case& c = scene.source;
     const ViewSamples& samples = scene.view_samples;
-    const VariantConfig& config = variant_config(variant);
+    const VariantConfig& config = variant.config;
     hard_shadow_light(c);  // throws InputError without a point or directional light
     check_receivers(c, samples);
     if (samples.width == 0 || samples.height == 0 ||
@@ -211,10 +172,9 @@ class Ptsv final : public Algorithm {
     return output;
   }
 
- private:
   // Why the variant's structures cannot hold these samples, or "".
-  static std::string input_problem(const Case& c, const ViewSamples& samples,
-                                   const VariantConfig& config) {
+  static std::string structure_problem(const Case& c, const ViewSamples& samples,
+                                       const VariantConfig& config) {
     if (samples.width == 0 || samples.height == 0 ||
         samples.samples.size() != std::size_t(samples.width) * samples.height)
       return "the view samples are not one per pixel";
@@ -226,14 +186,33 @@ class Ptsv final : public Algorithm {
                                config.bounds == NodeBounds::implicit_cells)
         .problem;
   }
-
-  AlgorithmInfo info_;
 };
 
 }  // namespace
 
 std::unique_ptr<Algorithm> make_ptsv() {
-  return std::make_unique<Ptsv>();
+  return std::make_unique<Ptsv>(
+      AlgorithmDescription{
+          .id = "ptsv",
+          .backend = "reference",
+          .summary = "per-triangle shadow volumes through the view-sample cluster hierarchy "
+                     "(Sintorn 2014): implicit/explicit bounds, extra culling planes, two-pass "
+                     "traversal; hdb2011: the 2011 hierarchical-depth-buffer PTSV. Front-face "
+                     "culling for closed meshes clear of the camera",
+          .capabilities = point_and_directional_hard_shadows},
+      ptsv_variants());
+}
+
+std::vector<AlgorithmVariant<ptsv::VariantConfig>> ptsv_variants() {
+  using ptsv::NodeBounds;
+  return {
+      {"twopass", {false, NodeBounds::explicit_boxes, true, true}},
+      {"implicit", {false, NodeBounds::implicit_cells, false, false}},
+      {"implicit+planes", {false, NodeBounds::implicit_cells, true, false}},
+      {"explicit", {false, NodeBounds::explicit_boxes, false, false}},
+      {"explicit+planes", {false, NodeBounds::explicit_boxes, true, false}},
+      {"hdb2011", {true, NodeBounds::implicit_cells, false, false}},
+  };
 }
 
 }  // namespace shadowcts

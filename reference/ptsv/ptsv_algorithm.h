@@ -13,10 +13,28 @@
 // Every variant gives the same shadow mask (the per-sample plane test decides; node tests only
 // skip work), so they differ in their counters and time.
 #include <memory>
+#include <vector>
 
-#include "shadowcts/algorithm.h"
+#include "reference/ptsv/traversal.h"
+#include "shadowcts/variant_table_algorithm.h"
 
 namespace shadowcts {
+
+namespace ptsv {
+
+// What a variant name means, for every backend of ptsv.
+struct VariantConfig {
+  bool depth_buffer_2011;
+  NodeBounds bounds;
+  bool extra_planes;
+  bool two_pass;
+  bool implicit_cells() const { return bounds == NodeBounds::implicit_cells; }
+};
+
+}  // namespace ptsv
+
+// The variants above, in that order; the ports register some of them.
+std::vector<AlgorithmVariant<ptsv::VariantConfig>> ptsv_variants();
 
 // id "ptsv", backend "reference".
 std::unique_ptr<Algorithm> make_ptsv();

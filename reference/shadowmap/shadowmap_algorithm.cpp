@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <stdexcept>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -18,6 +17,7 @@
 #include "shadowcts/phase_clock.h"
 #include "shadowcts/phase_progress.h"
 #include "shadowcts/thread_limit.h"
+#include "shadowcts/variant_table_algorithm.h"
 
 namespace shadowcts {
 namespace {
@@ -28,15 +28,6 @@ struct ShadowMapVariant {
   std::uint32_t resolution;
   DepthBias bias;
 };
-
-ShadowMapVariant parse_variant(const std::string& variant) {
-  if (variant == "1k") return {1024, DepthBias{}};
-  if (variant == "2k") return {2048, DepthBias{}};
-  if (variant == "4k") return {4096, DepthBias{}};
-  if (variant == "8k") return {8192, DepthBias{}};
-  if (variant == "2k+nobias") return {2048, no_bias};
-  throw std::invalid_argument("shadowmap: unknown variant '" + variant + "'");
-}
 
 // Near plane of the cube faces, as a fraction of the case scale: casters closer than that to the
 // light are clipped away (a real renderer has the same blind spot).
@@ -67,50 +58,17 @@ void look_up(const LightView& view, const DepthMap& map, const DepthBias& bias,
       });
 }
 
-class ShadowMapAlgorithm final : public Algorithm {
+class ShadowMapAlgorithm final : public VariantTableAlgorithm<ShadowMapVariant> {
  public:
-  ShadowMapAlgorithm() {
-    info_.id = "shadowmap";
-    info_.backend = "reference";
-    info_.variants = {"1k", "2k", "4k", "8k", "2k+nobias"};
-    info_.summary =
-        "software shadow map: cube map (point) or fitted orthographic map (directional), "
-        "top-left-rule rasterizer, nearest texel, constant + slope-scaled bias";
-    info_.capabilities.output = OutputKind::hard_shadow;
-    info_.capabilities.point_light = true;
-    info_.capabilities.directional_light = true;
-    info_.capabilities.approximate = true;
-  }
+  using VariantTableAlgorithm::VariantTableAlgorithm;
 
-  const AlgorithmInfo& info() const override { return info_; }
-
-  // The robust mismatch rate above which a shadow map is broken rather than approximate (above
-  // it the verdict is Fail). Measured 2026-12-02 on the default fixtures at 256 x 256, the worst
-  // rate per variant: 1k 0.0278, 2k 0.0143, 4k 0.0067, 8k 0.0025 (all foliage.10k, texel size
-  // against fine foliage), 2k+nobias 0.484 (model.spider: acne on about half of the lit
-  // samples). The ceilings leave about ten times that for the biased maps, but at least 0.1,
-  // since depth precision, not resolution, sets the error far from the origin (the stiff
-  // offsets 1e5-1e7 reach 0.06 at every resolution); 2k+nobias gets 1.25 times its worst. All
-  // stay far below the 0.97 of a map that answers nearly everything wrong
-  // (ApproximateCeiling tests in tests/conformance/broken_algorithm_test.cpp).
-  double robust_mismatch_ceiling(const std::string& variant) const override {
-    if (variant == "1k") return 0.25;
-    if (variant == "2k") return 0.15;
-    if (variant == "4k" || variant == "8k") return 0.1;
-    if (variant == "2k+nobias") return 0.6;
-    throw std::invalid_argument("shadowmap: unknown variant '" + variant + "'");
-  }
-
+ private:
   // build: the caster list and the depth maps (fitting, rasterization); query: binning the
   // samples by map and the depth look-ups. Point lights alternate the two face by face.
-  std::vector<std::string> timed_phases(const std::string&) const override {
-    return build_and_query_phases();
-  }
-
-  AlgorithmOutput run(const PreparedScene& scene, const std::string& variant) const override {
+  AlgorithmOutput run_variant(const PreparedScene& scene, const Variant& variant) const override {
     const Case& c = scene.source;
     const ViewSamples& samples = scene.view_samples;
-    const ShadowMapVariant v = parse_variant(variant);
+    const ShadowMapVariant& v = variant.config;
     const HardShadowLight light = hard_shadow_light(c);
     PhaseClock clock;
     std::vector<Triangle> casters;
@@ -171,15 +129,38 @@ class ShadowMapAlgorithm final : public Algorithm {
     output.phase_ms = clock.times();
     return output;
   }
-
- private:
-  AlgorithmInfo info_;
 };
 
 }  // namespace
 
 std::unique_ptr<Algorithm> make_shadowmap() {
-  return std::make_unique<ShadowMapAlgorithm>();
+  return std::make_unique<ShadowMapAlgorithm>(
+      AlgorithmDescription{.id = "shadowmap",
+                           .backend = "reference",
+                           .summary =
+                               "software shadow map: cube map (point) or fitted orthographic map "
+                               "(directional), top-left-rule rasterizer, nearest texel, constant + "
+                               "slope-scaled bias",
+                           .capabilities = {.output = OutputKind::hard_shadow,
+                                            .point_light = true,
+                                            .directional_light = true,
+                                            .approximate = true}},
+      // The robust mismatch rate above which a shadow map is broken rather than approximate (above
+      // it the verdict is Fail). Measured 2026-12-02 on the default fixtures at 256 x 256, the
+      // worst rate per variant: 1k 0.0278, 2k 0.0143, 4k 0.0067, 8k 0.0025 (all foliage.10k, texel
+      // size against fine foliage), 2k+nobias 0.484 (model.spider: acne on about half of the lit
+      // samples). The ceilings leave about ten times that for the biased maps, but at least 0.1,
+      // since depth precision, not resolution, sets the error far from the origin (the stiff
+      // offsets 1e5-1e7 reach 0.06 at every resolution); 2k+nobias gets 1.25 times its worst. All
+      // stay far below the 0.97 of a map that answers nearly everything wrong
+      // (ApproximateCeiling tests in tests/conformance/broken_algorithm_test.cpp).
+      std::vector<AlgorithmVariant<ShadowMapVariant>>{
+          {.name = "1k", .config = {1024, DepthBias{}}, .robust_mismatch_ceiling = 0.25},
+          {.name = "2k", .config = {2048, DepthBias{}}, .robust_mismatch_ceiling = 0.15},
+          {.name = "4k", .config = {4096, DepthBias{}}, .robust_mismatch_ceiling = 0.1},
+          {.name = "8k", .config = {8192, DepthBias{}}, .robust_mismatch_ceiling = 0.1},
+          {.name = "2k+nobias", .config = {2048, no_bias}, .robust_mismatch_ceiling = 0.6},
+      });
 }
 
 }  // namespace shadowcts

@@ -30,35 +30,17 @@ struct TileCounters {
                 rasterized = 0, rasterized_max = 0;
 };
 
-class Softtile final : public Algorithm {
+class Softtile final : public VariantTableAlgorithm<softtile::Variant> {
  public:
-  Softtile() {
-    info_.id = "softtile";
-    info_.backend = "reference";
-    info_.variants = variant_names();
-    info_.summary =
-        "tiled per-triangle soft shadow volumes (Kalbertodt 2023): gather pass, 16x16 tiles with "
-        "sphere/capsule bounds and truncated cones, per-pixel disk bitmask rasterization";
-    info_.capabilities.output = OutputKind::soft_shadow;
-    info_.capabilities.sun_disk = true;
-  }
+  using VariantTableAlgorithm::VariantTableAlgorithm;
 
-  const AlgorithmInfo& info() const override { return info_; }
-
+ private:
   // build: the gather pass (clusters, triangle cones, light-space triangles); query: the tile and
   // fragment pass (tile bounds, cone culling, per-pixel disk rasterization).
-  std::vector<std::string> timed_phases(const std::string&) const override {
-    return build_and_query_phases();
-  }
-
-  SoftErrorBudget soft_error_budget(const std::string& variant) const override {
-    return softtile_error_budget(variant);
-  }
-
-  AlgorithmOutput run(const PreparedScene& scene, const std::string& variant_name) const override {
+  AlgorithmOutput run_variant(const PreparedScene& scene, const Variant& row) const override {
     const Case& c = scene.source;
     const ViewSamples& samples = scene.view_samples;
-    const Variant variant = parse_variant(variant_name);
+    const softtile::Variant& variant = row.config;
     check_receivers(c, samples);
     PhaseClock clock;
     AlgorithmOutput output;
@@ -155,15 +137,26 @@ class Softtile final : public Algorithm {
                        {"triangles_rasterized_max_per_pixel", total.rasterized_max}};
     return output;
   }
-
- private:
-  AlgorithmInfo info_;
 };
 
 }  // namespace
 
 std::unique_ptr<Algorithm> make_softtile() {
-  return std::make_unique<Softtile>();
+  return std::make_unique<Softtile>(
+      AlgorithmDescription{
+          .id = "softtile",
+          .backend = "reference",
+          .summary = "tiled per-triangle soft shadow volumes (Kalbertodt 2023): gather pass, "
+                     "16x16 tiles with sphere/capsule bounds and truncated cones, per-pixel disk "
+                     "bitmask rasterization",
+          .capabilities = {.output = OutputKind::soft_shadow, .sun_disk = true}},
+      softtile_variants());
+}
+
+std::vector<AlgorithmVariant<Variant>> softtile_variants() {
+  auto table = variant_table(variant_names(), parse_variant);
+  for (auto& v : table) v.soft_error_budget = softtile_error_budget(v.name);
+  return table;
 }
 
 SoftErrorBudget softtile_error_budget(const std::string& variant) {

@@ -14,8 +14,10 @@
 // pixel_triangle_tests, triangles_rasterized, triangles_rasterized_max_per_pixel.
 #include <memory>
 #include <string>
+#include <vector>
 
-#include "shadowcts/algorithm.h"
+#include "reference/softtile/softtile_variant.h"
+#include "shadowcts/variant_table_algorithm.h"
 
 namespace shadowcts {
 
@@ -29,5 +31,9 @@ std::unique_ptr<Algorithm> make_softtile();
 // The error budget each variant declares (docs/soft-shadow-budgets.md). Throws
 // std::invalid_argument for an unknown variant.
 SoftErrorBudget softtile_error_budget(const std::string& variant);
+
+// The variants every softtile backend registers some of: softtile::variant_names(), each with its
+// softtile::parse_variant() and softtile_error_budget().
+std::vector<AlgorithmVariant<softtile::Variant>> softtile_variants();
 
 }  // namespace shadowcts

@@ -1,7 +1,6 @@
 #include "reference/stencil/stencil_algorithm.h"
 
 #include <atomic>
-#include <stdexcept>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -17,44 +16,24 @@
 #include "shadowcts/phase_clock.h"
 #include "shadowcts/phase_progress.h"
 #include "shadowcts/thread_limit.h"
+#include "shadowcts/variant_table_algorithm.h"
 
 namespace shadowcts {
 namespace {
 
 using namespace stencil;
 
-CountingMode parse_variant(const std::string& variant) {
-  if (variant == "zfail") return CountingMode::z_fail;
-  if (variant == "zpass") return CountingMode::z_pass;
-  throw std::invalid_argument("stencil: unknown variant '" + variant + "'");
-}
-
-class StencilAlgorithm final : public Algorithm {
+class StencilAlgorithm final : public VariantTableAlgorithm<stencil::CountingMode> {
  public:
-  StencilAlgorithm() {
-    info_.id = "stencil";
-    info_.backend = "reference";
-    info_.variants = {"zfail", "zpass"};
-    info_.summary =
-        "software stencil shadow volumes: silhouette quads from exact-position connectivity, "
-        "exact crossing counts per sample; z-fail with caps, z-pass from the eye";
-    info_.capabilities.output = OutputKind::hard_shadow;
-    info_.capabilities.point_light = true;
-    info_.capabilities.directional_light = true;
-  }
+  using VariantTableAlgorithm::VariantTableAlgorithm;
 
-  const AlgorithmInfo& info() const override { return info_; }
-
+ private:
   // build: occluders, silhouettes, volume faces and the view grid over them; query: the crossing
   // counts per sample.
-  std::vector<std::string> timed_phases(const std::string&) const override {
-    return build_and_query_phases();
-  }
-
-  AlgorithmOutput run(const PreparedScene& scene, const std::string& variant) const override {
+  AlgorithmOutput run_variant(const PreparedScene& scene, const Variant& variant) const override {
     const Case& c = scene.source;
     const ViewSamples& samples = scene.view_samples;
-    const CountingMode mode = parse_variant(variant);
+    const CountingMode mode = variant.config;
     const HardShadowLight light = hard_shadow_light(c);
     check_receivers(c, samples);
     const glm::dvec3 eye(c.camera.position);
@@ -155,15 +134,21 @@ class StencilAlgorithm final : public Algorithm {
     output.per_sample_counters = {{"faces_tested", std::move(faces_tested)}};
     return output;
   }
-
- private:
-  AlgorithmInfo info_;
 };
 
 }  // namespace
 
 std::unique_ptr<Algorithm> make_stencil() {
-  return std::make_unique<StencilAlgorithm>();
+  return std::make_unique<StencilAlgorithm>(
+      AlgorithmDescription{
+          .id = "stencil",
+          .backend = "reference",
+          .summary = "software stencil shadow volumes: silhouette quads from exact-position "
+                     "connectivity, exact crossing counts per sample; z-fail with caps, z-pass "
+                     "from the eye",
+          .capabilities = point_and_directional_hard_shadows},
+      std::vector<AlgorithmVariant<stencil::CountingMode>>{
+          {"zfail", stencil::CountingMode::z_fail}, {"zpass", stencil::CountingMode::z_pass}});
 }
 
 }  // namespace shadowcts

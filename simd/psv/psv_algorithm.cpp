@@ -2,37 +2,21 @@
 
 #include "reference/light_on_caster.h"
 #include "reference/psv/psv_shadows.h"
-#include "shadowcts/phase_clock.h"
+#include "shadowcts/variant_table_algorithm.h"
 #include "simd/psv/psv_shadows.h"
 
 namespace shadowcts {
 namespace {
 
-class SimdPsvAlgorithm final : public Algorithm {
+class SimdPsvAlgorithm final : public VariantTableAlgorithm<psv::PsvOptions> {
  public:
-  SimdPsvAlgorithm() {
-    info_.id = "psv";
-    info_.backend = "simd";
-    info_.variants = psv::psv_variants();
-    info_.summary =
-        "partitioned shadow volumes on oneTBB + Highway: the reference's TOP tree built in "
-        "parallel batches, queries in 4x4-pixel packets with node tests in vector lanes; PSV, "
-        "D-PSV, D-Stackless, D-Hybrid (Mora 2016)";
-    info_.capabilities.output = OutputKind::hard_shadow;
-    info_.capabilities.point_light = true;
-    info_.capabilities.directional_light = true;
-  }
+  using VariantTableAlgorithm::VariantTableAlgorithm;
 
-  const AlgorithmInfo& info() const override { return info_; }
-
+ private:
   // build: insertion order and TOP tree; query: the packet queries.
-  std::vector<std::string> timed_phases(const std::string&) const override {
-    return build_and_query_phases();
-  }
-
-  AlgorithmOutput run(const PreparedScene& scene, const std::string& variant) const override {
+  AlgorithmOutput run_variant(const PreparedScene& scene, const Variant& variant) const override {
     simd::psv::SimdPsvOptions options;
-    options.psv = psv::psv_variant_options(variant);
+    options.psv = variant.config;
     options.psv.seed = scene.source.parameters.seed;
     simd::psv::SimdPsvResult result = simd::psv::psv_hard_shadows(scene, options);
     AlgorithmOutput output;
@@ -44,15 +28,20 @@ class SimdPsvAlgorithm final : public Algorithm {
          shadow_samples_by_light_on_caster(scene.source, scene.view_samples, output.shadowed)});
     return output;
   }
-
- private:
-  AlgorithmInfo info_;
 };
 
 }  // namespace
 
 std::unique_ptr<Algorithm> make_simd_psv() {
-  return std::make_unique<SimdPsvAlgorithm>();
+  return std::make_unique<SimdPsvAlgorithm>(
+      AlgorithmDescription{
+          .id = "psv",
+          .backend = "simd",
+          .summary = "partitioned shadow volumes on oneTBB + Highway: the reference's TOP tree "
+                     "built in parallel batches, queries in 4x4-pixel packets with node tests in "
+                     "vector lanes; PSV, D-PSV, D-Stackless, D-Hybrid (Mora 2016)",
+          .capabilities = point_and_directional_hard_shadows},
+      variant_table(psv::psv_variants(), psv::psv_variant_options));
 }
 
 }  // namespace shadowcts

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -10,10 +9,12 @@
 
 #include "reference/light_on_caster.h"
 #include "reference/ptsv/hdb2011.h"
+#include "reference/ptsv/ptsv_algorithm.h"
 #include "reference/ptsv/triangle_setup.h"
 #include "reference/ptsv/two_pass.h"
 #include "shadowcts/errors.h"
 #include "shadowcts/phase_clock.h"
+#include "shadowcts/variant_table_algorithm.h"
 #include "simd/ptsv/cluster_keys.h"
 #include "simd/ptsv/receiver_rule.h"
 #include "simd/ptsv/traversal.h"
@@ -25,24 +26,14 @@ namespace {
 namespace ref = ::shadowcts::ptsv;
 namespace port = ::shadowcts::simd::ptsv;
 
-struct VariantConfig {
-  const char* name;
-  bool implicit_cells;
-  bool extra_planes;
-  bool two_pass;
-};
+using ref::VariantConfig;
 
-// The reference's variant_table rows that this backend ports.
-constexpr VariantConfig variant_table[] = {
-    {"twopass", false, true, true},
-    {"explicit+planes", false, true, false},
-    {"implicit", true, false, false},
-};
+// The reference's variants that this backend ports.
+const std::vector<AlgorithmVariant<VariantConfig>> ported_variants =
+    select_variants(ptsv_variants(), {"twopass", "explicit+planes", "implicit"});
 
 const VariantConfig& variant_config(const std::string& variant) {
-  for (const VariantConfig& v : variant_table)
-    if (variant == v.name) return v;
-  throw std::invalid_argument("ptsv simd: unknown variant '" + variant + "'");
+  return find_variant(ported_variants, variant, "ptsv/simd").config;
 }
 
 double max_abs(const glm::dvec3& v) {
@@ -97,13 +88,13 @@ Built build(const PreparedScene& scene, const ref::ViewFrame& frame, const port:
   Built b;
   b.layout = ref::make_cluster_key_layout(c.camera, samples.width, samples.height);
   if (!b.layout.problem.empty()) throw InputError(c.source, "camera", b.layout.problem);
-  b.keys = port::assign_cluster_keys(b.layout.layout, frame, scene, config.implicit_cells);
+  b.keys = port::assign_cluster_keys(b.layout.layout, frame, scene, config.implicit_cells());
   if (!b.keys.problem.empty()) throw InputError(c.source, "view samples", b.keys.problem);
   std::vector<double> reach(scene.samples.size());
   const std::vector<double>& all = rule.reject_reach();
   for (std::size_t i = 0; i < reach.size(); ++i) reach[i] = all[scene.samples.index[i]];
   b.hierarchy = port::build_hierarchy(b.layout.layout, frame, scene, b.keys.key, reach,
-                                      config.implicit_cells);
+                                      config.implicit_cells());
   return b;
 }
 
@@ -118,31 +109,13 @@ double implicit_corner_bound(const port::Hierarchy& h, const ref::ViewFrame& fra
   return bound;
 }
 
-class SimdPtsv final : public Algorithm {
+class SimdPtsv final : public VariantTableAlgorithm<VariantConfig> {
  public:
-  SimdPtsv() {
-    info_.id = "ptsv";
-    info_.backend = "simd";
-    for (const VariantConfig& v : variant_table) info_.variants.push_back(v.name);
-    info_.summary =
-        "per-triangle shadow volumes through the view-sample cluster hierarchy (Sintorn 2014), "
-        "Highway lanes over a node's children and a leaf's samples, oneTBB over nodes and "
-        "two-pass jobs; the reference's keys, nodes, counters and mask";
-    info_.capabilities.output = OutputKind::hard_shadow;
-    info_.capabilities.point_light = true;
-    info_.capabilities.directional_light = true;
-  }
+  using VariantTableAlgorithm::VariantTableAlgorithm;
 
-  const AlgorithmInfo& info() const override { return info_; }
-
-  std::vector<std::string> timed_phases(const std::string&) const override {
-    return build_and_query_phases();
-  }
-
-  std::optional<std::string> unsupported_reason(const Case& c, const ViewSamples& samples,
-                                                const std::string& variant) const override {
-    if (auto why = Algorithm::unsupported_reason(c, samples, variant)) return why;
-    const VariantConfig& config = variant_config(variant);
+ private:
+  std::optional<std::string> input_problem(const Case& c, const ViewSamples& samples,
+                                           const Variant& variant) const override {
     if (samples.width == 0 || samples.height == 0 ||
         samples.samples.size() != std::size_t(samples.width) * samples.height)
       return "the view samples are not one per pixel";
@@ -151,15 +124,16 @@ class SimdPtsv final : public Algorithm {
         ref::make_cluster_key_layout(c.camera, samples.width, samples.height);
     if (!layout.problem.empty()) return layout.problem;
     const std::string problem =
-        ref::assign_cluster_keys(layout.layout, frame, samples, config.implicit_cells).problem;
+        ref::assign_cluster_keys(layout.layout, frame, samples, variant.config.implicit_cells())
+            .problem;
     if (!problem.empty()) return problem;
     return std::nullopt;
   }
 
-  AlgorithmOutput run(const PreparedScene& scene, const std::string& variant) const override {
+  AlgorithmOutput run_variant(const PreparedScene& scene, const Variant& variant) const override {
     const Case& c = scene.source;
     const ViewSamples& samples = scene.view_samples;
-    const VariantConfig& config = variant_config(variant);
+    const VariantConfig& config = variant.config;
     check_inputs(c, samples);
     PhaseClock clock;
     const ref::ViewFrame frame = ref::make_view_frame(c.camera, samples.width, samples.height);
@@ -176,14 +150,14 @@ class SimdPtsv final : public Algorithm {
     const port::PackedVolumes volumes = port::set_up_shadow_volumes(c, culled, setup, bound);
     const port::Hierarchy& h = built.hierarchy;
     const double node_bound =
-        config.implicit_cells ? std::max(bound, implicit_corner_bound(h, frame)) : bound;
+        config.implicit_cells() ? std::max(bound, implicit_corner_bound(h, frame)) : bound;
     port::TraversalInputs inputs;
     inputs.hierarchy = &h;
     inputs.volumes = &volumes;
     inputs.rule = &rule;
     inputs.source = &c;
     inputs.scene = &scene;
-    inputs.config.implicit_cells = config.implicit_cells;
+    inputs.config.implicit_cells = config.implicit_cells();
     inputs.config.extra_planes = config.extra_planes;
     inputs.config.job_level = config.two_pass ? ref::default_job_level(h.leaf_level()) : -1;
     inputs.tolerances = ref::NodeTolerances::for_bounds(node_bound, bound);
@@ -221,15 +195,21 @@ class SimdPtsv final : public Algorithm {
     output.phase_ms = clock.times();
     return output;
   }
-
- private:
-  AlgorithmInfo info_;
 };
 
 }  // namespace
 
 std::unique_ptr<Algorithm> make_simd_ptsv() {
-  return std::make_unique<SimdPtsv>();
+  return std::make_unique<SimdPtsv>(
+      AlgorithmDescription{
+          .id = "ptsv",
+          .backend = "simd",
+          .summary = "per-triangle shadow volumes through the view-sample cluster hierarchy "
+                     "(Sintorn 2014), Highway lanes over a node's children and a leaf's samples, "
+                     "oneTBB over nodes and two-pass jobs; the reference's keys, nodes, counters "
+                     "and mask",
+          .capabilities = point_and_directional_hard_shadows},
+      ported_variants);
 }
 
 namespace simd::ptsv {

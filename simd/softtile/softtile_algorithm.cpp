@@ -78,34 +78,15 @@ struct TileCounters {
                 rasterized = 0, rasterized_max = 0;
 };
 
-class SimdSofttile final : public Algorithm {
+class SimdSofttile final : public VariantTableAlgorithm<ref::Variant> {
  public:
-  SimdSofttile() {
-    const auto reference = make_softtile();
-    info_ = reference->info();
-    info_.backend = "simd";
-    // The variants of issue 21 (the others run too, and are tested, but each registered variant
-    // is a conformance record whose exact soft oracle costs ~10 s of CI time).
-    info_.variants = {"grid16", "grid16+rot", "rows15", "rows31", "post"};
-    info_.summary =
-        "softtile over oneTBB tiles with the disk bitmask rasterized in Highway lanes (rows in "
-        "lanes, one triangle's edge functions per vector)";
-  }
+  using VariantTableAlgorithm::VariantTableAlgorithm;
 
-  const AlgorithmInfo& info() const override { return info_; }
-
-  std::vector<std::string> timed_phases(const std::string&) const override {
-    return build_and_query_phases();
-  }
-
-  SoftErrorBudget soft_error_budget(const std::string& variant) const override {
-    return softtile_error_budget(variant);
-  }
-
-  AlgorithmOutput run(const PreparedScene& scene, const std::string& variant_name) const override {
+ private:
+  AlgorithmOutput run_variant(const PreparedScene& scene, const Variant& row) const override {
     const Case& c = scene.source;
     const ViewSamples& samples = scene.view_samples;
-    const ref::Variant variant = ref::parse_variant(variant_name);
+    const ref::Variant& variant = row.config;
     check_receivers(c, samples);
     PhaseClock clock;
     AlgorithmOutput output;
@@ -183,9 +164,6 @@ class SimdSofttile final : public Algorithm {
                        {"triangles_rasterized_max_per_pixel", total.rasterized_max}};
     return output;
   }
-
- private:
-  AlgorithmInfo info_;
 };
 
 }  // namespace
@@ -194,7 +172,17 @@ class SimdSofttile final : public Algorithm {
 namespace shadowcts {
 
 std::unique_ptr<Algorithm> make_simd_softtile() {
-  return std::make_unique<simd::SimdSofttile>();
+  return std::make_unique<simd::SimdSofttile>(
+      AlgorithmDescription{
+          .id = "softtile",
+          .backend = "simd",
+          .summary = "softtile over oneTBB tiles with the disk bitmask rasterized in Highway lanes "
+                     "(rows in lanes, one triangle's edge functions per vector)",
+          .capabilities = {.output = OutputKind::soft_shadow, .sun_disk = true},
+          // The variants of issue 21 (the others run too, and are tested, but each registered
+          // variant is a conformance record whose exact soft oracle costs ~10 s of CI time).
+          .registered = {"grid16", "grid16+rot", "rows15", "rows31", "post"}},
+      softtile_variants());
 }
 
 }  // namespace shadowcts
