@@ -17,7 +17,7 @@ struct ExactBandClassifier::Query {
   ShadowSegment segment;
   double inflation = 0.0;  // the candidates' reach: the largest cube this query decides
   bool shadowed = false;
-  BandCandidate first_blocker{0.0, no_triangle};  // the first candidate that blocks p itself
+  BandCandidate first_blocker{0.0, no_triangle};     // the first candidate that blocks p itself
   std::vector<BandCandidate>* candidates = nullptr;  // sorted by (separation, triangle)
   std::vector<BandCandidate> blockers;  // shadowed: every candidate that blocks p, first first
   std::uint32_t receiver = no_receiver;
@@ -229,14 +229,17 @@ SampleTruth ExactBandClassifier::classify(const ViewSample& sample,
                                           bool with_exponent) const {
   Query q = start(sample, candidates, with_exponent);
   gather(q, true);
+  if (const std::optional<SampleTruth> truth = settled(q, with_exponent)) return *truth;
+  if (q.shadowed) gather(q, false);  // the candidate set is complete only after a full traversal
   return finish(q, with_exponent);
 }
 
 void ExactBandClassifier::classify_packet(const ViewSample* const* samples, int count,
                                           std::vector<BandCandidate>* candidates,
                                           SampleTruth* truths) const {
-  Query q[CasterBvh::packet_lanes];
-  ShadowSegment segments[CasterBvh::packet_lanes];
+  constexpr int lanes = CasterBvh::packet_lanes;
+  Query q[lanes];
+  ShadowSegment segments[lanes];
   for (int l = 0; l < count; ++l) {
     q[l] = start(*samples[l], candidates[l], false);
     segments[l] = q[l].segment;
@@ -244,22 +247,37 @@ void ExactBandClassifier::classify_packet(const ViewSample* const* samples, int 
   casters_.visit_packet(segments, count, class_length_, [&](int lane, std::uint32_t triangle) {
     return consider(q[lane], triangle, true);
   });
-  for (int l = 0; l < count; ++l) truths[l] = finish(q[l], false);
+  // The shadowed samples the first blocker does not settle gather every candidate: a second
+  // traversal, as a packet of those lanes.
+  int open[lanes], full[lanes], opened = 0, fulls = 0;
+  for (int l = 0; l < count; ++l) {
+    if (const std::optional<SampleTruth> truth = settled(q[l], false)) {
+      truths[l] = *truth;
+      continue;
+    }
+    open[opened++] = l;
+    if (!q[l].shadowed) continue;
+    q[l].candidates->clear();
+    q[l].first_blocker = BandCandidate{0.0, no_triangle};
+    segments[fulls] = q[l].segment;
+    full[fulls++] = l;
+  }
+  casters_.visit_packet(segments, fulls, class_length_, [&](int lane, std::uint32_t triangle) {
+    return consider(q[full[lane]], triangle, false);
+  });
+  for (int k = 0; k < opened; ++k) truths[open[k]] = finish(q[open[k]], false);
 }
 
-// The rest of classify() after the first gather (stopped at the first blocker).
-SampleTruth ExactBandClassifier::finish(Query& q, bool with_exponent) const {
-  std::vector<BandCandidate>& candidates = *q.candidates;
+// The answer at p after the first gather (stopped at the first blocker), and the truth where that
+// settles it: lit or shadowed at every point of the cube.
+std::optional<SampleTruth> ExactBandClassifier::settled(Query& q, bool with_exponent) const {
   q.shadowed = q.first_blocker.triangle != no_triangle;
-  const MovedPoint at_p{q.position, 0.0, {0, 0, 0}};
-
   SampleTruth truth;
   truth.shadowed = q.shadowed;
-  const BandClass robust_class = q.shadowed ? BandClass::robust_shadowed : BandClass::robust_lit;
   if (!with_exponent) {
     truth.robust_exponent = robust_exponent_unknown;
     // Below the float32 resolution every sample is robust.
-    truth.band = robust_class;
+    truth.band = q.shadowed ? BandClass::robust_shadowed : BandClass::robust_lit;
     if (!has_class_length_) return truth;
     if (q.shadowed && cube_in_shadow_of(q, q.first_blocker, class_length_)) return truth;
   } else if (q.shadowed && cube_in_shadow_of(q, q.first_blocker, largest_move_)) {
@@ -267,7 +285,17 @@ SampleTruth ExactBandClassifier::finish(Query& q, bool with_exponent) const {
     truth.robust_exponent = band_max_exponent;
     return truth;
   }
-  if (q.shadowed) gather(q, false);  // the candidate set is complete only after a full traversal
+  return std::nullopt;
+}
+
+// The rest of classify(), on the complete candidate set.
+SampleTruth ExactBandClassifier::finish(Query& q, bool with_exponent) const {
+  std::vector<BandCandidate>& candidates = *q.candidates;
+  const MovedPoint at_p{q.position, 0.0, {0, 0, 0}};
+  SampleTruth truth;
+  truth.shadowed = q.shadowed;
+  truth.band = q.shadowed ? BandClass::robust_shadowed : BandClass::robust_lit;
+  truth.robust_exponent = robust_exponent_unknown;
   std::sort(candidates.begin(), candidates.end(),
             [](const BandCandidate& a, const BandCandidate& b) {
               if (a.separation != b.separation) return a.separation < b.separation;

@@ -85,6 +85,7 @@ class ExactBandClassifier {
               bool with_exponent) const;
   bool consider(Query& q, std::uint32_t triangle, bool stop_at_first_blocker) const;
   void gather(Query& q, bool stop_at_first_blocker) const;
+  std::optional<SampleTruth> settled(Query& q, bool with_exponent) const;
   SampleTruth finish(Query& q, bool with_exponent) const;
   bool cube_in_shadow_of(const Query& q, const BandCandidate& blocker, double delta) const;
   bool blocks(const Query& q, const BandCandidate& candidate, const MovedPoint& x) const;

@@ -1,5 +1,6 @@
 // The candidate set of the exact oracle can never miss a triangle that blocks the sample or any
 // sample moved by the band: checked against the exact predicate over every caster.
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -99,6 +100,55 @@ TEST(CandidateSet, NeverMissesABlockerAroundSharedEdges) {
   h.add_ground_sample({1.0f, 0.0f, 1.0f});
   h.add_ground_sample({0.5f, 0.0f, -1.0f});
   EXPECT_GT(check_conservative(h, 1), 50u);
+}
+
+// visit_packet visits, for every lane, exactly what visit() visits for that lane's query alone,
+// in the same order, also when lanes stop early and when a packet is not full; and only lanes'
+// own triangles.
+void check_packet_visits(const testing::HandBuiltCase& h) {
+  const Case& c = h.c;
+  const HardShadowLight light = hard_shadow_light(c);
+  const double scale = c.scale();
+  const CasterBvh bvh(c);
+  std::vector<ShadowSegment> segments;
+  for (const ViewSample& sample : h.samples.samples)
+    segments.push_back(make_shadow_segment(glm::dvec3(sample.position), light, scale));
+  std::size_t visits = 0;
+  for (const double inflation : {0.0, std::ldexp(scale, -16), std::ldexp(scale, -10)})
+    for (const std::size_t stop_after : {std::size_t(0), std::size_t(1), std::size_t(3)})
+      for (std::size_t first = 0; first < segments.size(); first += CasterBvh::packet_lanes - 3) {
+        // Packets of 13 (not full), from every 13th sample.
+        const int lanes =
+            int(std::min<std::size_t>(CasterBvh::packet_lanes - 3, segments.size() - first));
+        const std::size_t n = std::size_t(lanes);
+        std::vector<std::vector<std::uint32_t>> alone(n), packed(n);
+        for (int l = 0; l < lanes; ++l)
+          bvh.visit(segments[first + std::size_t(l)], inflation, [&](std::uint32_t t) {
+            alone[std::size_t(l)].push_back(t);
+            return stop_after != 0 && alone[std::size_t(l)].size() == stop_after;
+          });
+        bvh.visit_packet(&segments[first], lanes, inflation, [&](int l, std::uint32_t t) {
+          EXPECT_TRUE(l >= 0 && l < lanes);
+          packed[std::size_t(l)].push_back(t);
+          return stop_after != 0 && packed[std::size_t(l)].size() == stop_after;
+        });
+        for (int l = 0; l < lanes; ++l) {
+          ASSERT_EQ(alone[std::size_t(l)], packed[std::size_t(l)])
+              << "sample " << first + std::size_t(l) << ", inflation " << inflation;
+          visits += alone[std::size_t(l)].size();
+        }
+      }
+  EXPECT_GT(visits, 1000u);
+}
+
+TEST(CandidateSet, PacketVisitsWhatEachQueryVisitsAloneInTheSameOrder) {
+  check_packet_visits(
+      testing::make_random_case(7, 4, 300, 0.75f, 240, testing::point_light({1.5f, 10.0f, 0.75f})));
+  check_packet_visits(testing::make_random_case(
+      8, 4, 300, 0.75f, 240, testing::directional_light({0.25f, 1.0f, -0.375f})));
+  // Axis-aligned light directions: zero direction components in every lane.
+  check_packet_visits(testing::make_random_case(10, 4, 300, 0.75f, 240,
+                                                testing::directional_light({0.0f, 1.0f, 0.0f})));
 }
 
 // The box test alone, at boxes that touch the query in exactly one point: the segment's exact

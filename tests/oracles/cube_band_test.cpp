@@ -2,6 +2,7 @@
 // coordinates), and the exact oracle's band against brute force on random cases: a sample robust
 // at a length has the same exact answer everywhere in the cube of that half-width, robustness is
 // monotone in the length, and no move of the 14 changes the answer of a robust sample.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <random>
@@ -10,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "hand_built_case.h"
+#include "oracles/ambiguity_band.h"
 #include "oracles/band_moves.h"
 #include "oracles/caster_bvh.h"
 #include "oracles/caster_closure.h"
@@ -307,6 +309,40 @@ TEST_P(BandOnRandomCases, RobustMeansConstantOnTheWholeCube) {
   }
   EXPECT_GT(robust_samples, h.samples.samples.size() / 2);
   EXPECT_GT(checked_points, 1000u);
+}
+
+// classify_packet (the oracle's path) gives every sample of a packet the truth classify() gives
+// it alone, at an eps_rel that is a power of two and at one that is not.
+TEST_P(BandOnRandomCases, PacketsGiveEverySampleItsOwnTruth) {
+  auto h = random_case(GetParam());
+  for (const double eps_rel : {0x1p-16, 3e-5}) {
+    h.c.parameters.eps_rel = eps_rel;
+    const HardShadowLight light = hard_shadow_light(h.c);
+    const CasterBvh casters(h.c);
+    const ExactShadowPredicate predicate(light, h.c.scale());
+    const ExactBandClassifier classifier(h.c, light, casters, predicate);
+    std::vector<const ViewSample*> regular;
+    for (const ViewSample& s : h.samples.samples)
+      if (s.sample_class == SampleClass::regular) regular.push_back(&s);
+    std::vector<BandCandidate> scratch, candidates[CasterBvh::packet_lanes];
+    SampleTruth truths[CasterBvh::packet_lanes];
+    std::size_t ambiguous = 0, shadowed = 0;
+    for (std::size_t first = 0; first < regular.size(); first += CasterBvh::packet_lanes) {
+      const int count = int(std::min<std::size_t>(CasterBvh::packet_lanes, regular.size() - first));
+      classifier.classify_packet(&regular[first], count, candidates, truths);
+      for (int l = 0; l < count; ++l) {
+        const SampleTruth alone =
+            classifier.classify(*regular[first + std::size_t(l)], scratch, false);
+        ASSERT_EQ(truths[l].shadowed, alone.shadowed) << "sample " << first + std::size_t(l);
+        ASSERT_EQ(truths[l].band, alone.band) << "sample " << first + std::size_t(l);
+        ASSERT_EQ(truths[l].robust_exponent, alone.robust_exponent);
+        ambiguous += alone.band == BandClass::ambiguous;
+        shadowed += alone.shadowed;
+      }
+    }
+    EXPECT_GT(ambiguous, 0u);
+    EXPECT_GT(shadowed, 0u);
+  }
 }
 
 // The class at eps_rel = 2^e is robust_exponent >= e, robust_exponent does not depend on eps_rel,
