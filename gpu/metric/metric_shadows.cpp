@@ -152,6 +152,11 @@ GpuMetricRun run_metric(const PreparedScene& scene, const GpuMetricOptions& opti
 
     start = std::chrono::steady_clock::now();
     const MetricResult result = run_kernel(input);
+    // The host's staging copy of the tree, the triangles and the samples is not read again (the
+    // kernel had its own, on the device or in the emulator's memory): free it before the host's
+    // traversal, so that phase holds no copy of the samples.
+    const double ray_length = input.frame.ray_length;
+    input = MetricInput{};
     std::vector<std::uint8_t> shadowed(scene.samples.size(), 0);
     std::vector<std::uint32_t> handed_back;
     for (std::size_t i = 0; i < result.state.size(); ++i) {
@@ -171,7 +176,7 @@ GpuMetricRun run_metric(const PreparedScene& scene, const GpuMetricOptions& opti
     traversal.elements = &structure.elements;
     traversal.tree = &structure.tree;
     traversal.frame = structure.frame;
-    traversal.ray_length = input.frame.ray_length;
+    traversal.ray_length = ray_length;
     std::atomic<std::uint64_t> nodes_visited{0}, clusters_without_hit{0}, triangle_tests{0};
     if (!handed_back.empty())
       phase_progress::begin(handed_back.size(), "samples", "the host's traversal");

@@ -145,10 +145,13 @@ psv::PsvResult psv_hard_shadows(const Case& c, const ViewSamples& samples,
   // The build's exact plane tests (the device's and the host's), before any query adds to them.
   const std::uint64_t build_exact_tests = device_exact_tests + build.planes->exact_fallbacks();
   std::vector<std::size_t> regular_samples;
-  const PsvQueryInput input = psv_query_input(c, samples, build, options, regular_samples);
+  PsvQueryInput input = psv_query_input(c, samples, build, options, regular_samples);
   clock.lap(build_phase);
 
   const PsvQueryResult queried = kernel(input);
+  // The kernel had its own copy (on the device, or in the emulator's memory): the host's staging
+  // copy of the tree, the triangles and the samples is not read again.
+  input = PsvQueryInput{};
   psv::PsvResult result;
   result.shadowed.assign(samples.samples.size(), 0);
   result.nodes_visited.assign(samples.samples.size(), 0);

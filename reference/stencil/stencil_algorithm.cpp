@@ -1,6 +1,8 @@
 #include "reference/stencil/stencil_algorithm.h"
 
 #include <atomic>
+#include <utility>
+#include <vector>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -53,9 +55,11 @@ class StencilAlgorithm final : public VariantTableAlgorithm<stencil::CountingMod
       occluders = find_occluders(c, light, casters_containing_light(c));
       volumes = build_shadow_volumes(occluders, light, eye, samples);
       // z-pass never needs the dark caps (see volume_counting.h): leave them out of its grid.
-      std::vector<VolumeFace> faces;
-      for (const VolumeFace& f : volumes.faces)
-        if (mode == CountingMode::z_fail || f.kind != FaceKind::dark_cap) faces.push_back(f);
+      // The faces move out of `volumes` (filtered in place, order kept): one copy of them, the
+      // largest per-triangle array of the run.
+      std::vector<VolumeFace> faces = std::move(volumes.faces);
+      if (mode == CountingMode::z_pass)
+        std::erase_if(faces, [](const VolumeFace& f) { return f.kind == FaceKind::dark_cap; });
       std::vector<FaceEyeSides> sides(faces.size());
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, faces.size(), 1024),
                         [&](const tbb::blocked_range<std::size_t>& range) {
