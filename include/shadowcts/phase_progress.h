@@ -24,10 +24,6 @@ struct Snapshot {
 };
 Snapshot snapshot();
 
-}  // namespace shadowcts::phase_progress
-
-namespace shadowcts::phase_progress {
-
 // Counts units on one thread and passes them on in chunks of `every` (and the rest when it goes
 // out of scope): for sequential loops, so that one unit is not one atomic.
 class Batch {
