@@ -100,7 +100,7 @@ class BruteforceKernelAlgorithm final : public VariantTableAlgorithm<> {
                                   ": the case has no shadow light");
     check_receivers(c, samples);
     std::vector<std::size_t> regular_samples;
-    const BruteforceShadowInput input = bruteforce_kernel_input(c, samples, regular_samples);
+    BruteforceShadowInput input = bruteforce_kernel_input(c, samples, regular_samples);
     BruteforceShadowResult result;
     AlgorithmOutput output;
     std::vector<std::size_t> unsure;
@@ -108,7 +108,7 @@ class BruteforceKernelAlgorithm final : public VariantTableAlgorithm<> {
     // The emulator spreads blocks over oneTBB and the fallback runs on it: both keep to the
     // case's thread limit, as the reference backends do.
     run_with_thread_limit(c.parameters.threads, [&] {
-      result = backend_.run_kernel(input);
+      result = backend_.run_kernel(std::move(input));     // frees each array once uploaded
       output.shadowed.assign(samples.samples.size(), 0);  // non-regular samples stay 0
       for (std::size_t i = 0; i < regular_samples.size(); ++i) {
         const std::uint8_t state = result.shadowed[i];

@@ -20,7 +20,7 @@ struct BruteforceKernelBackend {
   std::string backend;  // "cuda" or "cuda-emu"
   std::string summary;
   std::uint64_t max_sample_triangle_pairs = 0;
-  BruteforceShadowResult (*run_kernel)(const BruteforceShadowInput&) = nullptr;
+  BruteforceShadowResult (*run_kernel)(BruteforceShadowInput) = nullptr;
   // Why the kernel cannot run here (no device), or nullopt; nullptr: it always can.
   std::optional<std::string> (*unavailable_reason)() = nullptr;
   bool emulated = false;  // adds the `emulated_threads` counter to every record

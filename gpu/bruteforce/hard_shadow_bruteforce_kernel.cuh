@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "gpu/bruteforce/hard_shadow_bruteforce_kernel.h"
+#include "gpu/device_array.cuh"
 #include "gpu/emulator/kernel.h"
 #include "shadowcts/geometry/edge_proximity.h"
 #include "shadowcts/geometry/receiver_half_space.h"
@@ -156,45 +157,8 @@ __global__ void SHADOWCTS_BRUTEFORCE_LAUNCH_BOUNDS bruteforce_hard_shadow(
   if (threadIdx.x % warpSize == 0 && tests != 0) atomicAdd(pair_tests, tests);
 }
 
-inline void check(cudaError_t status, const char* call) {
-  if (status == cudaSuccess) return;
-  throw std::runtime_error(std::string("CUDA error in ") + call + ": " + cudaGetErrorName(status) +
-                           ": " + cudaGetErrorString(status));
-}
-
-// Owns one device allocation.
-template <typename T>
-class DeviceArray {
- public:
-  explicit DeviceArray(std::size_t count) : count_(count) {
-    if (count_ != 0) check(cudaMalloc(&data_, count_ * sizeof(T)), "cudaMalloc");
-  }
-  DeviceArray(const DeviceArray&) = delete;
-  DeviceArray& operator=(const DeviceArray&) = delete;
-  ~DeviceArray() {
-    if (data_ != nullptr) cudaFree(data_);  // nothing useful to do with an error in a destructor
-  }
-  T* data() const { return data_; }
-
-  void upload(const std::vector<T>& host) {
-    if (count_ != 0) {
-      check(cudaMemcpy(data_, host.data(), count_ * sizeof(T), cudaMemcpyHostToDevice),
-            "cudaMemcpy to device");
-    }
-  }
-  void download(T* host) const {
-    if (count_ != 0) {
-      check(cudaMemcpy(host, data_, count_ * sizeof(T), cudaMemcpyDeviceToHost),
-            "cudaMemcpy to host");
-    }
-  }
-
- private:
-  std::size_t count_;
-  T* data_ = nullptr;
-};
-
-inline BruteforceShadowResult run(const BruteforceShadowInput& input) {
+// Takes the input by value: each host array is freed once uploaded.
+inline BruteforceShadowResult run(BruteforceShadowInput input) {
   const std::size_t sample_count = input.sample_positions.size();
   BruteforceShadowResult result;
   result.shadowed.assign(sample_count, bruteforce_sample_lit);
@@ -208,25 +172,22 @@ inline BruteforceShadowResult run(const BruteforceShadowInput& input) {
         "bruteforce_hard_shadow: one receiver and receiver triangle per sample");
   }
 
-  DeviceArray<glm::vec3> positions(sample_count);
-  DeviceArray<std::uint32_t> receivers(sample_count);
-  DeviceArray<BruteforceReceiver> receiver_triangles(sample_count);
-  DeviceArray<BruteforceCaster> casters(input.casters.size());
+  const auto caster_count = static_cast<std::uint32_t>(input.casters.size());
+  const DeviceArray<glm::vec3> positions = upload_and_free(input.sample_positions);
+  const DeviceArray<std::uint32_t> receivers = upload_and_free(input.sample_receivers);
+  const DeviceArray<BruteforceReceiver> receiver_triangles =
+      upload_and_free(input.sample_receiver_triangles);
+  const DeviceArray<BruteforceCaster> casters = upload_and_free(input.casters);
   DeviceArray<std::uint8_t> states(sample_count);
   DeviceArray<unsigned long long> pair_tests(1);
-  positions.upload(input.sample_positions);
-  receivers.upload(input.sample_receivers);
-  receiver_triangles.upload(input.sample_receiver_triangles);
-  casters.upload(input.casters);
-  check(cudaMemset(pair_tests.data(), 0, sizeof(unsigned long long)), "cudaMemset");
+  pair_tests.zero();
 
   const auto block_count =
       static_cast<unsigned>((sample_count + threads_per_block - 1) / threads_per_block);
   SHADOWCTS_LAUNCH(bruteforce_hard_shadow, block_count, threads_per_block, 0)
   (positions.data(), receivers.data(), receiver_triangles.data(),
-   static_cast<std::uint32_t>(sample_count), casters.data(),
-   static_cast<std::uint32_t>(input.casters.size()), input.directional_light, input.light,
-   states.data(), pair_tests.data());
+   static_cast<std::uint32_t>(sample_count), casters.data(), caster_count, input.directional_light,
+   input.light, states.data(), pair_tests.data());
   check(cudaGetLastError(), "bruteforce_hard_shadow launch");
   check(cudaDeviceSynchronize(), "bruteforce_hard_shadow");
 

@@ -48,11 +48,10 @@ struct BruteforceShadowResult {
 };
 
 // Runs on the current CUDA device; throws std::runtime_error if a CUDA call fails.
-BruteforceShadowResult run_bruteforce_hard_shadow_kernel(const BruteforceShadowInput& input);
+BruteforceShadowResult run_bruteforce_hard_shadow_kernel(BruteforceShadowInput input);
 
 // The same kernel source run by the CUDA-subset emulator on the host (gpu/emulator); throws
 // shadowcts::emu::EmulatorError where a GPU would hang or race.
-BruteforceShadowResult run_bruteforce_hard_shadow_kernel_emulated(
-    const BruteforceShadowInput& input);
+BruteforceShadowResult run_bruteforce_hard_shadow_kernel_emulated(BruteforceShadowInput input);
 
 }  // namespace shadowcts

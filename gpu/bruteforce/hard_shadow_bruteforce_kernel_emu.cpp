@@ -2,11 +2,12 @@
 // the CUDA-subset emulator.
 #include "gpu/bruteforce/hard_shadow_bruteforce_kernel.cuh"
 
+#include <utility>
+
 namespace shadowcts {
 
-BruteforceShadowResult run_bruteforce_hard_shadow_kernel_emulated(
-    const BruteforceShadowInput& input) {
-  return emulated::bruteforce::run(input);
+BruteforceShadowResult run_bruteforce_hard_shadow_kernel_emulated(BruteforceShadowInput input) {
+  return emulated::bruteforce::run(std::move(input));
 }
 
 }  // namespace shadowcts

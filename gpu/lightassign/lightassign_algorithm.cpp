@@ -101,11 +101,15 @@ class LightAssignKernelAlgorithm final : public LightAssignAlgorithm {
     const ViewSamples& samples = scene.view_samples;
     if (samples.samples.size() != std::size_t(samples.width) * samples.height)
       throw std::invalid_argument("lightassign: sample count is not width x height");
-    const LightAssignKernelInput input = lightassign_kernel_input(scene, variant.name);
+    LightAssignKernelInput input = lightassign_kernel_input(scene, variant.name);
+    const bool tiled = input.tiled;
+    const std::uint32_t tile_size = input.tile_size;
     LightAssignKernelResult result;
     // The emulator spreads blocks over oneTBB, and Thrust's TBB system runs there too: both keep
-    // to the case's thread limit, as the reference does.
-    run_with_thread_limit(c.parameters.threads, [&] { result = backend_.run_kernels(input); });
+    // to the case's thread limit, as the reference does. The kernels free each input array once
+    // uploaded.
+    run_with_thread_limit(c.parameters.threads,
+                          [&] { result = backend_.run_kernels(std::move(input)); });
 
     LightLists out;
     out.offsets = std::move(result.offsets);
@@ -116,9 +120,9 @@ class LightAssignKernelAlgorithm final : public LightAssignAlgorithm {
     out.list_of_sample = scene.per_view_sample(result.list_of_regular, LightLists::no_list);
 
     std::uint64_t key_bits = result.key_bits;
-    if (input.tiled) {
-      const std::uint32_t tiles_x = (samples.width + input.tile_size - 1) / input.tile_size;
-      const std::uint32_t tiles_y = (samples.height + input.tile_size - 1) / input.tile_size;
+    if (tiled) {
+      const std::uint32_t tiles_x = (samples.width + tile_size - 1) / tile_size;
+      const std::uint32_t tiles_y = (samples.height + tile_size - 1) / tile_size;
       key_bits = std::uint64_t(std::bit_width(std::max(tiles_x, 1u) - 1) +
                                std::bit_width(std::max(tiles_y, 1u) - 1));
     }

@@ -15,7 +15,7 @@ namespace shadowcts {
 struct LightAssignKernelBackend {
   std::string backend;  // "cuda" or "cuda-emu"
   std::string summary;
-  LightAssignKernelResult (*run_kernels)(const LightAssignKernelInput&) = nullptr;
+  LightAssignKernelResult (*run_kernels)(LightAssignKernelInput) = nullptr;
   // Why the kernels cannot run here (no device), or nullopt; nullptr: they always can.
   std::optional<std::string> (*unavailable_reason)() = nullptr;
   bool emulated = false;  // adds the `emulated_threads` counter to every record

@@ -45,7 +45,8 @@ inline std::vector<std::uint32_t> list_offsets(const DeviceArray<unsigned long l
   return std::vector<std::uint32_t>(wide.begin(), wide.end());
 }
 
-inline LightAssignKernelResult run(const LightAssignKernelInput& in) {
+// Takes the input by value: each host array is freed once uploaded.
+inline LightAssignKernelResult run(LightAssignKernelInput in) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   LightAssignKernelResult result;
@@ -55,13 +56,10 @@ inline LightAssignKernelResult run(const LightAssignKernelInput& in) {
   const auto n = std::uint32_t(in.sample_pixel.size());
   const auto light_count = std::uint32_t(in.lights.size());
   const LightAssignFrame& frame = in.frame;
-  DeviceArray<std::uint32_t> pixel;
-  DeviceArray<glm::vec3> position, normal;
-  DeviceArray<LightAssignSphere> spheres;
-  pixel.upload(in.sample_pixel);
-  position.upload(in.sample_position);
-  normal.upload(in.sample_normal);
-  spheres.upload(in.lights);
+  const DeviceArray<std::uint32_t> pixel = upload_and_free(in.sample_pixel);
+  const DeviceArray<glm::vec3> position = upload_and_free(in.sample_position);
+  const DeviceArray<glm::vec3> normal = upload_and_free(in.sample_normal);
+  const DeviceArray<LightAssignSphere> spheres = upload_and_free(in.lights);
 
   // View depths (Section 3.1); the slices reach the deepest sample.
   DeviceArray<double> depth(n);

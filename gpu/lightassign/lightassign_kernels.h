@@ -76,10 +76,10 @@ struct LightAssignKernelResult {
 };
 
 // Runs on the current CUDA device; throws std::runtime_error if a CUDA call fails.
-LightAssignKernelResult run_lightassign_kernels(const LightAssignKernelInput& input);
+LightAssignKernelResult run_lightassign_kernels(LightAssignKernelInput input);
 
 // The same kernel source run by the CUDA-subset emulator on the host (gpu/emulator); throws
 // shadowcts::emu::EmulatorError where a GPU would hang or race.
-LightAssignKernelResult run_lightassign_kernels_emulated(const LightAssignKernelInput& input);
+LightAssignKernelResult run_lightassign_kernels_emulated(LightAssignKernelInput input);
 
 }  // namespace shadowcts

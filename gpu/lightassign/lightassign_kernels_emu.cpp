@@ -2,10 +2,12 @@
 // CUDA-subset emulator.
 #include "gpu/lightassign/lightassign_kernels.cuh"
 
+#include <utility>
+
 namespace shadowcts {
 
-LightAssignKernelResult run_lightassign_kernels_emulated(const LightAssignKernelInput& input) {
-  return emulated::lightassign::run(input);
+LightAssignKernelResult run_lightassign_kernels_emulated(LightAssignKernelInput input) {
+  return emulated::lightassign::run(std::move(input));
 }
 
 }  // namespace shadowcts

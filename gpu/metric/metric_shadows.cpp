@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <stdexcept>
+#include <utility>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -151,12 +152,10 @@ GpuMetricRun run_metric(const PreparedScene& scene, const GpuMetricOptions& opti
     run.build_seconds = seconds_since(start);
 
     start = std::chrono::steady_clock::now();
-    const MetricResult result = run_kernel(input);
-    // The host's staging copy of the tree, the triangles and the samples is not read again (the
-    // kernel had its own, on the device or in the emulator's memory): free it before the host's
-    // traversal, so that phase holds no copy of the samples.
+    // The kernel frees each staging array once it has its own copy (on the device, or in the
+    // emulator's memory), so no phase holds two copies of the samples.
     const double ray_length = input.frame.ray_length;
-    input = MetricInput{};
+    const MetricResult result = run_kernel(std::move(input));
     std::vector<std::uint8_t> shadowed(scene.samples.size(), 0);
     std::vector<std::uint32_t> handed_back;
     for (std::size_t i = 0; i < result.state.size(); ++i) {

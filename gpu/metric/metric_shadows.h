@@ -36,7 +36,7 @@ MetricInput metric_kernel_input(const PreparedScene& scene,
                                 const shadowcts::metric::LightStructure& structure,
                                 double decision_window);
 
-using KernelRunner = MetricResult (*)(const MetricInput&);
+using KernelRunner = MetricResult (*)(MetricInput);
 
 struct GpuMetricRun {
   AlgorithmOutput output;  // per view sample; the reference's counters plus the hand-backs

@@ -25,6 +25,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "gpu/device_array.cuh"
 #include "gpu/emulator/kernel.h"
 #include "gpu/metric/traversal.h"
 #include "shadowcts/geometry/caster_blocks_sample.h"
@@ -266,43 +267,8 @@ __global__ void SHADOWCTS_METRIC_LAUNCH_BOUNDS metric_traversal(
   }
 }
 
-inline void check(cudaError_t status, const char* call) {
-  if (status == cudaSuccess) return;
-  throw std::runtime_error(std::string("CUDA error in ") + call + ": " + cudaGetErrorName(status) +
-                           ": " + cudaGetErrorString(status));
-}
-
-// Owns one device allocation.
-template <typename T>
-class DeviceArray {
- public:
-  explicit DeviceArray(std::size_t count) : count_(count) {
-    if (count_ != 0) check(cudaMalloc(&data_, count_ * sizeof(T)), "cudaMalloc");
-  }
-  DeviceArray(const DeviceArray&) = delete;
-  DeviceArray& operator=(const DeviceArray&) = delete;
-  ~DeviceArray() {
-    if (data_ != nullptr) cudaFree(data_);  // nothing useful to do with an error in a destructor
-  }
-  T* data() const { return data_; }
-
-  void upload(const std::vector<T>& host) {
-    if (count_ != 0)
-      check(cudaMemcpy(data_, host.data(), count_ * sizeof(T), cudaMemcpyHostToDevice),
-            "cudaMemcpy to device");
-  }
-  void download(T* host) const {
-    if (count_ != 0)
-      check(cudaMemcpy(host, data_, count_ * sizeof(T), cudaMemcpyDeviceToHost),
-            "cudaMemcpy to host");
-  }
-
- private:
-  std::size_t count_;
-  T* data_ = nullptr;
-};
-
-inline gpu_metric::MetricResult run(const gpu_metric::MetricInput& input) {
+// Takes the input by value: each host array is freed once uploaded.
+inline gpu_metric::MetricResult run(gpu_metric::MetricInput input) {
   const std::size_t sample_count = input.sample_positions.size();
   gpu_metric::MetricResult result;
   result.state.assign(sample_count, gpu_metric::sample_lit);
@@ -319,30 +285,25 @@ inline gpu_metric::MetricResult run(const gpu_metric::MetricInput& input) {
       input.sample_receiver_triangles.size() != sample_count)
     throw std::invalid_argument("metric_traversal: one receiver and receiver triangle per sample");
 
-  DeviceArray<MetricNode> nodes(input.nodes.size());
-  DeviceArray<MetricCluster> clusters(input.clusters.size());
-  DeviceArray<MetricTriangle> triangles(input.triangles.size());
-  DeviceArray<glm::vec3> positions(sample_count);
-  DeviceArray<std::uint32_t> receivers(sample_count);
-  DeviceArray<MetricReceiver> receiver_triangles(sample_count);
+  const auto node_count = static_cast<std::uint32_t>(input.nodes.size());
+  const DeviceArray<MetricNode> nodes = upload_and_free(input.nodes);
+  const DeviceArray<MetricCluster> clusters = upload_and_free(input.clusters);
+  const DeviceArray<MetricTriangle> triangles = upload_and_free(input.triangles);
+  const DeviceArray<glm::vec3> positions = upload_and_free(input.sample_positions);
+  const DeviceArray<std::uint32_t> receivers = upload_and_free(input.sample_receivers);
+  const DeviceArray<MetricReceiver> receiver_triangles =
+      upload_and_free(input.sample_receiver_triangles);
   DeviceArray<std::uint8_t> states(sample_count);
   DeviceArray<std::uint32_t> sample_counters(3 * sample_count);
   DeviceArray<unsigned long long> totals(3);
-  nodes.upload(input.nodes);
-  clusters.upload(input.clusters);
-  triangles.upload(input.triangles);
-  positions.upload(input.sample_positions);
-  receivers.upload(input.sample_receivers);
-  receiver_triangles.upload(input.sample_receiver_triangles);
-  check(cudaMemset(totals.data(), 0, 3 * sizeof(unsigned long long)), "cudaMemset");
+  totals.zero();
 
   const auto block_count =
       static_cast<unsigned>((sample_count + threads_per_block - 1) / threads_per_block);
   SHADOWCTS_LAUNCH(metric_traversal, block_count, threads_per_block, 0)
-  (nodes.data(), static_cast<std::uint32_t>(input.nodes.size()), clusters.data(), triangles.data(),
-   input.frame, positions.data(), receivers.data(), receiver_triangles.data(),
-   static_cast<std::uint32_t>(sample_count), stack_limit, states.data(), sample_counters.data(),
-   totals.data());
+  (nodes.data(), node_count, clusters.data(), triangles.data(), input.frame, positions.data(),
+   receivers.data(), receiver_triangles.data(), static_cast<std::uint32_t>(sample_count),
+   stack_limit, states.data(), sample_counters.data(), totals.data());
   check(cudaGetLastError(), "metric_traversal launch");
   check(cudaDeviceSynchronize(), "metric_traversal");
 

@@ -121,9 +121,9 @@ struct MetricResult {
 };
 
 // Runs on the current CUDA device; throws std::runtime_error if a CUDA call fails.
-MetricResult run_metric_traversal_kernel(const MetricInput& input);
+MetricResult run_metric_traversal_kernel(MetricInput input);
 
 // The same kernel source run by the CUDA-subset emulator on the host (gpu/emulator).
-MetricResult run_metric_traversal_kernel_emulated(const MetricInput& input);
+MetricResult run_metric_traversal_kernel_emulated(MetricInput input);
 
 }  // namespace shadowcts::gpu_metric

@@ -2,10 +2,12 @@
 // emulator.
 #include "gpu/metric/traversal.cuh"
 
+#include <utility>
+
 namespace shadowcts::gpu_metric {
 
-MetricResult run_metric_traversal_kernel_emulated(const MetricInput& input) {
-  return emulated::metric::run(input);
+MetricResult run_metric_traversal_kernel_emulated(MetricInput input) {
+  return emulated::metric::run(std::move(input));
 }
 
 }  // namespace shadowcts::gpu_metric

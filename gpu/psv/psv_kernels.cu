@@ -2,10 +2,12 @@
 #include "gpu/psv/psv_shadows.cuh"
 #include "gpu/psv/top_tree_build.cuh"
 
+#include <utility>
+
 namespace shadowcts {
 
-PsvQueryResult run_psv_query_kernel(const PsvQueryInput& input) {
-  return device::psv::run(input);
+PsvQueryResult run_psv_query_kernel(PsvQueryInput input) {
+  return device::psv::run(std::move(input));
 }
 
 std::unique_ptr<PsvDescentSession> make_psv_descent_session(const PsvDescentSetup& setup) {

@@ -113,12 +113,12 @@ class PsvDescentSession {
 };
 
 // Runs on the current CUDA device; throws std::runtime_error if a CUDA call fails.
-PsvQueryResult run_psv_query_kernel(const PsvQueryInput& input);
+PsvQueryResult run_psv_query_kernel(PsvQueryInput input);
 std::unique_ptr<PsvDescentSession> make_psv_descent_session(const PsvDescentSetup& setup);
 
 // The same kernel source run by the CUDA-subset emulator on the host (gpu/emulator); throws
 // shadowcts::emu::EmulatorError where a GPU would hang or race.
-PsvQueryResult run_psv_query_kernel_emulated(const PsvQueryInput& input);
+PsvQueryResult run_psv_query_kernel_emulated(PsvQueryInput input);
 std::unique_ptr<PsvDescentSession> make_psv_descent_session_emulated(const PsvDescentSetup& setup);
 
 }  // namespace shadowcts

@@ -3,10 +3,12 @@
 #include "gpu/psv/psv_shadows.cuh"
 #include "gpu/psv/top_tree_build.cuh"
 
+#include <utility>
+
 namespace shadowcts {
 
-PsvQueryResult run_psv_query_kernel_emulated(const PsvQueryInput& input) {
-  return emulated::psv::run(input);
+PsvQueryResult run_psv_query_kernel_emulated(PsvQueryInput input) {
+  return emulated::psv::run(std::move(input));
 }
 
 std::unique_ptr<PsvDescentSession> make_psv_descent_session_emulated(const PsvDescentSetup& setup) {

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <memory>
 #include <stdexcept>
+#include <utility>
 
 #include "shadowcts/phase_clock.h"
 
@@ -148,10 +149,9 @@ psv::PsvResult psv_hard_shadows(const Case& c, const ViewSamples& samples,
   PsvQueryInput input = psv_query_input(c, samples, build, options, regular_samples);
   clock.lap(build_phase);
 
-  const PsvQueryResult queried = kernel(input);
-  // The kernel had its own copy (on the device, or in the emulator's memory): the host's staging
-  // copy of the tree, the triangles and the samples is not read again.
-  input = PsvQueryInput{};
+  // The kernel frees each staging array once it has its own copy (on the device, or in the
+  // emulator's memory).
+  const PsvQueryResult queried = kernel(std::move(input));
   psv::PsvResult result;
   result.shadowed.assign(samples.samples.size(), 0);
   result.nodes_visited.assign(samples.samples.size(), 0);

@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "gpu/device_array.cuh"
 #include "gpu/emulator/kernel.h"
-#include "gpu/psv/device_array.cuh"
 #include "gpu/psv/psv_kernels.h"
 #include "gpu/psv/query_context.cuh"
 #include "gpu/psv/query_hybrid.cuh"
@@ -89,7 +89,8 @@ psv_query(QueryContext context, PsvDeviceQuery query, std::uint32_t stack_capaci
   if (work.stack_high_water != 0) atomicMax(&maxima[maximum_high_water], work.stack_high_water);
 }
 
-inline PsvQueryResult run(const PsvQueryInput& input) {
+// Takes the input by value: each host array is freed once uploaded.
+inline PsvQueryResult run(PsvQueryInput input) {
   const std::size_t sample_count = input.sample_positions.size();
   PsvQueryResult result;
   result.shadowed.assign(sample_count, 0);
@@ -105,20 +106,16 @@ inline PsvQueryResult run(const PsvQueryInput& input) {
         "psv query: one receiver per sample, one source per volume, stack capacity <= 32");
   }
 
-  DeviceArray<PsvDeviceNode> nodes(input.nodes.size());
-  DeviceArray<PsvDeviceSource> sources(input.sources.size());
-  DeviceArray<PsvDeviceTriangle> triangles(input.triangles.size());
-  DeviceArray<glm::vec3> positions(sample_count);
-  DeviceArray<std::uint32_t> receivers(sample_count);
+  const std::uint32_t root = input.nodes.empty() ? psv_no_node : input.root;
+  const DeviceArray<PsvDeviceNode> nodes = upload_and_free(input.nodes);
+  const DeviceArray<PsvDeviceSource> sources = upload_and_free(input.sources);
+  const DeviceArray<PsvDeviceTriangle> triangles = upload_and_free(input.triangles);
+  const DeviceArray<glm::vec3> positions = upload_and_free(input.sample_positions);
+  const DeviceArray<std::uint32_t> receivers = upload_and_free(input.sample_receivers);
   DeviceArray<std::uint8_t> states(sample_count);
   DeviceArray<std::uint32_t> visited(sample_count);
   DeviceArray<unsigned long long> totals(total_count);
   DeviceArray<unsigned int> maxima(maximum_count);
-  nodes.upload(input.nodes);
-  sources.upload(input.sources);
-  triangles.upload(input.triangles);
-  positions.upload(input.sample_positions);
-  receivers.upload(input.sample_receivers);
   totals.zero();
   maxima.zero();
 
@@ -129,7 +126,7 @@ inline PsvQueryResult run(const PsvQueryInput& input) {
   context.planes.directional = input.directional_light;
   context.planes.light = input.light;
   context.planes.filter = input.filter;
-  context.root = input.nodes.empty() ? psv_no_node : input.root;
+  context.root = root;
   // The depth test belongs to D-PSV, D-Stackless and D-Hybrid; the paper's PSV has none.
   context.depth_test = input.query != PsvDeviceQuery::stack;
 

@@ -16,7 +16,7 @@
 
 namespace shadowcts::gpu_psv {
 
-using QueryKernel = PsvQueryResult (*)(const PsvQueryInput&);
+using QueryKernel = PsvQueryResult (*)(PsvQueryInput);
 using DescentSessionMaker = std::unique_ptr<PsvDescentSession> (*)(const PsvDescentSetup&);
 
 // build_psv with the descents on the device (`make_session`'s): the same tree, statistics and

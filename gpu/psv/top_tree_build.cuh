@@ -9,8 +9,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "gpu/device_array.cuh"
 #include "gpu/emulator/kernel.h"
-#include "gpu/psv/device_array.cuh"
 #include "gpu/psv/plane_side.cuh"
 #include "gpu/psv/psv_kernels.h"
 #include "gpu/psv/top_tree.cuh"

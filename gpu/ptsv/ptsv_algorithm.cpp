@@ -237,11 +237,11 @@ class KernelPtsv final : public VariantTableAlgorithm<VariantConfig> {
     const ViewSamples& samples = scene.view_samples;
     const VariantConfig& config = variant.config;
     PhaseClock clock;
-    const HostSetup setup = prepare(scene, config, &clock);
+    HostSetup setup = prepare(scene, config, &clock);
     gpu_ptsv::KernelResult result;
     // The emulator spreads blocks and Thrust over oneTBB: both keep to the case's thread limit.
     run_with_thread_limit(c.parameters.threads,
-                          [&] { result = backend_.run_kernels(setup.input); });
+                          [&] { result = backend_.run_kernels(std::move(setup.input)); });
     clock.lap(query_phase);
     if (result.first_bad_sample != gpu_ptsv::no_sample) {
       // The reference's message for the sample the device found first.

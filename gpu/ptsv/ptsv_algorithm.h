@@ -21,7 +21,7 @@ namespace shadowcts {
 struct PtsvKernelBackend {
   std::string backend;  // "cuda" or "cuda-emu"
   std::string summary;
-  gpu_ptsv::KernelResult (*run_kernels)(const gpu_ptsv::KernelInput&) = nullptr;
+  gpu_ptsv::KernelResult (*run_kernels)(gpu_ptsv::KernelInput) = nullptr;
   // Why the kernels cannot run here (no device), or nullopt; nullptr: they always can.
   std::optional<std::string> (*unavailable_reason)() = nullptr;
   bool emulated = false;  // adds the `emulated_threads` counter to every record

@@ -40,7 +40,8 @@ __global__ void cell_corner_bounds(const std::uint32_t* index, std::uint32_t cou
   bound[c] = largest;
 }
 
-inline gpu_ptsv::KernelResult run(const gpu_ptsv::KernelInput& in) {
+// Takes the input by value: each host array is freed once uploaded.
+inline gpu_ptsv::KernelResult run(gpu_ptsv::KernelInput in) {
   if (in.samples.size() >= gpu_ptsv::no_sample || in.volumes.size() >= 0xFFFFFFFFu)
     throw std::length_error("ptsv: more than 2^32 - 1 view samples or volumes");
   if (in.slice_start.size() != (std::size_t(1) << in.layout.depth_bits) + 1)
@@ -49,10 +50,8 @@ inline gpu_ptsv::KernelResult run(const gpu_ptsv::KernelInput& in) {
   LaunchCount launches;
   gpu_ptsv::KernelResult result;
 
-  DeviceArray<gpu_ptsv::Sample> samples;
-  samples.upload(in.samples);
-  DeviceArray<double> slice_start;
-  slice_start.upload(in.slice_start);
+  const DeviceArray<gpu_ptsv::Sample> samples = upload_and_free(in.samples);
+  const DeviceArray<double> slice_start = upload_and_free(in.slice_start);
   DeviceArray<std::uint32_t> keys(count), tiles(count), first_bad(1);
   first_bad.set(0, gpu_ptsv::no_sample);
   if (count != 0) {
@@ -98,10 +97,9 @@ inline gpu_ptsv::KernelResult run(const gpu_ptsv::KernelInput& in) {
   }
   const double rounding = in.rounding_for_node_bound(node_bound);
 
-  DeviceArray<gpu_ptsv::Volume> volumes;
-  volumes.upload(in.volumes);
-  DeviceArray<geometry::ReceiverHalfSpace> half_spaces;
-  half_spaces.upload(in.half_spaces);
+  const auto volume_count = std::uint32_t(in.volumes.size());
+  const DeviceArray<gpu_ptsv::Volume> volumes = upload_and_free(in.volumes);
+  const DeviceArray<geometry::ReceiverHalfSpace> half_spaces = upload_and_free(in.half_spaces);
   std::vector<DeviceArray<std::uint32_t>> live(h.levels.size());
   for (std::size_t l = 0; l < h.levels.size(); ++l) {
     live[l].resize(h.levels[l].count);
@@ -117,8 +115,8 @@ inline gpu_ptsv::KernelResult run(const gpu_ptsv::KernelInput& in) {
                          in.implicit_cells, in.extra_planes};
   const SampleData data{samples.data(), half_spaces.data(), tile_offsets.data(),
                         tile_samples.data()};
-  traverse(h, live, params, data, std::uint32_t(in.volumes.size()), in.job_level,
-           shadow_bits.data(), result.counters, launches);
+  traverse(h, live, params, data, volume_count, in.job_level, shadow_bits.data(), result.counters,
+           launches);
 
   // Results.
   result.key = keys.download();

@@ -93,9 +93,9 @@ struct KernelResult {
 };
 
 // Runs on the current CUDA device; throws std::runtime_error if a CUDA call fails.
-KernelResult run_ptsv_kernels(const KernelInput& input);
+KernelResult run_ptsv_kernels(KernelInput input);
 
 // The same kernel sources run by the CUDA-subset emulator on the host (gpu/emulator).
-KernelResult run_ptsv_kernels_emulated(const KernelInput& input);
+KernelResult run_ptsv_kernels_emulated(KernelInput input);
 
 }  // namespace shadowcts::gpu_ptsv

@@ -2,10 +2,12 @@
 // emulator.
 #include "gpu/ptsv/ptsv_kernels.cuh"
 
+#include <utility>
+
 namespace shadowcts::gpu_ptsv {
 
-KernelResult run_ptsv_kernels_emulated(const KernelInput& input) {
-  return emulated::ptsv::run(input);
+KernelResult run_ptsv_kernels_emulated(KernelInput input) {
+  return emulated::ptsv::run(std::move(input));
 }
 
 }  // namespace shadowcts::gpu_ptsv

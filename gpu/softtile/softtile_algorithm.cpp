@@ -149,7 +149,7 @@ class SofttileKernelAlgorithm final : public VariantTableAlgorithm<ref::Variant>
       add_gathered(gathered, variant, input);
       clock.lap(build_phase);
       add_pixels(c, samples, gathered, variant, input);
-      result = backend_.run_kernel(input);
+      result = backend_.run_kernel(std::move(input));  // frees each array once uploaded
       clock.lap(query_phase);
       output.counters = {{"gather_clusters", gathered.clusters_in},
                          {"gather_clusters_culled", gathered.clusters_culled},

@@ -22,7 +22,7 @@ namespace shadowcts {
 struct SofttileKernelBackend {
   std::string backend;  // "cuda" or "cuda-emu"
   std::string summary;
-  SofttileKernelResult (*run_kernel)(const SofttileKernelInput&) = nullptr;
+  SofttileKernelResult (*run_kernel)(SofttileKernelInput) = nullptr;
   // Why the kernel cannot run here (no device), or nullopt; nullptr: it always can.
   std::optional<std::string> (*unavailable_reason)() = nullptr;
   bool emulated = false;  // adds the `emulated_threads` counter to every record

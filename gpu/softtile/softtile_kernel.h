@@ -105,10 +105,10 @@ struct SofttileKernelResult {
 };
 
 // Runs on the current CUDA device; throws std::runtime_error if a CUDA call fails.
-SofttileKernelResult run_softtile_kernel(const SofttileKernelInput& input);
+SofttileKernelResult run_softtile_kernel(SofttileKernelInput input);
 
 // The same kernel source run by the CUDA-subset emulator on the host (gpu/emulator); throws
 // shadowcts::emu::EmulatorError where a GPU would hang or race.
-SofttileKernelResult run_softtile_kernel_emulated(const SofttileKernelInput& input);
+SofttileKernelResult run_softtile_kernel_emulated(SofttileKernelInput input);
 
 }  // namespace shadowcts

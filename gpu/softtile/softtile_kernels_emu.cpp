@@ -2,10 +2,12 @@
 // emulator.
 #include "gpu/softtile/softtile_tile.cuh"
 
+#include <utility>
+
 namespace shadowcts {
 
-SofttileKernelResult run_softtile_kernel_emulated(const SofttileKernelInput& input) {
-  return emulated::softtile::run(input);
+SofttileKernelResult run_softtile_kernel_emulated(SofttileKernelInput input) {
+  return emulated::softtile::run(std::move(input));
 }
 
 }  // namespace shadowcts

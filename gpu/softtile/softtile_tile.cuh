@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "gpu/device_array.cuh"
 #include "gpu/emulator/kernel.h"
 #include "gpu/softtile/disk_bitmask.cuh"
 #include "gpu/softtile/fragment_occlusion.cuh"
@@ -330,44 +331,8 @@ __global__ void SHADOWCTS_SOFTTILE_LAUNCH_BOUNDS softtile_tiles(KernelParams p) 
       p.masks[pixel * softtile_kernel_max_rows + r] = r < rows ? mask[r] : 0u;
 }
 
-inline void check(cudaError_t status, const char* call) {
-  if (status == cudaSuccess) return;
-  throw std::runtime_error(std::string("CUDA error in ") + call + ": " + cudaGetErrorName(status) +
-                           ": " + cudaGetErrorString(status));
-}
-
-// Owns one device allocation.
-template <typename T>
-class DeviceArray {
- public:
-  explicit DeviceArray(std::size_t count) : count_(count) {
-    if (count_ != 0) check(cudaMalloc(&data_, count_ * sizeof(T)), "cudaMalloc");
-  }
-  DeviceArray(const DeviceArray&) = delete;
-  DeviceArray& operator=(const DeviceArray&) = delete;
-  ~DeviceArray() {
-    if (data_ != nullptr) cudaFree(data_);  // nothing useful to do with an error in a destructor
-  }
-  T* data() const { return data_; }
-
-  void upload(const std::vector<T>& host) {
-    if (count_ != 0)
-      check(cudaMemcpy(data_, host.data(), count_ * sizeof(T), cudaMemcpyHostToDevice),
-            "cudaMemcpy to device");
-  }
-  void download(std::vector<T>& host) const {
-    host.resize(count_);
-    if (count_ != 0)
-      check(cudaMemcpy(host.data(), data_, count_ * sizeof(T), cudaMemcpyDeviceToHost),
-            "cudaMemcpy to host");
-  }
-
- private:
-  std::size_t count_;
-  T* data_ = nullptr;
-};
-
-inline SofttileKernelResult run(const SofttileKernelInput& input) {
+// Takes the input by value: each host array is freed once uploaded.
+inline SofttileKernelResult run(SofttileKernelInput input) {
   const std::size_t pixels = std::size_t(input.width) * input.height;
   const std::size_t tiles = std::size_t(input.tiles_x) * input.tiles_y;
   if (input.fragments.size() != pixels ||
@@ -389,17 +354,15 @@ inline SofttileKernelResult run(const SofttileKernelInput& input) {
   result.tile_kinds.assign(tiles, softtile_tile_empty);
   if (pixels == 0) return result;
 
-  DeviceArray<SofttileFragment> fragments(pixels);
-  DeviceArray<SofttileCluster> clusters(input.clusters.size());
-  DeviceArray<SofttileCone> cones(input.triangle_cones.size());
-  DeviceArray<SofttileTriangle> triangles(input.triangles.size());
+  const auto cluster_count = static_cast<std::uint32_t>(input.clusters.size());
+  const std::size_t triangle_count = input.triangles.size();
+  const DeviceArray<SofttileFragment> fragments = upload_and_free(input.fragments);
+  const DeviceArray<SofttileCluster> clusters = upload_and_free(input.clusters);
+  const DeviceArray<SofttileCone> cones = upload_and_free(input.triangle_cones);
+  const DeviceArray<SofttileTriangle> triangles = upload_and_free(input.triangles);
   DeviceArray<float> visible(pixels);
   DeviceArray<std::uint32_t> tests(pixels), rasterized(pixels), candidates(tiles);
   DeviceArray<std::uint8_t> kinds(tiles);
-  fragments.upload(input.fragments);
-  clusters.upload(input.clusters);
-  cones.upload(input.triangle_cones);
-  triangles.upload(input.triangles);
   visible.upload(result.visible_fraction);
   tests.upload(result.tests);
   rasterized.upload(result.rasterized);
@@ -414,7 +377,7 @@ inline SofttileKernelResult run(const SofttileKernelInput& input) {
     for (int j = 0; j < 3; ++j) p.light_axes[k][j] = input.light_axes[k][j];
   }
   p.clusters = clusters.data();
-  p.cluster_count = static_cast<std::uint32_t>(input.clusters.size());
+  p.cluster_count = cluster_count;
   p.triangle_cones = cones.data();
   p.triangles = triangles.data();
   p.sun = input.sun;
@@ -427,30 +390,28 @@ inline SofttileKernelResult run(const SofttileKernelInput& input) {
   p.tile_kinds = kinds.data();
   const std::size_t mask_words = input.record_masks ? pixels * softtile_kernel_max_rows : 0;
   DeviceArray<std::uint32_t> masks(mask_words);
-  if (mask_words != 0)  // pixels without a relevant sample keep zero rows
-    check(cudaMemset(masks.data(), 0, mask_words * sizeof(std::uint32_t)), "cudaMemset");
+  masks.zero();  // pixels without a relevant sample keep zero rows
   p.masks = masks.data();
   // A list holds each gathered triangle at most once: room for all of them in every tile (the
   // tests' small frames only).
-  p.triangle_count = static_cast<std::uint32_t>(input.triangles.size());
-  DeviceArray<std::uint32_t> lists(input.record_candidates ? tiles * input.triangles.size() : 0);
+  p.triangle_count = static_cast<std::uint32_t>(triangle_count);
+  DeviceArray<std::uint32_t> lists(input.record_candidates ? tiles * triangle_count : 0);
   p.candidate_list = input.record_candidates ? lists.data() : nullptr;
   SHADOWCTS_LAUNCH(softtile_tiles, static_cast<unsigned>(tiles), threads_per_block, 0)(p);
   check(cudaGetLastError(), "softtile_tiles launch");
   check(cudaDeviceSynchronize(), "softtile_tiles");
-  visible.download(result.visible_fraction);
-  tests.download(result.tests);
-  rasterized.download(result.rasterized);
-  candidates.download(result.candidates);
-  kinds.download(result.tile_kinds);
-  masks.download(result.masks);
+  result.visible_fraction = visible.download();
+  result.tests = tests.download();
+  result.rasterized = rasterized.download();
+  result.candidates = candidates.download();
+  result.tile_kinds = kinds.download();
+  result.masks = masks.download();
   if (input.record_candidates) {
-    std::vector<std::uint32_t> all;
-    lists.download(all);
+    const std::vector<std::uint32_t> all = lists.download();
     result.candidate_offsets.assign(tiles + 1, 0);
     for (std::size_t t = 0; t < tiles; ++t) {
       result.candidate_offsets[t + 1] = result.candidate_offsets[t] + result.candidates[t];
-      const auto first = all.begin() + std::ptrdiff_t(t * input.triangles.size());
+      const auto first = all.begin() + std::ptrdiff_t(t * triangle_count);
       result.candidate_list.insert(result.candidate_list.end(), first,
                                    first + std::ptrdiff_t(result.candidates[t]));
     }
