@@ -48,6 +48,23 @@ Evaluation evaluate(const glm::dvec3& a1, const glm::dvec3& a0, const glm::dvec3
 constexpr double half_epsilon = std::numeric_limits<double>::epsilon() / 2.0;
 constexpr double error_bound = (7.0 + 56.0 * half_epsilon) * half_epsilon;
 
+// The simulated tie of edge_side for an edge direction b - a = s (u1 - u0), s > 0:
+// eps det[w, e_i, a - b] + eps^2 det[w, e_j, a - b].
+int edge_side_tie(const glm::dvec3& l0, const glm::dvec3& l1, const glm::dvec3& u1,
+                  const glm::dvec3& u0) {
+  const glm::dvec3 w = l1 - l0;
+  const glm::dvec3 aw(std::fabs(w.x), std::fabs(w.y), std::fabs(w.z));
+  const int largest = aw.x >= aw.y && aw.x >= aw.z ? 0 : (aw.y >= aw.z ? 1 : 2);
+  const glm::dvec3 zero(0.0);
+  for (int step = 1; step <= 2; ++step) {
+    glm::dvec3 axis(0.0);
+    axis[(largest + step) % 3] = 1.0;
+    const int tie = sign_of_determinant(l1, l0, axis, zero, u0, u1);
+    if (tie != 0) return tie;
+  }
+  return 0;
+}
+
 }  // namespace
 
 DeterminantEstimate estimate_determinant(const glm::dvec3& a1, const glm::dvec3& a0,
@@ -78,18 +95,14 @@ int sign_of_determinant(const glm::dvec3& a1, const glm::dvec3& a0, const glm::d
 int edge_side(const glm::dvec3& l0, const glm::dvec3& l1, const glm::dvec3& a,
               const glm::dvec3& b) {
   const int side = sign_of_determinant(l1, l0, a, l0, b, l0);
-  if (side != 0) return side;
-  const glm::dvec3 w = l1 - l0;
-  const glm::dvec3 aw(std::fabs(w.x), std::fabs(w.y), std::fabs(w.z));
-  const int largest = aw.x >= aw.y && aw.x >= aw.z ? 0 : (aw.y >= aw.z ? 1 : 2);
-  const glm::dvec3 zero(0.0);
-  for (int step = 1; step <= 2; ++step) {
-    glm::dvec3 axis(0.0);
-    axis[(largest + step) % 3] = 1.0;
-    const int tie = sign_of_determinant(l1, l0, axis, zero, a, b);
-    if (tie != 0) return tie;
-  }
-  return 0;
+  return side != 0 ? side : edge_side_tie(l0, l1, b, a);
+}
+
+int edge_side_along(const glm::dvec3& l0, const glm::dvec3& l1, const glm::dvec3& a,
+                    const glm::dvec3& u1, const glm::dvec3& u0) {
+  // det[w, a - l0, b - l0] = det[w, a - l0, b - a] = s det[w, a - l0, u1 - u0].
+  const int side = sign_of_determinant(l1, l0, a, l0, u1, u0);
+  return side != 0 ? side : edge_side_tie(l0, l1, u1, u0);
 }
 
 }  // namespace shadowcts::stencil

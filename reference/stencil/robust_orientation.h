@@ -42,4 +42,10 @@ inline int orientation(const glm::dvec3& p, const glm::dvec3& q, const glm::dvec
 // always edge_side(l0, l1, b, a) == -edge_side(l0, l1, a, b).
 int edge_side(const glm::dvec3& l0, const glm::dvec3& l1, const glm::dvec3& a, const glm::dvec3& b);
 
+// edge_side(l0, l1, a, b) for an edge whose end b = a + s (u1 - u0), s > 0, is known only rounded
+// (a side quad's extruded vertex): the same sign and the same simulated tie, from a and the exact
+// direction u1 - u0, so the edge is exactly the line the rounded b only approximates.
+int edge_side_along(const glm::dvec3& l0, const glm::dvec3& l1, const glm::dvec3& a,
+                    const glm::dvec3& u1, const glm::dvec3& u0);
+
 }  // namespace shadowcts::stencil

@@ -5,7 +5,18 @@
 namespace shadowcts::stencil {
 namespace {
 
-// One oriented triangle of a face; `sample_side` is the sample's exact side of its plane.
+// The contribution of a crossing of the line, moving to the face's outer side when direction > 0,
+// given the exact sides of the eye and the sample of the face's plane. A plane through p has p-
+// before it.
+int placed_crossing(int direction, int eye_side, int sample_side, CountingMode mode) {
+  const int p_side = sample_side != 0 ? sample_side : -direction;
+  if (mode == CountingMode::z_fail) return p_side == -direction ? direction : 0;
+  const int e_side = eye_side != 0 ? eye_side : direction;  // e+ is past the plane
+  // Entering the volume (direction < 0) adds one.
+  return e_side == -direction && p_side == direction ? -direction : 0;
+}
+
+// One oriented triangle (a cap); `sample_side` is the sample's exact side of its plane.
 int triangle_crossing(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, int eye_side,
                       int sample_side, CountingMode mode, const glm::dvec3& eye,
                       const glm::dvec3& sample) {
@@ -15,13 +26,41 @@ int triangle_crossing(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3
   if (direction == 0 || edge_side(eye, sample, b, c) != direction ||
       edge_side(eye, sample, c, a) != direction)
     return 0;
-  // The line crosses the triangle, moving to its outer side when direction > 0. A plane through
-  // p has p- before it.
-  const int p_side = sample_side != 0 ? sample_side : -direction;
-  if (mode == CountingMode::z_fail) return p_side == -direction ? direction : 0;
-  const int e_side = eye_side != 0 ? eye_side : direction;  // e+ is past the plane
-  // Entering the volume (direction < 0) adds one.
-  return e_side == -direction && p_side == direction ? -direction : 0;
+  return placed_crossing(direction, eye_side, sample_side, mode);
+}
+
+// edge_side of a side quad's lateral edge x -> extrude(x), taken of its exact line: through x and
+// the point light, or through x along the directional light. The rounded extruded vertex lies on
+// that line only within rounding, and a counting line in the exact plane of a quad next to it
+// (the eye and the sample both on that plane) meets the exact line: the rounding then decided on
+// which side it passed, against the tie every other face of that plane saw.
+int lateral_side(const glm::dvec3& eye, const glm::dvec3& sample, const glm::dvec3& x,
+                 const HardShadowLight& light) {
+  // extrude(x) - x is a positive multiple of x - L, or of -d.
+  if (!light.directional) return edge_side_along(eye, sample, x, x, light.position);
+  return edge_side_along(eye, sample, x, glm::dvec3(0.0), light.direction);
+}
+
+// A side quad (to, from, extrude(from), extrude(to)) as its two triangles; the sides are of its
+// exact plane, shared by both.
+int quad_crossing(const VolumeFace& face, int eye_side, int sample_side, CountingMode mode,
+                  const glm::dvec3& eye, const glm::dvec3& sample, const HardShadowLight& light) {
+  if (mode == CountingMode::z_pass && sample_side != 0 && sample_side == eye_side) return 0;
+  // The line lies in the exact plane: the perturbed line (translated, edge_side) runs parallel to
+  // it, so it crosses neither triangle, whatever the rounded far vertices say.
+  if (sample_side == 0 && eye_side == 0) return 0;
+  const glm::dvec3 &to = face.v[0], &from = face.v[1], &far_from = face.v[2], &far_to = face.v[3];
+  const int near = edge_side(eye, sample, to, from);
+  const int diagonal = edge_side(eye, sample, far_from, to);
+  int count = 0;
+  if (near != 0 && lateral_side(eye, sample, from, light) == near && diagonal == near)
+    count += placed_crossing(near, eye_side, sample_side, mode);
+  // The second triangle: to -> far_from (the diagonal reversed) -> far_to -> to (the lateral
+  // edge of `to` reversed).
+  if (diagonal != 0 && edge_side(eye, sample, far_from, far_to) == -diagonal &&
+      lateral_side(eye, sample, to, light) == diagonal)
+    count += placed_crossing(-diagonal, eye_side, sample_side, mode);
+  return count;
 }
 
 // The side of x of a side quad's exact plane: through its edge (v[0] = to, v[1] = from) and the
@@ -58,12 +97,10 @@ FaceEyeSides eye_sides(const VolumeFace& face, const glm::dvec3& eye,
 int count_crossings(const VolumeFace& face, const FaceEyeSides& eye_side, CountingMode mode,
                     const glm::dvec3& eye, const glm::dvec3& sample, const HardShadowLight& light) {
   const int sample_side = face_side(face, light, sample);
-  int count = triangle_crossing(face.v[0], face.v[1], face.v[2], eye_side.side[0], sample_side,
-                                mode, eye, sample);
   if (face.is_quad())
-    count += triangle_crossing(face.v[0], face.v[2], face.v[3], eye_side.side[1], sample_side, mode,
-                               eye, sample);
-  return count;
+    return quad_crossing(face, eye_side.side[0], sample_side, mode, eye, sample, light);
+  return triangle_crossing(face.v[0], face.v[1], face.v[2], eye_side.side[0], sample_side, mode,
+                           eye, sample);
 }
 
 int count_own_volume(const LightCap& cap, const Extrusion& extrusion, CountingMode mode,

@@ -31,7 +31,10 @@ enum class CountingMode { z_pass, z_fail };
 
 // The eye's exact side of each face triangle, computed once per run (quads: both triangles).
 // Sides of a side quad are taken of its exact plane (through its edge and the light), which its
-// rounded extruded vertices only approximate; caps are exact triangles.
+// rounded extruded vertices only approximate, and its lateral edges (an end of the edge to its
+// extruded copy) are their exact lines from the light; caps are exact triangles. So a line that
+// lies in a quad's plane (the eye and the sample on it) crosses nothing in it and passes the
+// quads around it by the perturbation alone, never by how the extruded vertices rounded.
 struct FaceEyeSides {
   std::int8_t side[2] = {0, 0};
 };

@@ -529,5 +529,55 @@ TEST(StencilFuzzReproducer, SidesOfSideQuadsAreTakenOfTheirExactPlane) {
     EXPECT_EQ(make_stencil()->run(c, samples, variant).shadowed[0], 1) << variant;
 }
 
+// stiff.shared_edges_narrow_view shrunk to one sample and a few casters (open meshes). The eye
+// (0, 16, 0) and the point light (0, 16, -8) differ only in z, and the sample lies at x = 2 x_e
+// under the slab's bottom edge along z at x = x_e, y = 8: the eye line lies exactly in the plane
+// through that edge and the light, the plane of the edge's side quad. The sample is far from any
+// shadow (the exact oracle: robust-lit), and both variants counted it inside a volume.
+Reproducer narrow_view_reproducer(const glm::vec3& sample, const Triangle& other_caster) {
+  ShadowLight light;
+  light.kind = ShadowLightKind::point;
+  light.position = {0, 16, -8};
+  Reproducer r{reproducer_case(light, {0, 16, 0}, {0, 0, 0}, 0.5f, 64.0f), {}};
+  r.c.camera.up = {0, 0, -1};
+  r.c.camera.vertical_fov_degrees = 0x1.ca5b5ep-1f;  // the stiff case's 0.9 degrees
+  r.c.triangles = {
+      {{0x1p-6f, 0, -4}, {0x1p-6f, 0, 0}, {0x1.01p+2f, 0, 0}, 0},
+      // A cell of the slab's bottom (facing down); its edge at x = 0x1.08p-5.
+      {{0x1.08p-5f, 8, -0x1.78p-5f}, {0x1.18p-5f, 8, -0x1.68p-5f}, {0x1.08p-5f, 8, -0x1.68p-5f}, 1},
+      other_caster};
+  r.sample.position = sample;
+  r.sample.normal = {0, 1, 0};
+  r.sample.receiver = 0;
+  return r;
+}
+
+// The eye and the sample both on the quad's plane: the tie rules put the eye past it and the
+// sample before it, so z-fail counted the quad wherever the rounded extruded vertices let the
+// line meet its triangles. The line, perturbed, runs parallel to the plane: no crossing. (The other
+// caster is a fan triangle nearer to the light: it sets the extrusion, and so the rounding.)
+TEST(StencilExactPlanes, AnEyeLineInASideQuadsPlaneDoesNotCrossIt) {
+  expect_both_variants_exact(narrow_view_reproducer({0x1.08p-4f, 0, -0x1.57ffcp-4f},
+                                                    {{-0x1.4p-8f, 0x1.000666p+3f, -0x1.019p+2f},
+                                                     {-0x1.42b128p-8f, 8, -0x1.019cc8p+2f},
+                                                     {-0x1.660eacp-8f, 8, -0x1.01989p+2f},
+                                                     1}),
+                             false);
+}
+
+// The eye line also meets, inside that plane, the exact line from the light through the slab's
+// corner (the edge's end): the lateral edge of the side quads there, of the bottom's and of the
+// south wall's edges. Their rounded extruded vertex lies on the other side of the eye line than
+// the exact line does, and judged by it the line entered volumes it never left (z-pass) and
+// crossed the quad in the plane (z-fail). Lateral edges are taken of their exact line.
+TEST(StencilExactPlanes, LateralEdgesOfSideQuadsAreTheirExactLines) {
+  expect_both_variants_exact(narrow_view_reproducer({0x1.08p-4f, 0, -0x1.77ffcp-4f},
+                                                    {{0x1.08p-5f, 8, -0x1.78p-5f},
+                                                     {0x1.08p-5f, 0x1.001p+3f, -0x1.78p-5f},
+                                                     {0x1.c8p-5f, 0x1.001p+3f, -0x1.78p-5f},
+                                                     1}),
+                             false);
+}
+
 }  // namespace
 }  // namespace shadowcts
