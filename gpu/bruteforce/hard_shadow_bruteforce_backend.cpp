@@ -87,7 +87,8 @@ class BruteforceKernelAlgorithm final : public VariantTableAlgorithm<> {
                               .point_light = true,
                               .directional_light = true,
                               .max_sample_triangle_pairs = backend.max_sample_triangle_pairs},
-             .unavailable_reason = backend.unavailable_reason},
+             .unavailable_reason = backend.unavailable_reason,
+             .emulated = backend.emulated},
             {{.name = "float32", .phases = {}}}),
         backend_(std::move(backend)) {}
 

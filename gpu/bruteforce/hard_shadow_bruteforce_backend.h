@@ -23,7 +23,8 @@ struct BruteforceKernelBackend {
   BruteforceShadowResult (*run_kernel)(BruteforceShadowInput) = nullptr;
   // Why the kernel cannot run here (no device), or nullopt; nullptr: it always can.
   std::optional<std::string> (*unavailable_reason)() = nullptr;
-  bool emulated = false;  // adds the `emulated_threads` counter to every record
+  bool emulated =
+      false;  // AlgorithmInfo::emulated; adds the `emulated_threads` counter to every record
 };
 
 std::unique_ptr<Algorithm> make_bruteforce_kernel_algorithm(BruteforceKernelBackend backend);

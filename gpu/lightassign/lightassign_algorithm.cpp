@@ -90,7 +90,8 @@ class LightAssignKernelAlgorithm final : public LightAssignAlgorithm {
              .backend = backend.backend,
              .summary = backend.summary,
              .capabilities = {.output = OutputKind::light_lists, .ranged_lights = true},
-             .unavailable_reason = backend.unavailable_reason},
+             .unavailable_reason = backend.unavailable_reason,
+             .emulated = backend.emulated},
             select_variants(lightassign_variants(), {"tiled", "clustered", "clustered+eb",
                                                      "clustered+en", "clustered+nk3"})),
         backend_(std::move(backend)) {}

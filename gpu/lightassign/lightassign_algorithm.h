@@ -18,7 +18,8 @@ struct LightAssignKernelBackend {
   LightAssignKernelResult (*run_kernels)(LightAssignKernelInput) = nullptr;
   // Why the kernels cannot run here (no device), or nullopt; nullptr: they always can.
   std::optional<std::string> (*unavailable_reason)() = nullptr;
-  bool emulated = false;  // adds the `emulated_threads` counter to every record
+  bool emulated =
+      false;  // AlgorithmInfo::emulated; adds the `emulated_threads` counter to every record
 };
 
 std::unique_ptr<Algorithm> make_lightassign_kernel_algorithm(LightAssignKernelBackend backend);

@@ -17,7 +17,8 @@ struct MetricKernelBackend {
   gpu_metric::KernelRunner run_kernel = nullptr;
   // Why the kernel cannot run here (no device), or nullopt; nullptr: it always can.
   std::optional<std::string> (*unavailable_reason)() = nullptr;
-  bool emulated = false;  // adds the `emulated_threads` counter to every record
+  bool emulated =
+      false;  // AlgorithmInfo::emulated; adds the `emulated_threads` counter to every record
 };
 
 // id "metric", variants "capsules", "spheres", "capsules16"; phases clustering, build, query;

@@ -17,7 +17,8 @@ struct PsvKernelBackend {
   DescentSessionMaker make_descent_session = nullptr;
   // Why the kernel cannot run here (no device), or nullopt; nullptr: it always can.
   std::optional<std::string> (*unavailable_reason)() = nullptr;
-  bool emulated = false;  // adds the `emulated_threads` counter to every record
+  bool emulated =
+      false;  // AlgorithmInfo::emulated; adds the `emulated_threads` counter to every record
 };
 
 std::unique_ptr<Algorithm> make_psv_kernel_algorithm(PsvKernelBackend backend);

@@ -199,7 +199,8 @@ class KernelPtsv final : public VariantTableAlgorithm<VariantConfig> {
                               .point_light = true,
                               .directional_light = true,
                               .max_sample_triangle_pairs = backend.max_sample_triangle_pairs},
-             .unavailable_reason = backend.unavailable_reason},
+             .unavailable_reason = backend.unavailable_reason,
+             .emulated = backend.emulated},
             ported_variants),
         backend_(std::move(backend)) {}
 

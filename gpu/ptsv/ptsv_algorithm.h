@@ -24,7 +24,8 @@ struct PtsvKernelBackend {
   gpu_ptsv::KernelResult (*run_kernels)(gpu_ptsv::KernelInput) = nullptr;
   // Why the kernels cannot run here (no device), or nullopt; nullptr: they always can.
   std::optional<std::string> (*unavailable_reason)() = nullptr;
-  bool emulated = false;  // adds the `emulated_threads` counter to every record
+  bool emulated =
+      false;  // AlgorithmInfo::emulated; adds the `emulated_threads` counter to every record
   // Capabilities::max_sample_triangle_pairs (0: no limit) and why, with the cost measured near
   // it: the NotSupported reason above it says both.
   std::uint64_t max_sample_triangle_pairs = 0;

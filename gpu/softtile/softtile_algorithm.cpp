@@ -129,7 +129,8 @@ class SofttileKernelAlgorithm final : public VariantTableAlgorithm<ref::Variant>
              .backend = backend.backend,
              .summary = backend.summary,
              .capabilities = {.output = OutputKind::soft_shadow, .sun_disk = true},
-             .unavailable_reason = backend.unavailable_reason},
+             .unavailable_reason = backend.unavailable_reason,
+             .emulated = backend.emulated},
             select_variants(softtile_variants(), kernel_variants())),
         backend_(std::move(backend)) {}
 

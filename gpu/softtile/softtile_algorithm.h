@@ -25,7 +25,8 @@ struct SofttileKernelBackend {
   SofttileKernelResult (*run_kernel)(SofttileKernelInput) = nullptr;
   // Why the kernel cannot run here (no device), or nullopt; nullptr: it always can.
   std::optional<std::string> (*unavailable_reason)() = nullptr;
-  bool emulated = false;  // adds the `emulated_threads` counter to every record
+  bool emulated =
+      false;  // AlgorithmInfo::emulated; adds the `emulated_threads` counter to every record
 };
 
 // id "softtile", the reference's budgets and counters; variants grid16, grid16+rot, rows15,

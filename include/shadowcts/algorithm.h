@@ -39,6 +39,10 @@ struct AlgorithmInfo {
   std::vector<std::string> variants;  // first one is the default; never empty
   std::string summary;
   Capabilities capabilities;
+  // A device backend's kernels run by the CUDA-subset emulator (gpu/emulator): its outputs are
+  // the kernels', its times the emulator's, which say nothing about a GPU. The runner times it
+  // once.
+  bool emulated = false;
 };
 
 struct Aabb {

@@ -69,6 +69,7 @@ struct AlgorithmDescription {
   std::vector<std::string> registered{};
   // Why the backend cannot run here at all (no device), or nullopt; nullptr: it always can.
   std::optional<std::string> (*unavailable_reason)() = nullptr;
+  bool emulated = false;  // AlgorithmInfo::emulated
 };
 
 // What most hard-shadow algorithms declare.
@@ -86,6 +87,7 @@ class VariantTableAlgorithm : public Algorithm {
     info_.backend = std::move(description.backend);
     info_.summary = std::move(description.summary);
     info_.capabilities = description.capabilities;
+    info_.emulated = description.emulated;
     info_.variants = std::move(description.registered);
     if (info_.variants.empty())
       for (const Variant& v : table_) info_.variants.push_back(v.name);

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -180,6 +182,36 @@ TEST(RunnerPhases, OtherPhasesThanDeclaredAreACrash) {
   EXPECT_NE(undeclared["reason"].get<std::string>().find("reports phases {build}"),
             std::string::npos)
       << undeclared["reason"];
+}
+
+// An emulated backend's time is the emulator's: one timed repeat by default (the output is still
+// reproduced once), as many as --repeat asks for; other backends keep the case's repeats.
+TEST(RunnerTiming, EmulatedBackendsAreTimedOnceUnlessRepeatIsGiven) {
+  const auto timed_runs = [](const std::string& name, std::optional<std::uint32_t> repeats) {
+    RunOptions o;
+    o.fixtures = {"closed_shapes.1k"};
+    o.algorithms = {{"psv", "stackless"}};
+    o.backends = {"cuda-emu", "reference"};
+    o.out_dir = fresh_dir(name).string();
+    o.repeats = repeats;
+    std::ostringstream log, err;
+    run_suite(o, builtin_registry(), log, err);
+    std::map<std::string, std::size_t> runs;
+    const json results = read_json(fs::path(o.out_dir) / "results.json");
+    for (const json& r : results["results"]) {
+      EXPECT_EQ(r["verdict"], "Pass") << r["name"] << ": " << r["reason"];
+      runs[r["backend"].get<std::string>()] = runs_of(r["time_ms"]).size();
+    }
+    return runs;
+  };
+  const std::map<std::string, std::size_t> by_default = timed_runs("default", std::nullopt);
+  EXPECT_EQ(by_default.at("cuda-emu"), 1u);
+  EXPECT_EQ(by_default.at("reference"), 2u);  // Case::Parameters::repeats
+  const std::map<std::string, std::size_t> asked = timed_runs("asked", 3);
+  EXPECT_EQ(asked.at("cuda-emu"), 3u);
+  EXPECT_EQ(asked.at("reference"), 3u);
+  EXPECT_TRUE(builtin_registry().find("psv", "cuda-emu")->info().emulated);
+  EXPECT_FALSE(builtin_registry().find("psv", "reference")->info().emulated);
 }
 
 TEST(PhaseClock, LapsAddUpPerPhaseInDeclaredOrder) {
