@@ -1,9 +1,9 @@
 #pragma once
-// Triangle setup of the simd ptsv: the reference's volumes (ref::set_up_shadow_volume, one
-// triangle at a time, in parallel), packed for the lanes. Every plane's anchor is one of the
-// canonical vertices, so a packed plane keeps its normal and shift and names its vertex; the
-// lanes broadcast them. The exact definition (ref::ExactVolumePlanes) stays beside them for the
-// samples within rounding of a plane.
+// Triangle setup of the simd ptsv: the reference's volumes (ref::set_up_shadow_volume, the same
+// checks and the same arithmetic, the latter in lanes across triangles), packed for the lanes of
+// the traversal. Every plane's anchor is one of the canonical vertices, so a packed plane keeps
+// its normal and shift and names its vertex; the lanes broadcast them. The exact definition
+// (ref::ExactVolumePlanes) stays beside them for the samples within rounding of a plane.
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -50,6 +50,27 @@ struct PackedVolumes {
   ref::SetupCounts counts;
   bool directional = false;
   glm::vec3 light{0.0f};  // the point light, or the direction towards the light
+};
+
+// A batch of triangles for the lanes of set_up_shadow_volumes (structure of arrays, one triangle
+// per entry): the canonical vertices and orientation in, the planes out (normals: edges, the
+// triangle, then the three candidate culling planes, each kept or not).
+struct SetupBatch {
+  static constexpr std::size_t capacity = 64;  // a multiple of any target's double lanes
+  std::size_t size = 0;
+  bool directional = false;
+  bool extra_planes = false;
+  double light[3] = {};
+  double diameter = 0.0;
+  double directional_t_max = 0.0;
+  alignas(64) double vertex[3][3][capacity];
+  alignas(64) double orientation[capacity];
+  alignas(64) double normal[7][3][capacity];
+  alignas(64) double shift[3][capacity];  // the culling planes'
+  alignas(64) double condition[4][capacity];
+  std::uint32_t triangle[capacity];
+  std::uint8_t usable[capacity];
+  std::uint8_t extra_kept[3][capacity];
 };
 
 // ref::front_face_culling_meshes, the same meshes: whether a mesh's box holds a regular sample
