@@ -20,10 +20,6 @@
 #include <stdexcept>
 #include <string>
 
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
-
 #include <tbb/blocked_range.h>
 #include <tbb/combinable.h>
 #include <tbb/parallel_for.h>
@@ -232,18 +228,10 @@ bool holds_a_sample(const Hierarchy& h, const glm::vec3& lo, const glm::vec3& hi
   return false;
 }
 
-// About 300 MiB at 1M triangles: in 4 KiB pages its first touch faulted ~80k times and cost a
-// good part of the setup; huge pages (where the kernel gives them on request) fault 512x less.
 PackedVolume* allocate_volumes(std::size_t n) {
-  constexpr std::size_t huge_page = std::size_t(2) << 20;
-  const std::size_t bytes = std::max<std::size_t>(1, n) * sizeof(PackedVolume);
-  const bool huge = bytes >= huge_page;
-  const std::size_t size = huge ? (bytes + huge_page - 1) / huge_page * huge_page : bytes;
-  void* p = std::aligned_alloc(huge ? huge_page : alignof(PackedVolume), size);
+  void* p =
+      std::aligned_alloc(alignof(PackedVolume), std::max<std::size_t>(1, n) * sizeof(PackedVolume));
   if (p == nullptr) throw std::bad_alloc();
-#ifdef MADV_HUGEPAGE
-  if (huge) madvise(p, size, MADV_HUGEPAGE);  // advice only: fine if refused
-#endif
   return static_cast<PackedVolume*>(p);
 }
 
