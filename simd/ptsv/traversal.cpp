@@ -9,8 +9,10 @@
 #include <algorithm>
 #include <atomic>
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <iterator>
+#include <optional>
 #include <vector>
 
 #include <tbb/blocked_range.h>
@@ -63,17 +65,32 @@ struct PlaneLanes {
   V nx, ny, nz, ax, ay, az, shift;
 };
 
+// Plane k of the volume: 0-3 the edges and the triangle (shift 0), 4 + m culling plane m.
 HWY_INLINE PlaneLanes plane_lanes(D d, const PackedVolume& vol, int k) {
-  const PackedPlane& p = vol.plane[k];
-  return {hn::Set(d, p.normal[0]),      hn::Set(d, p.normal[1]),      hn::Set(d, p.normal[2]),
-          hn::Set(d, vol.anchor(k, 0)), hn::Set(d, vol.anchor(k, 1)), hn::Set(d, vol.anchor(k, 2)),
-          hn::Set(d, p.shift)};
+  if (k < 4) {
+    const int v = PackedVolume::anchor[k];
+    return {hn::Set(d, vol.normal[k][0]),
+            hn::Set(d, vol.normal[k][1]),
+            hn::Set(d, vol.normal[k][2]),
+            hn::Set(d, vol.vertex(v, 0)),
+            hn::Set(d, vol.vertex(v, 1)),
+            hn::Set(d, vol.vertex(v, 2)),
+            hn::Zero(d)};
+  }
+  const int m = k - 4;
+  return {hn::Set(d, vol.extra[m][0]),  hn::Set(d, vol.extra[m][1]),  hn::Set(d, vol.extra[m][2]),
+          hn::Set(d, vol.vertex(m, 0)), hn::Set(d, vol.vertex(m, 1)), hn::Set(d, vol.vertex(m, 2)),
+          hn::Set(d, vol.extra[m][3])};
+}
+
+HWY_INLINE const double* plane_normal(const PackedVolume& vol, int k) {
+  return k < 4 ? vol.normal[k] : vol.extra[k - 4];
 }
 
 // The cache lines the lane tests read from a volume.
 HWY_INLINE void prefetch(const PackedVolume& vol) {
   const char* p = reinterpret_cast<const char*>(&vol);
-  for (std::size_t line = 0; line < 320; line += 64) __builtin_prefetch(p + line);
+  for (std::size_t line = 0; line < sizeof(PackedVolume); line += 64) __builtin_prefetch(p + line);
 }
 
 class Engine {
@@ -96,7 +113,7 @@ class Engine {
     const ref::NodeTolerances& tol = in_.tolerances;
     const bool implicit = in_.config.implicit_cells;
     const V rounding = hn::Set(d, tol.rounding);
-    const int culling = culling_ ? int(vol.extra_count) : 0;
+    const std::uint32_t culling = culling_ ? vol.extra_mask : 0u;
     Verdicts out{0, 0, 0, 0};
     for (std::uint32_t base = 0; base < count; base += lanes) {
       const std::uint32_t lane_bits = lanes >= 32 ? ~0u : ((1u << lanes) - 1u);
@@ -122,7 +139,7 @@ class Engine {
         const double* r[3];
         const double* a[3];
         for (std::size_t axis = 0; axis < 3; ++axis) {
-          const bool positive = vol.plane[k].normal[axis] >= 0.0;
+          const bool positive = plane_normal(vol, k)[axis] >= 0.0;
           r[axis] = (positive ? L.lo[axis] : L.hi[axis]).data() + at;
           a[axis] = (positive ? L.hi[axis] : L.lo[axis]).data() + at;
         }
@@ -160,9 +177,9 @@ class Engine {
       out.accept |= acc << base;
       const std::uint32_t rest = wanted & ~rej & ~acc;
       std::uint32_t cul = 0;
-      for (int m = 0; m < culling && cul != rest; ++m) {
+      for (std::uint32_t planes = culling; planes != 0 && cul != rest; planes &= planes - 1) {
         V low = hn::Zero(d), unused = hn::Zero(d);
-        range(4 + m, false, low, unused);
+        range(4 + std::countr_zero(planes), false, low, unused);
         cul |= bits_of(d, hn::Gt(low, rounding)) & rest;
       }
       out.cull |= cul << base;
@@ -177,10 +194,15 @@ class Engine {
     const std::uint32_t lanes = std::uint32_t(hn::Lanes(d));
     const std::uint32_t tile = h_.leaf_tile[leaf];
     const std::uint32_t begin = h_.tile_offsets[tile], end = h_.tile_offsets[tile + 1];
-    double factor[4];
-    for (int k = 0; k < 4; ++k) factor[k] = 0x1p-44 * (1.0 + vol.condition[k]);
-    bool have_exact = false;
-    ref::ShadowVolume exact;
+    // The planes' lanes once per tile (up to 8 groups of samples), not once per group.
+    PlaneLanes planes[4];
+    V factor[4];
+    for (int k = 0; k < 4; ++k) {
+      planes[k] = plane_lanes(d, vol, k);
+      factor[k] = hn::Set(d, 0x1p-44 * (1.0 + double(vol.condition[k])));
+    }
+    // Built only for a sample within rounding of a plane (rare; it is large to initialize).
+    std::optional<ref::ShadowVolume> exact;
     for (std::uint32_t base = begin; base < end; base += lanes) {
       const std::uint32_t n = std::min(lanes, end - base);
       const V x = hn::LoadU(d, h_.tile_pos[0].data() + base);
@@ -190,12 +212,11 @@ class Engine {
       std::uint32_t outside = 0, unsure[4] = {0, 0, 0, 0};
       for (int k = 0; k < 4 && (outside & all) != all; ++k) {
         // ref::outside_plane: the value against its rounding bound.
-        const PlaneLanes p = plane_lanes(d, vol, k);
+        const PlaneLanes& p = planes[k];
         const V ox = hn::Sub(x, p.ax), oy = hn::Sub(y, p.ay), oz = hn::Sub(z, p.az);
         const V value = hn::Add(
             hn::Add(hn::Add(hn::Mul(p.nx, ox), hn::Mul(p.ny, oy)), hn::Mul(p.nz, oz)), p.shift);
-        const V bound =
-            hn::Mul(hn::Set(d, factor[k]), hn::Add(hn::Add(hn::Abs(ox), hn::Abs(oy)), hn::Abs(oz)));
+        const V bound = hn::Mul(factor[k], hn::Add(hn::Add(hn::Abs(ox), hn::Abs(oy)), hn::Abs(oz)));
         const std::uint32_t out_k = bits_of(d, hn::Gt(value, bound));
         const std::uint32_t in_k = bits_of(d, hn::Lt(value, hn::Neg(bound)));
         outside |= out_k;
@@ -213,11 +234,8 @@ class Engine {
         bool inside = true;
         for (int k = 0; k < 4 && inside; ++k) {
           if (((unsure[k] >> j) & 1u) == 0) continue;
-          if (!have_exact) {
-            vol.exact_volume(exact, vols_.directional, vols_.light);
-            have_exact = true;
-          }
-          inside = !ref::outside_plane_exactly(exact, k, position);
+          if (!exact) vol.exact_volume(exact.emplace(), vols_.directional, vols_.light);
+          inside = !ref::outside_plane_exactly(*exact, k, position);
         }
         if (!inside) continue;
         std::atomic_ref<std::uint8_t> bit(shadowed_[in_.scene->samples.index[s]]);

@@ -314,10 +314,11 @@ void PackedVolume::exact_volume(ref::ShadowVolume& v, bool directional,
                                 const glm::vec3& light) const {
   v.triangle = triangle;
   for (int k = 0; k < 3; ++k) {
-    v.exact.vertices[std::size_t(k)] = glm::vec3(vertex[k][0], vertex[k][1], vertex[k][2]);
+    v.exact.vertices[std::size_t(k)] =
+        glm::vec3(float(vertex(k, 0)), float(vertex(k, 1)), float(vertex(k, 2)));
     v.exact.edge_outside[std::size_t(k)] = edge_outside[k];
   }
-  for (int k = 0; k < 4; ++k) v.exact.condition[std::size_t(k)] = condition[k];
+  for (int k = 0; k < 4; ++k) v.exact.condition[std::size_t(k)] = double(condition[k]);
   v.exact.triangle_outside = triangle_outside;
   v.exact.directional = directional;
   v.exact.light = light;
@@ -333,43 +334,40 @@ bool lexicographically_less(const glm::vec3& a, const glm::vec3& b) {
   return a.z < b.z;
 }
 
-// The first canonical vertex equal to vertex k (what pack() searched for).
-std::uint8_t anchor_index(const PackedVolume& p, int k) {
-  for (int v = 0; v < 3; ++v)
-    if (p.vertex[v][0] == p.vertex[k][0] && p.vertex[v][1] == p.vertex[k][1] &&
-        p.vertex[v][2] == p.vertex[k][2])
-      return std::uint8_t(v);
-  return std::uint8_t(k);
+// The nearest float at or above c.
+float rounded_up(double c) {
+  const float f = float(c);
+  return double(f) < c ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
 }
 
-// The lane results of batch entry i into its volume slot; false when a plane was unusable.
+// The lane results of batch entry i into its volume slot; false when a plane was unusable. The
+// canonical vertices are distinct (the triangle has area), so each plane's anchor is the vertex
+// it was built through: the edges' first vertices, p for the triangle, k for culling plane k.
 bool store_volume(const SetupBatch& b, std::size_t i, PackedVolume& p, ref::SetupCounts& counts) {
   if (!b.usable[i]) {
     ++counts.edge_on;  // a cross product underflowed: as good as edge-on
     return false;
   }
-  static constexpr int edge_first[3] = {0, 1, 0};
   static constexpr int edge_parity[3] = {1, 1, -1};
   const int orientation = b.orientation[i] > 0.0 ? 1 : -1;
-  for (int k = 0; k < 3; ++k)
-    for (int a = 0; a < 3; ++a) p.vertex[k][a] = float(b.vertex[k][a][i]);
-  const auto plane = [&](int slot, int normal, double shift, int anchor) {
-    for (int a = 0; a < 3; ++a) p.plane[slot].normal[a] = b.normal[normal][a][i];
-    p.plane[slot].shift = shift;
-    p.anchor_of[slot] = anchor_index(p, anchor);
-  };
-  for (int e = 0; e < 3; ++e) {
-    plane(e, e, 0.0, edge_first[e]);
-    p.edge_outside[e] = std::int8_t(edge_parity[e] * orientation);
+  for (int a = 0; a < 3; ++a) {
+    p.vertex_pq[0][a] = float(b.vertex[0][a][i]);
+    p.vertex_pq[1][a] = float(b.vertex[1][a][i]);
+    p.vertex_r[a] = float(b.vertex[2][a][i]);
   }
-  plane(3, 3, 0.0, 0);
-  int extra = 0;
-  if (b.extra_planes)
-    for (int k = 0; k < 3; ++k)
-      if (b.extra_kept[k][i]) plane(4 + extra++, 4 + k, b.shift[k][i], k);
-  p.extra_count = std::uint8_t(extra);
-  counts.extra_planes += std::uint64_t(extra);
-  for (int k = 0; k < 4; ++k) p.condition[k] = b.condition[k][i];
+  for (int k = 0; k < 4; ++k)
+    for (int a = 0; a < 3; ++a) p.normal[k][a] = b.normal[k][a][i];
+  for (int e = 0; e < 3; ++e) p.edge_outside[e] = std::int8_t(edge_parity[e] * orientation);
+  std::uint8_t mask = 0;
+  for (int k = 0; k < 3; ++k) {
+    const bool kept = b.extra_planes && b.extra_kept[k][i];
+    for (int a = 0; a < 3; ++a) p.extra[k][a] = kept ? b.normal[4 + k][a][i] : 0.0;
+    p.extra[k][3] = kept ? b.shift[k][i] : 0.0;
+    if (kept) mask |= std::uint8_t(1u << k);
+  }
+  p.extra_mask = mask;
+  counts.extra_planes += std::uint64_t(std::popcount(mask));
+  for (int k = 0; k < 4; ++k) p.condition[k] = rounded_up(b.condition[k][i]);
   p.triangle_outside = std::int8_t(orientation);
   p.triangle = b.triangle[i];
   ++counts.volumes;

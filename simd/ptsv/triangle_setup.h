@@ -17,27 +17,33 @@ namespace shadowcts::simd::ptsv {
 
 namespace ref = ::shadowcts::ptsv;
 
-struct PackedPlane {
-  double normal[3];
-  double shift;
-};
-
-// Trivially constructible: a slot per triangle is allocated without being written first. What
-// the node tests load comes first (about four cache lines), the exact definition after it.
+// Trivially constructible: a slot per triangle is allocated without being written first. Four
+// cache lines: the first two hold all that a node's reject and accept tests read (the four planes,
+// whose shift is 0 and whose anchors are p or q), the last two what refinement (the culling
+// planes) and the leaves (r, the filter's condition, the exact definition) read besides. The
+// node tests are bound by the memory they stream: 1M volumes visited per hierarchy level.
 struct alignas(64) PackedVolume {
-  PackedPlane plane[7];       // edges (p,q), (q,r), (p,r), the triangle, then the extra planes
-  float vertex[3][3];         // canonical order
-  std::uint8_t anchor_of[7];  // each plane's anchor: a canonical vertex
-  std::uint8_t extra_count;
-  std::uint32_t triangle;
-  double condition[4];
+  double normal[4][3];    // unit normals: edges (p,q), (q,r), (p,r), then the triangle
+  float vertex_pq[2][3];  // canonical p and q
   std::int8_t edge_outside[3];
   std::int8_t triangle_outside;
+  std::uint8_t extra_mask;  // bit k: culling plane k exists
+  float vertex_r[3];        // canonical r
+  std::uint32_t triangle;
+  double extra[3][4];  // culling plane k: normal and shift, anchored at canonical vertex k
+  // ref::ExactVolumePlanes::condition rounded up: it only scales the error bound of a filter
+  // whose unsure samples are decided exactly, and a larger bound only sends more of them there.
+  float condition[4];
 
-  double anchor(int k, int axis) const { return double(vertex[anchor_of[k]][axis]); }
+  // Planes 0-3 are anchored at canonical vertex anchor[k] (ref::set_up_shadow_volume).
+  static constexpr int anchor[4] = {0, 1, 0, 0};
+  double vertex(int v, int axis) const {
+    return double(v < 2 ? vertex_pq[v][axis] : vertex_r[axis]);
+  }
   // The reference volume's exact part (and triangle), for ref::outside_plane_exactly.
   void exact_volume(ref::ShadowVolume& v, bool directional, const glm::vec3& light) const;
 };
+static_assert(sizeof(PackedVolume) == 256);
 
 struct FreeVolumes {
   void operator()(PackedVolume* p) const;
