@@ -188,6 +188,70 @@ class Engine {
     return out;
   }
 
+  // test_children for explicit bounds, with each plane's lanes and corner choice set up once per
+  // visit instead of once per group of children (measured: about a tenth less time in the node
+  // tests).
+  Verdicts test_children_explicit(const PackedVolume& vol, int level, std::uint32_t first,
+                                  std::uint32_t count, std::uint32_t live) const {
+    const D d;
+    const std::uint32_t lanes = std::uint32_t(hn::Lanes(d));
+    const Level& L = h_.levels[std::size_t(level)];
+    const ref::NodeTolerances& tol = in_.tolerances;
+    const V rounding = hn::Set(d, tol.rounding);
+    const V inside_edge = hn::Set(d, -tol.rounding);
+    const V inside_triangle = hn::Set(d, -(tol.rounding + tol.accept_bias));
+    const std::uint32_t culling = culling_ ? vol.extra_mask : 0u;
+    PlaneLanes p[4];
+    // Per plane and axis: the reject point's coordinate array, then the accept point's.
+    const double* corner[4][2][3];
+    for (int k = 0; k < 4; ++k) {
+      p[k] = plane_lanes(d, vol, k);
+      for (std::size_t axis = 0; axis < 3; ++axis) {
+        const bool positive = vol.normal[k][axis] >= 0.0;
+        corner[k][0][axis] = (positive ? L.lo[axis] : L.hi[axis]).data() + first;
+        corner[k][1][axis] = (positive ? L.hi[axis] : L.lo[axis]).data() + first;
+      }
+    }
+    const auto value = [&](const PlaneLanes& q, const double* const* at, std::size_t base) {
+      return plane_at(q.nx, q.ny, q.nz, q.ax, q.ay, q.az, q.shift, hn::LoadU(d, at[0] + base),
+                      hn::LoadU(d, at[1] + base), hn::LoadU(d, at[2] + base));
+    };
+    Verdicts out{0, 0, 0, 0};
+    for (std::uint32_t base = 0; base < count; base += lanes) {
+      const std::uint32_t lane_bits = lanes >= 32 ? ~0u : ((1u << lanes) - 1u);
+      const std::uint32_t wanted = (live >> base) & lane_bits;
+      if (wanted == 0) continue;
+      std::uint32_t rej = 0;
+      for (int k = 0; k < 4 && rej != wanted; ++k)
+        rej |= bits_of(d, hn::Gt(value(p[k], corner[k][0], base), rounding)) & wanted;
+      out.reject |= rej << base;
+      if (rej == wanted) continue;
+      std::uint32_t acc = wanted & ~rej;
+      for (int k = 0; k < 3 && acc != 0; ++k)
+        acc &= bits_of(d, hn::Lt(value(p[k], corner[k][1], base), inside_edge));
+      if (acc != 0) {
+        const V high = value(p[3], corner[3][1], base);
+        const V reach_inside =
+            hn::Neg(hn::Add(rounding, hn::LoadU(d, L.reach.data() + first + base)));
+        acc &= bits_of(d, hn::And(hn::Lt(high, inside_triangle), hn::Lt(high, reach_inside)));
+      }
+      out.accept |= acc << base;
+      const std::uint32_t rest = wanted & ~rej & ~acc;
+      std::uint32_t cul = 0;
+      for (std::uint32_t planes = culling; planes != 0 && cul != rest; planes &= planes - 1) {
+        const int k = 4 + std::countr_zero(planes);
+        const PlaneLanes q = plane_lanes(d, vol, k);
+        const double* at[3];
+        for (std::size_t axis = 0; axis < 3; ++axis)
+          at[axis] = (plane_normal(vol, k)[axis] >= 0.0 ? L.lo[axis] : L.hi[axis]).data() + first;
+        cul |= bits_of(d, hn::Gt(value(q, at, base), rounding)) & rest;
+      }
+      out.cull |= cul << base;
+      out.refine |= (rest & ~cul) << base;
+    }
+    return out;
+  }
+
   // TESTVIEWSAMPLES: every sample of the leaf's tile against the volume.
   void test_samples(const PackedVolume& vol, std::uint32_t leaf) const {
     const D d;
@@ -319,10 +383,13 @@ class Engine {
                                   for (std::uint32_t i = v.begin(); i != v.end(); ++i) {
                                     // The next volumes' planes, ahead of their tests.
                                     if (i + 8 < v.end()) prefetch(vols_.slot[visitors[i + 8]]);
-                                    verdicts[i] = start == 0
-                                                      ? Verdicts{0, 0, 0, 0}
-                                                      : test_children(vols_.slot[visitors[i]],
-                                                                      l + 1, first, count, start);
+                                    verdicts[i] =
+                                        start == 0 ? Verdicts{0, 0, 0, 0}
+                                        : in_.config.implicit_cells
+                                            ? test_children(vols_.slot[visitors[i]], l + 1, first,
+                                                            count, start)
+                                            : test_children_explicit(vols_.slot[visitors[i]], l + 1,
+                                                                     first, count, start);
                                   }
                                   phase_progress::advance(v.size());
                                 });
