@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstdlib>
@@ -19,6 +20,7 @@
 #include <new>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include <tbb/blocked_range.h>
 #include <tbb/combinable.h>
@@ -248,15 +250,33 @@ std::vector<bool> front_face_culling_meshes(const PreparedScene& scene, const Hi
   const std::size_t meshes = c.meshes.size();
   // meshes_safe_for_face_culling: closed casters whose box holds no regular sample and no point
   // light. Float boxes; their double images are the double boxes of the reference.
+  // Per thread, then merged: min and max of floats do not depend on the order.
+  using Boxes = std::pair<std::vector<glm::vec3>, std::vector<glm::vec3>>;
+  tbb::combinable<Boxes> partial([&] {
+    return Boxes(
+        std::vector<glm::vec3>(meshes, glm::vec3(std::numeric_limits<float>::infinity())),
+        std::vector<glm::vec3>(meshes, glm::vec3(-std::numeric_limits<float>::infinity())));
+  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, c.triangles.size(), 16384),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      Boxes& b = partial.local();
+                      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                        const Triangle& t = c.triangles[i];
+                        if (t.mesh >= meshes) continue;  // reported by the setup
+                        for (const glm::vec3& v : {t.v0, t.v1, t.v2}) {
+                          b.first[t.mesh] = glm::min(b.first[t.mesh], v);
+                          b.second[t.mesh] = glm::max(b.second[t.mesh], v);
+                        }
+                      }
+                    });
   std::vector<glm::vec3> flo(meshes, glm::vec3(std::numeric_limits<float>::infinity()));
   std::vector<glm::vec3> fhi(meshes, glm::vec3(-std::numeric_limits<float>::infinity()));
-  for (const Triangle& t : c.triangles) {
-    if (t.mesh >= meshes) continue;  // reported by the setup
-    for (const glm::vec3& v : {t.v0, t.v1, t.v2}) {
-      flo[t.mesh] = glm::min(flo[t.mesh], v);
-      fhi[t.mesh] = glm::max(fhi[t.mesh], v);
+  partial.combine_each([&](const Boxes& b) {
+    for (std::size_t m = 0; m < meshes; ++m) {
+      flo[m] = glm::min(flo[m], b.first[m]);
+      fhi[m] = glm::max(fhi[m], b.second[m]);
     }
-  }
+  });
   std::vector<std::uint8_t> safe(meshes, 0);
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, meshes, 1), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -294,19 +314,35 @@ std::vector<bool> front_face_culling_meshes(const PreparedScene& scene, const Hi
   std::vector<std::size_t> candidates;
   for (std::size_t m = 0; m < meshes; ++m)
     if (culled[m]) candidates.push_back(m);
-  for (std::size_t i = 0; i < samples.samples.size() && !candidates.empty(); ++i) {
-    const ViewSample& s = samples.samples[i];
-    const double r = sample_reach[i];
-    if (s.sample_class != SampleClass::regular || !(r > 0.0)) continue;
-    const glm::dvec3 p(s.position);
-    std::erase_if(candidates, [&](std::size_t m) {
-      const glm::dvec3 lo(flo[m]), hi(fhi[m]);
-      bool far = false;
-      for (int k = 0; k < 3; ++k) far = far || lo[k] - p[k] > r || p[k] - hi[k] > r;
-      if (!far) culled[m] = false;
-      return !far;
-    });
-  }
+  if (candidates.empty()) return culled;
+  // A mesh keeps its light-facing triangles if any sample comes within its reach of the box:
+  // which sample finds it does not matter, so the samples are split over the threads.
+  std::vector<std::uint8_t> near(meshes, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.samples.size(), 8192),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      std::vector<std::size_t> left;
+                      for (std::size_t m : candidates)
+                        if (!std::atomic_ref<std::uint8_t>(near[m]).load(std::memory_order_relaxed))
+                          left.push_back(m);
+                      for (std::size_t i = range.begin(); i != range.end() && !left.empty(); ++i) {
+                        const ViewSample& s = samples.samples[i];
+                        const double r = sample_reach[i];
+                        if (s.sample_class != SampleClass::regular || !(r > 0.0)) continue;
+                        const glm::dvec3 p(s.position);
+                        std::erase_if(left, [&](std::size_t m) {
+                          const glm::dvec3 lo(flo[m]), hi(fhi[m]);
+                          bool far = false;
+                          for (int k = 0; k < 3; ++k)
+                            far = far || lo[k] - p[k] > r || p[k] - hi[k] > r;
+                          if (!far)
+                            std::atomic_ref<std::uint8_t>(near[m]).store(1,
+                                                                         std::memory_order_relaxed);
+                          return !far;
+                        });
+                      }
+                    });
+  for (std::size_t m : candidates)
+    if (near[m]) culled[m] = false;
   return culled;
 }
 
