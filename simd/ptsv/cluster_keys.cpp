@@ -23,6 +23,14 @@ ClusterKeys assign_cluster_keys(const ref::ClusterKeyLayout& layout, const ref::
   const bool table = layout.depth_bits <= 16;
   std::vector<double> start(table ? std::size_t(slice_limit) + 1 : 0);
   for (std::size_t k = 0; k < start.size(); ++k) start[k] = layout.slice_start(std::uint32_t(k));
+  // interleave() places each bit of x, y and the slice independently: a key is the OR of the
+  // three coordinates' own parts, tabled.
+  std::vector<std::uint32_t> x_part(table ? layout.tiles_x : 0), y_part(table ? layout.tiles_y : 0),
+      slice_part(table ? std::size_t(slice_limit) : 0);
+  for (std::uint32_t x = 0; x < x_part.size(); ++x) x_part[x] = layout.interleave({x, 0, 0});
+  for (std::uint32_t y = 0; y < y_part.size(); ++y) y_part[y] = layout.interleave({0, y, 0});
+  for (std::uint32_t k = 0; k < slice_part.size(); ++k)
+    slice_part[k] = layout.interleave({0, 0, k});
   std::atomic<bool> failed{false};
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, index.size(), 4096),
@@ -50,7 +58,8 @@ ClusterKeys assign_cluster_keys(const ref::ClusterKeyLayout& layout, const ref::
             failed.store(true, std::memory_order_relaxed);
             continue;
           }
-          keys.key[i] = layout.interleave(c);
+          keys.key[i] =
+              table ? x_part[c.x] | y_part[c.y] | slice_part[c.slice] : layout.interleave(c);
         }
       });
   if (failed.load()) {
