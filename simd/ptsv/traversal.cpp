@@ -342,25 +342,28 @@ class Engine {
       // Breadth first: a level's visits are known when it starts, not the next level's.
       if (visits != 0) phase_progress::begin(visits, "volume visits", level_name(l));
       if (l == leaves) {
-        tbb::parallel_for(
-            tbb::blocked_range<std::size_t>(0, L.size(), 1),
-            [&](const tbb::blocked_range<std::size_t>& r) {
-              for (std::size_t p = r.begin(); p != r.end(); ++p) {
-                const std::uint32_t tile = h_.leaf_tile[p];
-                const std::uint64_t size = h_.tile_offsets[tile + 1] - h_.tile_offsets[tile];
-                const std::uint32_t b = offsets[p], e = offsets[p + 1];
-                if (b == e) continue;
-                sample_tests += size * (e - b);
-                tbb::parallel_for(tbb::blocked_range<std::uint32_t>(b, e, 64),
-                                  [&](const tbb::blocked_range<std::uint32_t>& v) {
-                                    for (std::uint32_t i = v.begin(); i != v.end(); ++i) {
-                                      if (i + 4 < v.end()) prefetch(vols_.slot[visitors[i + 4]]);
-                                      test_samples(vols_.slot[visitors[i]], std::uint32_t(p));
-                                    }
-                                    phase_progress::advance(v.size());
-                                  });
-              }
-            });
+        std::uint64_t tests = 0;
+        for (std::size_t p = 0; p < L.size(); ++p) {
+          const std::uint32_t tile = h_.leaf_tile[p];
+          tests += std::uint64_t(h_.tile_offsets[tile + 1] - h_.tile_offsets[tile]) *
+                   (offsets[p + 1] - offsets[p]);
+        }
+        sample_tests += tests;
+        // One flat range over all visits (a leaf has 5 to 50 visitors on average, too few for a
+        // task of its own); a range finds its first leaf by bisection.
+        tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, std::uint32_t(visits), 32),
+                          [&](const tbb::blocked_range<std::uint32_t>& v) {
+                            std::size_t p = std::size_t(std::upper_bound(offsets.begin(),
+                                                                         offsets.end(), v.begin()) -
+                                                        offsets.begin()) -
+                                            1;
+                            for (std::uint32_t i = v.begin(); i != v.end(); ++i) {
+                              while (offsets[p + 1] <= i) ++p;
+                              if (i + 4 < v.end()) prefetch(vols_.slot[visitors[i + 4]]);
+                              test_samples(vols_.slot[visitors[i]], std::uint32_t(p));
+                            }
+                            phase_progress::advance(v.size());
+                          });
         break;
       }
       const Level& below = h_.levels[std::size_t(l) + 1];
@@ -368,53 +371,61 @@ class Engine {
       remaining.resize(std::max<std::size_t>(remaining.size(), visits));
       std::vector<std::uint32_t> child_count(below.size() + 1, 0u);
       std::vector<std::uint32_t>& level_live = live[std::size_t(l)];
+      // Speculative: every visitor against its node's mask at the start of the level, in one
+      // flat range over all visits (a node has few visitors below the top levels); a range finds
+      // its first node by bisection.
       tbb::parallel_for(
-          tbb::blocked_range<std::size_t>(0, L.size(), 1),
-          [&](const tbb::blocked_range<std::size_t>& r) {
-            for (std::size_t p = r.begin(); p != r.end(); ++p) {
-              const std::uint32_t b = offsets[p], e = offsets[p + 1];
-              if (b == e) continue;
+          tbb::blocked_range<std::uint32_t>(0, std::uint32_t(visits), 128),
+          [&](const tbb::blocked_range<std::uint32_t>& v) {
+            std::size_t p =
+                std::size_t(std::upper_bound(offsets.begin(), offsets.end(), v.begin()) -
+                            offsets.begin()) -
+                1;
+            for (std::uint32_t i = v.begin(); i != v.end(); ++i) {
+              while (offsets[p + 1] <= i) ++p;
+              const std::uint32_t start = level_live[p];
+              // The next volumes' planes, ahead of their tests.
+              if (i + 8 < v.end()) prefetch(vols_.slot[visitors[i + 8]]);
               const std::uint32_t first = L.first_child[p];
               const std::uint32_t count = std::uint32_t(std::popcount(L.child_mask[p]));
-              const std::uint32_t start = level_live[p];
-              // Speculative: every visitor against the mask at the start of the level.
-              tbb::parallel_for(tbb::blocked_range<std::uint32_t>(b, e, 256),
-                                [&](const tbb::blocked_range<std::uint32_t>& v) {
-                                  for (std::uint32_t i = v.begin(); i != v.end(); ++i) {
-                                    // The next volumes' planes, ahead of their tests.
-                                    if (i + 8 < v.end()) prefetch(vols_.slot[visitors[i + 8]]);
-                                    verdicts[i] =
-                                        start == 0 ? Verdicts{0, 0, 0, 0}
-                                        : in_.config.implicit_cells
-                                            ? test_children(vols_.slot[visitors[i]], l + 1, first,
-                                                            count, start)
-                                            : test_children_explicit(vols_.slot[visitors[i]], l + 1,
-                                                                     first, count, start);
-                                  }
-                                  phase_progress::advance(v.size());
-                                });
-              // In volume order: what each visitor tests is what its predecessors left.
-              std::uint32_t mask = start;
-              std::uint64_t tests = 0, acc = 0, rej = 0, cul = 0;
-              for (std::uint32_t i = b; i < e; ++i) {
-                const Verdicts& v = verdicts[i];
-                tests += std::uint64_t(std::popcount(mask));
-                acc += std::uint64_t(std::popcount(v.accept & mask));
-                rej += std::uint64_t(std::popcount(v.reject & mask));
-                cul += std::uint64_t(std::popcount(v.cull & mask));
-                const std::uint32_t rem = v.refine & mask;
-                mask &= ~v.accept;
-                remaining[i] = rem;
-                for (std::uint32_t bits = rem; bits != 0; bits &= bits - 1)
-                  ++child_count[first + std::uint32_t(std::countr_zero(bits))];
-              }
-              level_live[p] = mask;
-              node_tests += tests;
-              accepts += acc;
-              rejects += rej;
-              culls += cul;
+              verdicts[i] =
+                  start == 0 ? Verdicts{0, 0, 0, 0}
+                  : in_.config.implicit_cells
+                      ? test_children(vols_.slot[visitors[i]], l + 1, first, count, start)
+                      : test_children_explicit(vols_.slot[visitors[i]], l + 1, first, count, start);
             }
+            phase_progress::advance(v.size());
           });
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, L.size(), 1),
+                        [&](const tbb::blocked_range<std::size_t>& r) {
+                          for (std::size_t p = r.begin(); p != r.end(); ++p) {
+                            const std::uint32_t b = offsets[p], e = offsets[p + 1];
+                            if (b == e) continue;
+                            const std::uint32_t first = L.first_child[p];
+                            const std::uint32_t start = level_live[p];
+                            // In volume order: what each visitor tests is what its predecessors
+                            // left.
+                            std::uint32_t mask = start;
+                            std::uint64_t tests = 0, acc = 0, rej = 0, cul = 0;
+                            for (std::uint32_t i = b; i < e; ++i) {
+                              const Verdicts& v = verdicts[i];
+                              tests += std::uint64_t(std::popcount(mask));
+                              acc += std::uint64_t(std::popcount(v.accept & mask));
+                              rej += std::uint64_t(std::popcount(v.reject & mask));
+                              cul += std::uint64_t(std::popcount(v.cull & mask));
+                              const std::uint32_t rem = v.refine & mask;
+                              mask &= ~v.accept;
+                              remaining[i] = rem;
+                              for (std::uint32_t bits = rem; bits != 0; bits &= bits - 1)
+                                ++child_count[first + std::uint32_t(std::countr_zero(bits))];
+                            }
+                            level_live[p] = mask;
+                            node_tests += tests;
+                            accepts += acc;
+                            rejects += rej;
+                            culls += cul;
+                          }
+                        });
       // The next level's visitors, grouped by child, in volume order within each.
       std::vector<std::uint32_t> next_offsets(below.size() + 1, 0u);
       for (std::size_t c = 0; c < below.size(); ++c)
