@@ -1,5 +1,6 @@
-// The one Highway TU of the simd ptsv: child-bound and sample tests in lanes, and the level-by-
-// level traversal around them (compiled once per target, dispatched once per run).
+// A Highway TU of the simd ptsv (the other: triangle_setup.cpp): child-bound and sample tests in
+// lanes, and the level-by-level traversal around them (compiled once per target, dispatched once
+// per run).
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "simd/ptsv/traversal.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
