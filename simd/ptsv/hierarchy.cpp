@@ -1,5 +1,6 @@
 #include "simd/ptsv/hierarchy.h"
 
+#include <algorithm>
 #include <bit>
 #include <limits>
 
@@ -188,26 +189,50 @@ Hierarchy build_hierarchy(const ref::ClusterKeyLayout& layout, const ref::ViewFr
     const ref::ClusterCoordinate c = layout.deinterleave(leaf.index[l]);
     h.leaf_tile[l] = c.y * layout.tiles_x + c.x;
   }
+  // A stable counting sort of the samples by tile, in fixed chunks spread over oneTBB: chunk c's
+  // samples of tile t go after those of the chunks before it, so the order is sample order.
   const std::size_t tiles = std::size_t(layout.tiles_x) * layout.tiles_y;
   std::vector<std::uint32_t> tile_of(n);
+  constexpr std::size_t chunks = 16;
+  const std::size_t per_chunk = (n + chunks - 1) / chunks;
+  std::vector<std::uint32_t> count(chunks * tiles, 0u);
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, chunks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t c = r.begin(); c != r.end(); ++c) {
+          std::uint32_t* counts = count.data() + c * tiles;
+          for (std::size_t i = c * per_chunk; i < std::min(n, (c + 1) * per_chunk); ++i) {
+            const ViewSample& s = scene.view_samples.samples[samples.index[i]];
+            tile_of[i] = (s.pixel_y / ref::cluster_tile_size) * layout.tiles_x +
+                         s.pixel_x / ref::cluster_tile_size;
+            ++counts[tile_of[i]];
+          }
+        }
+      });
   h.tile_offsets.assign(tiles + 1, 0u);
-  for (std::size_t i = 0; i < n; ++i) {
-    const ViewSample& s = scene.view_samples.samples[samples.index[i]];
-    tile_of[i] =
-        (s.pixel_y / ref::cluster_tile_size) * layout.tiles_x + s.pixel_x / ref::cluster_tile_size;
-    ++h.tile_offsets[tile_of[i] + 1];
+  for (std::size_t t = 0; t < tiles; ++t) {
+    std::uint32_t at = h.tile_offsets[t];
+    for (std::size_t c = 0; c < chunks; ++c) {
+      const std::uint32_t k = count[c * tiles + t];
+      count[c * tiles + t] = at;  // chunk c's first slot in tile t
+      at += k;
+    }
+    h.tile_offsets[t + 1] = at;
   }
-  for (std::size_t t = 0; t < tiles; ++t) h.tile_offsets[t + 1] += h.tile_offsets[t];
   h.tile_sample.resize(n);
   for (auto& v : h.tile_pos) v.assign(n + lane_padding, 0.0);
-  std::vector<std::uint32_t> fill(h.tile_offsets.begin(), h.tile_offsets.end() - 1);
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::uint32_t at = fill[tile_of[i]]++;
-    h.tile_sample[at] = std::uint32_t(i);
-    h.tile_pos[0][at] = double(samples.px[i]);
-    h.tile_pos[1][at] = double(samples.py[i]);
-    h.tile_pos[2][at] = double(samples.pz[i]);
-  }
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, chunks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t c = r.begin(); c != r.end(); ++c) {
+          std::uint32_t* fill = count.data() + c * tiles;
+          for (std::size_t i = c * per_chunk; i < std::min(n, (c + 1) * per_chunk); ++i) {
+            const std::uint32_t at = fill[tile_of[i]]++;
+            h.tile_sample[at] = std::uint32_t(i);
+            h.tile_pos[0][at] = double(samples.px[i]);
+            h.tile_pos[1][at] = double(samples.py[i]);
+            h.tile_pos[2][at] = double(samples.pz[i]);
+          }
+        }
+      });
   return h;
 }
 
