@@ -3,6 +3,8 @@
 // the orthographic map of a directional light. Points go world -> view (right, up, forward) ->
 // raster (texel units, texel (i, j) has its centre at (i + 0.5, j + 0.5)); the stored depth is
 // the view-space forward distance.
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 
 #include <glm/vec2.hpp>
@@ -32,6 +34,17 @@ struct LightView {
     const double x = perspective ? view.x / view.z : view.x / half_extent;
     const double y = perspective ? view.y / view.z : view.y / half_extent;
     return {(x + 1.0) * scale, (y + 1.0) * scale};
+  }
+
+  // The texel a view-space point reads (the nearest, clamped to the map); false at the light
+  // itself (perspective, z <= 0).
+  bool texel_of(const glm::dvec3& view, std::uint32_t& column, std::uint32_t& row) const {
+    if (perspective && !(view.z > 0.0)) return false;
+    const glm::dvec2 r = to_raster(view);
+    const auto last = double(resolution - 1);
+    column = std::uint32_t(std::clamp(std::floor(r.x), 0.0, last));
+    row = std::uint32_t(std::clamp(std::floor(r.y), 0.0, last));
+    return true;
   }
 
   // World-space side of one texel at view depth z, measured across the forward axis.

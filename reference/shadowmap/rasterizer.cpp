@@ -126,7 +126,9 @@ bool set_up_triangle(const LightView& view, const Triangle& t, std::vector<Raste
   return any;
 }
 
-// Fills rows [row_begin, row_end) of one triangle; returns the number of depth writes.
+// Fills the kept texels of rows [row_begin, row_end) of one triangle; returns the number of depth
+// writes. Edge functions are integers: e at column c is e at column_min plus (c - column_min)
+// steps exactly, whichever texels are kept.
 std::uint64_t fill(const RasterTriangle& r, bool perspective, std::int32_t row_begin,
                    std::int32_t row_end, DepthMap& map) {
   const std::int32_t rows_lo = std::max(r.row_min, row_begin);
@@ -135,30 +137,36 @@ std::uint64_t fill(const RasterTriangle& r, bool perspective, std::int32_t row_b
   std::uint64_t written = 0;
   const std::int64_t px0 = std::int64_t(r.column_min) * subpixel + subpixel / 2;
   const double inverse_area = 1.0 / double(r.area);
+  const auto column_min = std::uint32_t(r.column_min), column_max = std::uint32_t(r.column_max);
   for (std::int32_t row = rows_lo; row <= rows_hi; ++row) {
+    const auto first = map.column.begin() + map.row_start[std::size_t(row)];
+    const auto last = map.column.begin() + map.row_start[std::size_t(row) + 1];
+    auto kept = std::lower_bound(first, last, column_min);
+    if (kept == last || *kept > column_max) continue;
     const std::int64_t py = std::int64_t(row) * subpixel + subpixel / 2;
-    std::int64_t e[3], step[3];
+    std::int64_t e0[3], step[3];
     for (int i = 0; i < 3; ++i) {
       const int j = (i + 1) % 3;
       // Integer edge function with the fill rule folded in: inside iff e >= 0.
-      e[i] = edge_function(r.x[i], r.y[i], r.x[j], r.y[j], px0, py) - (r.top_left[i] ? 0 : 1);
+      e0[i] = edge_function(r.x[i], r.y[i], r.x[j], r.y[j], px0, py) - (r.top_left[i] ? 0 : 1);
       step[i] = -(r.y[j] - r.y[i]) * subpixel;
     }
-    float* line = map.depth.data() + std::size_t(row) * map.resolution;
-    for (std::int32_t column = r.column_min; column <= r.column_max; ++column) {
-      if ((e[0] | e[1] | e[2]) >= 0) {
-        // Edge i is opposite vertex (i + 2) % 3; undo the fill-rule offset for the weights.
-        const double w2 = double(e[0] + (r.top_left[0] ? 0 : 1)) * inverse_area;
-        const double w0 = double(e[1] + (r.top_left[1] ? 0 : 1)) * inverse_area;
-        const double w1 = double(e[2] + (r.top_left[2] ? 0 : 1)) * inverse_area;
-        const double a = w0 * r.attribute[0] + w1 * r.attribute[1] + w2 * r.attribute[2];
-        const float depth = float(perspective ? 1.0 / a : a);
-        if (depth < line[column]) {
-          line[column] = depth;
-          ++written;
-        }
+    for (; kept != last && *kept <= column_max; ++kept) {
+      const auto steps = std::int64_t(*kept - column_min);
+      std::int64_t e[3];
+      for (int i = 0; i < 3; ++i) e[i] = e0[i] + steps * step[i];
+      if ((e[0] | e[1] | e[2]) < 0) continue;
+      // Edge i is opposite vertex (i + 2) % 3; undo the fill-rule offset for the weights.
+      const double w2 = double(e[0] + (r.top_left[0] ? 0 : 1)) * inverse_area;
+      const double w0 = double(e[1] + (r.top_left[1] ? 0 : 1)) * inverse_area;
+      const double w1 = double(e[2] + (r.top_left[2] ? 0 : 1)) * inverse_area;
+      const double a = w0 * r.attribute[0] + w1 * r.attribute[1] + w2 * r.attribute[2];
+      const float depth = float(perspective ? 1.0 / a : a);
+      float& stored = map.depth[std::size_t(kept - map.column.begin())];
+      if (depth < stored) {
+        stored = depth;
+        ++written;
       }
-      for (int i = 0; i < 3; ++i) e[i] += step[i];
     }
   }
   return written;
@@ -168,7 +176,6 @@ std::uint64_t fill(const RasterTriangle& r, bool perspective, std::int32_t row_b
 
 RasterCounters rasterize_depth(const LightView& view, const std::vector<Triangle>& casters,
                                DepthMap& map) {
-  map.reset(view.resolution);
   RasterCounters counters;
   // Set-up per caster in parallel, gathered in caster order.
   std::vector<std::vector<RasterTriangle>> per_caster(casters.size());
@@ -196,8 +203,10 @@ RasterCounters rasterize_depth(const LightView& view, const std::vector<Triangle
                         const auto row_begin = std::int32_t(b * band_rows);
                         const auto row_end =
                             std::int32_t(std::min(view.resolution, (b + 1) * band_rows));
+                        const bool any_kept = map.row_start[std::size_t(row_begin)] !=
+                                              map.row_start[std::size_t(row_end)];
                         for (const RasterTriangle& r : triangles)
-                          if (r.row_max >= row_begin && r.row_min < row_end)
+                          if (any_kept && r.row_max >= row_begin && r.row_min < row_end)
                             count += fill(r, view.perspective, row_begin, row_end, map);
                         phase_progress::advance(std::uint64_t(row_end - row_begin));
                       }

@@ -17,12 +17,12 @@ namespace shadowcts::shadowmap {
 
 struct RasterCounters {
   std::uint64_t triangles_rasterized = 0;  // casters with a non-empty clipped polygon
-  std::uint64_t texels_written = 0;        // depth-test passes (stores into the map)
+  std::uint64_t texels_written = 0;        // depth-test passes (stores into the kept texels)
 };
 
-// Rasterizes `casters` into `map` (reset to the view's resolution first). Parallel over bands of
-// rows with oneTBB; every band processes the triangles in the given order, so the map and the
-// counters do not depend on the number of threads.
+// Rasterizes `casters` into the texels `map` keeps (reset by the caller to the view's
+// resolution). Parallel over bands of rows with oneTBB; every band processes the triangles in the
+// given order, so the map and the counters do not depend on the number of threads.
 RasterCounters rasterize_depth(const LightView& view, const std::vector<Triangle>& casters,
                                DepthMap& map);
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -34,6 +36,21 @@ struct ShadowMapVariant {
 constexpr double cube_near_fraction = 1e-4;
 
 // Compares the samples listed in `indices` against one rasterized map.
+// The texels the samples of one map read, sorted, without repeats.
+std::vector<std::uint64_t> texels_read(const LightView& view, const ViewSamples& samples,
+                                       const std::vector<std::size_t>& indices) {
+  std::vector<std::uint64_t> texels;
+  texels.reserve(indices.size());
+  for (const std::size_t i : indices) {
+    std::uint32_t column = 0, row = 0;
+    if (view.texel_of(view.to_view(glm::dvec3(samples.samples[i].position)), column, row))
+      texels.push_back(std::uint64_t(row) * view.resolution + column);
+  }
+  std::sort(texels.begin(), texels.end());
+  texels.erase(std::unique(texels.begin(), texels.end()), texels.end());
+  return texels;
+}
+
 void look_up(const LightView& view, const DepthMap& map, const DepthBias& bias,
              const HardShadowLight& light, const ViewSamples& samples,
              const std::vector<std::size_t>& indices, std::vector<std::uint8_t>& shadowed) {
@@ -44,11 +61,8 @@ void look_up(const LightView& view, const DepthMap& map, const DepthBias& bias,
           const ViewSample& s = samples.samples[indices[k]];
           const glm::dvec3 p(s.position);
           const glm::dvec3 q = view.to_view(p);
-          if (view.perspective && !(q.z > 0.0)) continue;  // at the light itself
-          const glm::dvec2 r = view.to_raster(q);
-          const auto last = double(view.resolution - 1);
-          const auto column = std::uint32_t(std::clamp(std::floor(r.x), 0.0, last));
-          const auto row = std::uint32_t(std::clamp(std::floor(r.y), 0.0, last));
+          std::uint32_t column = 0, row = 0;
+          if (!view.texel_of(q, column, row)) continue;  // at the light itself
           const glm::dvec3 to_light =
               glm::normalize(light.directional ? light.direction : light.position - p);
           const double cos_theta = std::fabs(glm::dot(glm::dvec3(s.normal), to_light));
@@ -83,7 +97,9 @@ class ShadowMapAlgorithm final : public VariantTableAlgorithm<ShadowMapVariant> 
       clock.lap(build_phase);
       const auto draw_and_look_up = [&](const LightView& view,
                                         const std::vector<std::size_t>& indices) {
+        // Only the texels the samples read: their depths are the full map's.
         DepthMap map;
+        map.reset(view.resolution, texels_read(view, samples, indices));
         const RasterCounters counters = rasterize_depth(view, casters, map);
         clock.lap(build_phase);
         totals.triangles_rasterized += counters.triangles_rasterized;

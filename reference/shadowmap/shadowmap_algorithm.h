@@ -16,7 +16,8 @@ namespace shadowcts {
 
 // id "shadowmap", backend "reference", variants "1k", "2k", "4k", "8k" (map side 1024 ... 8192
 // texels, default bias) and "2k+nobias" (no bias at all: shows shadow acne). Counters:
-// texels_written (depth-test passes), triangles_rasterized (caster x map pairs left after
+// texels_written (depth-test passes at the texels the samples read: each map keeps only those,
+// whose depths are the full map's), triangles_rasterized (caster x map pairs left after
 // clipping), depth_maps (maps drawn).
 std::unique_ptr<Algorithm> make_shadowmap();
 

@@ -2,8 +2,12 @@
 // exact oracle, which must shrink as the maps get finer.
 #include "reference/shadowmap/shadowmap_algorithm.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <map>
+#include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -42,6 +46,7 @@ LightView square_view() {
 
 std::vector<bool> coverage(const std::vector<Triangle>& triangles) {
   DepthMap map;
+  map.reset_full(square_view().resolution);
   rasterize_depth(square_view(), triangles, map);
   std::vector<bool> covered;
   for (float d : map.depth) covered.push_back(d < 1e30f);
@@ -71,6 +76,7 @@ TEST(ShadowMapRasterizer, KeepsTheNearestDepthAndCountsWrites) {
   const Triangle far{{-3, -3, 5}, {3, -3, 5}, {0, 3, 5}, 0};
   const Triangle near{{-3, -3, 2}, {3, -3, 2}, {0, 3, 2}, 0};
   DepthMap map;
+  map.reset_full(square_view().resolution);
   const RasterCounters counters = rasterize_depth(square_view(), {far, near}, map);
   EXPECT_EQ(counters.triangles_rasterized, 2u);
   std::uint64_t covered = 0;
@@ -80,6 +86,44 @@ TEST(ShadowMapRasterizer, KeepsTheNearestDepthAndCountsWrites) {
       ++covered;
     }
   EXPECT_EQ(counters.texels_written, 2 * covered);  // far first, then near overwrites
+}
+
+// A map that keeps some texels holds there what the full map holds, and counts the writes there.
+TEST(ShadowMapRasterizer, KeptTexelsHoldTheFullMapsDepths) {
+  LightView view;
+  view.perspective = true;
+  view.near = 0.05;
+  view.resolution = 64;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> lateral(-3.0f, 3.0f), depth(0.5f, 4.0f);
+  std::vector<Triangle> casters;
+  for (int i = 0; i < 200; ++i) {
+    const glm::vec3 centre(lateral(rng), lateral(rng), depth(rng));
+    casters.push_back({centre + glm::vec3(lateral(rng), lateral(rng), lateral(rng)) * 0.3f,
+                       centre + glm::vec3(lateral(rng), lateral(rng), lateral(rng)) * 0.3f,
+                       centre + glm::vec3(lateral(rng), lateral(rng), lateral(rng)) * 0.3f, 0});
+  }
+  DepthMap full;
+  full.reset_full(view.resolution);
+  const RasterCounters all = rasterize_depth(view, casters, full);
+  std::vector<std::uint64_t> texels;
+  std::uniform_int_distribution<std::uint64_t> texel(0, 64 * 64 - 1);
+  for (int i = 0; i < 500; ++i) texels.push_back(texel(rng));
+  std::sort(texels.begin(), texels.end());
+  texels.erase(std::unique(texels.begin(), texels.end()), texels.end());
+  DepthMap kept;
+  kept.reset(view.resolution, texels);
+  const RasterCounters some = rasterize_depth(view, casters, kept);
+  EXPECT_EQ(some.triangles_rasterized, all.triangles_rasterized);
+  int covered = 0;
+  for (const std::uint64_t t : texels) {
+    const auto column = std::uint32_t(t % 64), row = std::uint32_t(t / 64);
+    EXPECT_EQ(kept.at(column, row), full.at(column, row)) << "texel " << column << ", " << row;
+    covered += full.at(column, row) < 1e30f;
+  }
+  EXPECT_GT(covered, 100);
+  EXPECT_GT(some.texels_written, 0u);
+  EXPECT_LT(some.texels_written, all.texels_written);
 }
 
 TEST(ShadowMapCube, EveryDirectionHasOneFaceThatSeesIt) {
