@@ -614,25 +614,25 @@ std::uint64_t Block::collective(Collective kind, unsigned mask, std::uint64_t va
   yield_point();
   Thread& self = *current_;
   Warp& warp = warps_[self.warp];
-  const std::string name = collective_name(kind);
   if ((mask & (1u << self.lane)) == 0) {
     fail(ErrorKind::invalid_argument, self, where,
-         name + " with mask " + hex(mask) + " that does not name the calling lane " +
-             std::to_string(self.lane));
+         std::string(collective_name(kind)) + " with mask " + hex(mask) +
+             " that does not name the calling lane " + std::to_string(self.lane));
   }
   if (width < 1 || width > warp_size || !std::has_single_bit(static_cast<unsigned>(width))) {
     fail(ErrorKind::invalid_argument, self, where,
-         name + " with width " + std::to_string(width) + " (a power of two up to 32)");
+         std::string(collective_name(kind)) + " with width " + std::to_string(width) +
+             " (a power of two up to 32)");
   }
   if (const unsigned absent = mask & ~warp.lanes) {
     fail(ErrorKind::warp_lane_exited, self, where,
-         name + " with mask " + hex(mask) + " names lane " +
+         std::string(collective_name(kind)) + " with mask " + hex(mask) + " names lane " +
              std::to_string(std::countr_zero(absent)) + ", which does not exist (the block's " +
              "last warp has " + std::to_string(std::popcount(warp.lanes)) + " lanes)");
   }
   if (const unsigned gone = mask & warp.exited) {
     fail(ErrorKind::warp_lane_exited, self, where,
-         name + " with mask " + hex(mask) + " names lane " +
+         std::string(collective_name(kind)) + " with mask " + hex(mask) + " names lane " +
              std::to_string(std::countr_zero(gone)) + ", which has exited");
   }
   self.collective = kind;
