@@ -17,6 +17,22 @@
 
 #include "simd/metric/traversal.h"
 
+// Plain C++ used by every target and by the precomputations: defined once per translation unit.
+#ifndef SHADOWCTS_SIMD_METRIC_TRAVERSAL_ONCE
+#define SHADOWCTS_SIMD_METRIC_TRAVERSAL_ONCE
+namespace shadowcts::simd::metric {
+// The largest float <= x and the smallest float >= x (x not NaN).
+inline float float_below(double x) {
+  const float f = float(x);
+  return double(f) > x ? std::nextafter(f, -INFINITY) : f;
+}
+inline float float_above(double x) {
+  const float f = float(x);
+  return double(f) < x ? std::nextafter(f, INFINITY) : f;
+}
+}  // namespace shadowcts::simd::metric
+#endif
+
 HWY_BEFORE_NAMESPACE();
 namespace shadowcts::simd::metric::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
@@ -27,9 +43,16 @@ using shadowcts::metric::TraversalCounters;
 using shadowcts::metric::TraversalScene;
 using shadowcts::metric::TreeChild;
 
+// Float lanes per packet chunk: a whole 16-sample packet is one AVX-512 vector of floats.
+constexpr std::size_t max_float_lanes = 16;
+
 template <std::size_t P>
 struct Packet {
   alignas(64) double ux[P], uy[P], uz[P], qld[P];
+  // The direction in float, and floats below and above the light distance; 16 wide for any P so
+  // that a full float vector can always be loaded (lanes past P are masked off).
+  alignas(64) float fx[max_float_lanes], fy[max_float_lanes], fz[max_float_lanes];
+  alignas(64) float qlo[max_float_lanes], qhi[max_float_lanes];
   std::uint32_t regular[P];
   const ViewSample* sample[P];
   std::uint32_t receiver[P];
@@ -45,6 +68,14 @@ HWY_INLINE std::uint32_t lane_bits(D d, M mask) {
   std::uint8_t bytes[8] = {};
   hn::StoreMaskBits(d, mask, bytes);
   return bytes[0];
+}
+
+// Lane bits of a mask of at most 16 lanes (floats in vectors of at most 512 bits).
+template <class D, class M>
+HWY_INLINE std::uint32_t float_lane_bits(D d, M mask) {
+  std::uint8_t bytes[8] = {};
+  hn::StoreMaskBits(d, mask, bytes);
+  return std::uint32_t(bytes[0]) | (std::uint32_t(bytes[1]) << 8);
 }
 
 // The decisions of one node for the lanes of a packet, as lane masks.
@@ -210,15 +241,81 @@ NodeDecisions evaluate_node(const PacketTraversal& traversal, const PacketNode& 
   return out;
 }
 
+// The node tests of a point cone in float lanes (16 per AVX-512 vector). Returns the decisions of
+// the lanes it is certain of and sets `unsure` to the lanes the double path must decide.
+// Light distances: the float bounds below and above each double decide qld >= d wherever they
+// do not overlap. Angles: with float u, a, cos T and sin T, every operand at most 2 in magnitude,
+// f = s cos T - c sin T is within 2^-18 of its exact value for the double inputs (the rounding of
+// u and a moves |u x a| and u . a by a few 2^-24, the operations add a few more); a lane is
+// decided only where |f| exceeds `window` (at least 2^-14): then the double f lies beyond the
+// double path's own window, on the same side, and the double path would decide it alike.
+template <std::size_t P>
+NodeDecisions evaluate_in_float(const FastNode& n, const Packet<P>& pk, std::uint32_t lanes,
+                                float window, std::uint32_t& unsure) {
+  const hn::ScalableTag<float> d;
+  using V = hn::Vec<decltype(d)>;
+  const std::size_t N = std::min(hn::Lanes(d), max_float_lanes);
+  const std::uint32_t chunk = N >= 32 ? ~0u : (1u << N) - 1;
+  const V lo = hn::Set(d, -window), hi = hn::Set(d, window);
+  NodeDecisions out;
+  std::uint32_t below[thresholds] = {}, above[thresholds] = {};
+  unsure = 0;
+  for (std::size_t j = 0; j < P; j += N) {
+    const std::uint32_t here = (lanes >> j) & chunk;
+    if (here == 0) continue;
+    const V qlo = hn::Load(d, pk.qlo + j), qhi = hn::Load(d, pk.qhi + j);
+    const std::uint32_t reached =
+        float_lane_bits(d, hn::Ge(qlo, hn::Set(d, n.light_distance_high))) & here;
+    const std::uint32_t not_reached =
+        float_lane_bits(d, hn::Lt(qhi, hn::Set(d, n.light_distance_low))) & here;
+    std::uint32_t doubt = here & ~(reached | not_reached);
+    if (reached != 0) {
+      const std::uint32_t deep =
+          float_lane_bits(d, hn::Ge(qlo, hn::Set(d, n.pivot_light_distance_high)));
+      const std::uint32_t shallow =
+          float_lane_bits(d, hn::Lt(qhi, hn::Set(d, n.pivot_light_distance_low)));
+      doubt |= reached & ~(deep | shallow);
+      out.deep |= (deep & reached) << j;
+      const V ux = hn::Load(d, pk.fx + j), uy = hn::Load(d, pk.fy + j), uz = hn::Load(d, pk.fz + j);
+      const V ax = hn::Set(d, n.a[0]), ay = hn::Set(d, n.a[1]), az = hn::Set(d, n.a[2]);
+      V s, c;
+      sine_cosine(ux, uy, uz, ax, ay, az, s, c);
+      for (int k = 0; k < thresholds; ++k) {
+        if (!(n.needed >> k & 1)) continue;
+        const V f = hn::Sub(hn::Mul(s, hn::Set(d, n.cos_t[k])), hn::Mul(c, hn::Set(d, n.sin_t[k])));
+        const std::uint32_t b = float_lane_bits(d, hn::Lt(f, lo)) & reached,
+                            a = float_lane_bits(d, hn::Gt(f, hi)) & reached;
+        doubt |= reached & ~(a | b);
+        below[k] |= b << j;
+        above[k] |= a << j;
+      }
+      out.reached |= reached << j;
+    }
+    unsure |= doubt << j;
+  }
+  const std::uint32_t sure = ~unsure;
+  out.reached &= sure;
+  out.deep &= sure;
+  out.inside = below[inside] & sure;
+  out.overlap = n.needed >> overlap_low & 1 ? above[overlap_low] & below[overlap_high] & sure : 0;
+  out.far = n.needed >> far_side & 1 ? above[far_side] & sure : 0;
+  out.near = n.needed >> near_side & 1 ? below[near_side] & sure : 0;
+  return out;
+}
+
 // The cluster's slots [begin, begin + count), count <= 64, that the reference's
-// triangle_blocks_sample might not reject. A slot is left out only when, for the same float
-// ray-space vertices segment_triangle.h computes (bit for bit), every float edge function
-// E_f = q.x p.y - q.y p.x exceeds 9/8 of the float near-edge bound B_f = 2^-16 n_p n_q and the
-// signs are strictly mixed. Why that is certain: |E - E_f| <= 2.1 u (|q.x p.y| + |q.y p.x|)
-// <= 2.1 u n_p n_q = 2.1 * 2^-8 B (u = 2^-24), and B_f is within 6u of the double bound B, so
-// |E| > B: ray_near_triangle_edge is false, every sign is exact, and with mixed signs the
-// watertight test misses. Where a float value is not normal (scenes far below 2^-40 or above
-// 2^40) or not finite, the slot is left to the reference.
+// triangle_blocks_sample might not reject. A slot is left out only where the line of the ray
+// certainly misses the triangle, as line_certainly_misses_triangle (caster_blocks_sample.h)
+// decides it: one edge function certainly negative and one certainly positive, "certainly" by
+// the rounding bound of ray_within_rounding_of_triangle_edge (edge_proximity.h),
+// 2^-16 (n_q m_p + n_p m_q) + 2^-30 n_p n_q (+ 2^-140 (n_p + n_q)), with m = |x| + |y| and n = m +
+// |v_z - o_z|. The float edge function E_f = q.x p.y - q.y p.x of the same float ray-space
+// vertices segment_triangle.h computes (bit for bit) is within 2.1 u m_p m_q (u = 2^-24) of its
+// exact value E; the filter asks |E_f| > 9/8 of the bound plus 2^-60 (the absolute terms, with
+// n <= 2^60), so |E| exceeds the bound. Then (1) the watertight test's signs, exact for E, are
+// mixed: it misses; (2) the exact line misses too, so the reference answers "passes" whether or
+// not it goes on to its exact test (ray_near_triangle_edge's looser bound only decides whether it
+// does). Non-finite values compare false and leave the slot to the reference.
 std::uint64_t triangles_to_decide(const ClusterTriangles& triangles, std::uint32_t begin,
                                   std::uint32_t count, const RaySpace& ray) {
   if (ray.zero_direction) return 0;  // the reference's tests hit nothing
@@ -230,11 +327,13 @@ std::uint64_t triangles_to_decide(const ClusterTriangles& triangles, std::uint32
            oy = hn::Set(df, component(ray.origin, ray.ky)),
            oz = hn::Set(df, component(ray.origin, ray.kz));
   const VF shear_x = hn::Set(df, ray.shear_x), shear_y = hn::Set(df, ray.shear_y);
-  const VF edge_scale = hn::Set(df, 0x1p-16f), margin = hn::Set(df, 1.125f),
-           smallest = hn::Set(df, 0x1p-100f), zero = hn::Zero(df);
+  const VF lateral_scale = hn::Set(df, 1.125f * 0x1p-16f),
+           product_scale = hn::Set(df, 1.125f * 0x1p-30f), absolute = hn::Set(df, 0x1p-60f),
+           largest = hn::Set(df, 0x1p60f), zero = hn::Zero(df);
   std::uint64_t decide = 0;
   for (std::uint32_t j = 0; j < count; j += std::uint32_t(N)) {
-    VF x[3], y[3], extent[3];
+    VF x[3], y[3], lateral[3], extent[3];
+    auto in_range = hn::Not(hn::Lt(largest, zero));  // all true
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t slot = begin + j;
       const VF rx = hn::Sub(hn::LoadU(df, triangles.xyz[ray.kx][k].data() + slot), ox);
@@ -242,24 +341,26 @@ std::uint64_t triangles_to_decide(const ClusterTriangles& triangles, std::uint32
       const VF rz = hn::Sub(hn::LoadU(df, triangles.xyz[ray.kz][k].data() + slot), oz);
       x[k] = hn::Sub(rx, hn::Mul(shear_x, rz));
       y[k] = hn::Sub(ry, hn::Mul(shear_y, rz));
-      extent[k] = hn::Add(hn::Add(hn::Abs(x[k]), hn::Abs(y[k])), hn::Abs(rz));
+      lateral[k] = hn::Add(hn::Abs(x[k]), hn::Abs(y[k]));
+      extent[k] = hn::Add(lateral[k], hn::Abs(rz));
+      in_range = hn::And(in_range, hn::Le(extent[k], largest));
     }
     // Edges (b, c), (c, a), (a, b), as exact_edge_function(p, q) = q.x p.y - q.y p.x.
     const int p_of[3] = {1, 2, 0}, q_of[3] = {2, 0, 1};
-    auto certain = hn::Not(hn::Lt(edge_scale, zero));  // all true
-    auto negative = hn::Lt(edge_scale, zero), positive = negative;
+    auto negative = hn::Lt(largest, zero), positive = negative;  // all false
     for (int e = 0; e < 3; ++e) {
       const int p = p_of[e], q = q_of[e];
       const VF edge = hn::Sub(hn::Mul(x[q], y[p]), hn::Mul(y[q], x[p]));
-      const VF bound = hn::Mul(hn::Mul(edge_scale, extent[p]), extent[q]);
-      certain = hn::And(
-          certain, hn::And(hn::Gt(hn::Abs(edge), hn::Mul(margin, bound)),
-                           hn::And(hn::Ge(bound, smallest), hn::And(hn::Ge(extent[p], smallest),
-                                                                    hn::Ge(extent[q], smallest)))));
-      negative = hn::Or(negative, hn::Lt(edge, zero));
-      positive = hn::Or(positive, hn::Gt(edge, zero));
+      const VF bound = hn::Add(
+          hn::Add(hn::Mul(lateral_scale,
+                          hn::Add(hn::Mul(extent[q], lateral[p]), hn::Mul(extent[p], lateral[q]))),
+                  hn::Mul(product_scale, hn::Mul(extent[p], extent[q]))),
+          absolute);
+      const auto certain = hn::Gt(hn::Abs(edge), bound);
+      negative = hn::Or(negative, hn::And(certain, hn::Lt(edge, zero)));
+      positive = hn::Or(positive, hn::And(certain, hn::Gt(edge, zero)));
     }
-    const auto skip = hn::And(certain, hn::And(negative, positive));
+    const auto skip = hn::And(in_range, hn::And(negative, positive));
     std::uint8_t bytes[8] = {};
     hn::StoreMaskBits(df, hn::Not(skip), bytes);
     std::uint64_t bits = 0;
@@ -273,23 +374,26 @@ std::uint64_t triangles_to_decide(const ClusterTriangles& triangles, std::uint32
 // Step 2 for one lane: the slabs, then the pivot cluster's triangles in cluster order with the
 // reference's counters and decisions.
 template <std::size_t P>
-bool cluster_blocks(const PacketTraversal& traversal, Packet<P>& pk, int l, std::uint32_t cluster,
-                    TraversalCounters& counters) {
+bool cluster_blocks(const PacketTraversal& traversal, Packet<P>& pk, int l,
+                    const NodeCluster& cluster, TraversalCounters& counters) {
   const TraversalScene& scene = *traversal.scene;
-  if (!shadowcts::metric::segment_meets_slabs(scene, (*scene.volumes)[cluster], pk.from[l],
-                                              pk.to[l]))
+  // segment_meets_slabs, on the node's copy of the slabs (the same operations).
+  const double s_from = glm::dot(cluster.slab_normal, pk.from[l]);
+  const double s_to = glm::dot(cluster.slab_normal, pk.to[l]);
+  if (!(std::max(s_from, s_to) >= cluster.low && std::min(s_from, s_to) <= cluster.high))
     return false;
   const shadowcts::metric::Clustering& clustering = *scene.clustering;
   const std::uint32_t receiver = pk.receiver[l];
-  const std::uint32_t end = clustering.cluster_begin[cluster + 1];
-  for (std::uint32_t begin = clustering.cluster_begin[cluster]; begin < end; begin += 64) {
+  const std::vector<std::uint32_t>& slot_of = traversal.triangles->slot_of;
+  // The slot of the receiver, which is never tested nor counted (at most one per cluster).
+  const std::uint32_t receiver_at = receiver < slot_of.size() ? slot_of[receiver] : ~0u;
+  const std::uint32_t end = cluster.end;
+  for (std::uint32_t begin = cluster.begin; begin < end; begin += 64) {
     const std::uint32_t count = std::min<std::uint32_t>(64, end - begin);
     const std::uint64_t decide = triangles_to_decide(*traversal.triangles, begin, count, pk.ray[l]);
     const std::uint32_t* slots = clustering.triangles.data() + begin;
-    // The slot of the receiver, which is never tested nor counted (at most one per cluster).
-    std::uint32_t receiver_slot = count;
-    for (std::uint32_t k = 0; k < count; ++k)
-      if (slots[k] == receiver) receiver_slot = k;
+    const std::uint32_t receiver_slot =
+        receiver_at >= begin && receiver_at - begin < count ? receiver_at - begin : count;
     // Only the slots the filter could not rule out need the reference; every other slot is a
     // test that misses, counted as the reference counts it.
     for (std::uint64_t rest = decide; rest != 0; rest &= rest - 1) {
@@ -319,6 +423,7 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
   std::uint32_t active = 0;
   for (std::uint32_t l = 0; l < P; ++l) {
     pk.ux[l] = pk.uy[l] = pk.uz[l] = pk.qld[l] = 0.0;
+    pk.fx[l] = pk.fy[l] = pk.fz[l] = pk.qlo[l] = pk.qhi[l] = 0.0f;
     if (l >= count) continue;
     const std::uint32_t i = members[l];
     // The prepared scene's compacted arrays (the same floats as the view sample's); the view
@@ -343,10 +448,20 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
     pk.uy[l] = pk.query[l].position.y;
     pk.uz[l] = pk.query[l].position.z;
     pk.qld[l] = pk.query[l].light_distance;
+    pk.fx[l] = float(pk.ux[l]);
+    pk.fy[l] = float(pk.uy[l]);
+    pk.fz[l] = float(pk.uz[l]);
+    pk.qlo[l] = float_below(pk.qld[l]);
+    pk.qhi[l] = float_above(pk.qld[l]);
     active |= 1u << l;
   }
-  const std::vector<PacketNode>& nodes = *traversal.nodes;
+  const std::vector<PacketNode>& nodes = traversal.nodes->nodes;
+  const std::vector<FastNode>& fast = traversal.nodes->fast;
+  const std::vector<NodeCluster>& clusters = traversal.nodes->clusters;
   if (nodes.empty() || active == 0) return;
+  // The float window: at least 2^-14 (see evaluate_in_float), wider where a test widens the
+  // double one, so that the lanes it hands back still reach the double path.
+  const float float_window = float(std::max(0x1p-14, 2.0 * traversal.decision_window));
   stack.clear();
   stack.push_back({0, active});
   while (!stack.empty()) {
@@ -355,11 +470,26 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
     const std::uint32_t lanes = pushed & active;
     if (lanes == 0) continue;
     counters.nodes_visited += std::uint64_t(std::popcount(lanes));
-    const PacketNode& n = nodes[index];
-    const NodeDecisions decisions = evaluate_node(traversal, n, pk, lanes);
+    const FastNode& fn = fast[index];
+    NodeDecisions decisions;
+    if (fn.in_float) {
+      std::uint32_t unsure = 0;
+      decisions = evaluate_in_float(fn, pk, lanes, float_window, unsure);
+      if (unsure != 0) {
+        const NodeDecisions exact = evaluate_node(traversal, nodes[index], pk, unsure);
+        decisions.reached |= exact.reached;
+        decisions.deep |= exact.deep;
+        decisions.inside |= exact.inside;
+        decisions.overlap |= exact.overlap;
+        decisions.far |= exact.far;
+        decisions.near |= exact.near;
+      }
+    } else {
+      decisions = evaluate_node(traversal, nodes[index], pk, lanes);
+    }
     for (std::uint32_t visit = decisions.inside & decisions.deep; visit != 0; visit &= visit - 1) {
       const int l = std::countr_zero(visit);
-      if (cluster_blocks(traversal, pk, l, (*scene.elements)[n.pivot].cluster, counters)) {
+      if (cluster_blocks(traversal, pk, l, clusters[index], counters)) {
         shadowed[pk.regular[l]] = 1;
         active &= ~(1u << l);
       }
@@ -371,11 +501,10 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
     // The first lines of a pushed node are fetched while the walk goes on: far and overlap
     // children lie elsewhere in the near-first order.
     const auto push = [&](int child, std::uint32_t mask) {
-      const PacketNode* next = &nodes[n.child[child]];
+      const FastNode* next = &fast[fn.child[child]];
       __builtin_prefetch(next);
       __builtin_prefetch(reinterpret_cast<const char*>(next) + 64);
-      __builtin_prefetch(reinterpret_cast<const char*>(next) + 128);
-      stack.push_back({n.child[child], mask});
+      stack.push_back({fn.child[child], mask});
     };
     if (overlap) push(int(TreeChild::overlap), overlap);
     if (far) push(int(TreeChild::far), far);
@@ -439,10 +568,12 @@ ClusterTriangles cluster_triangles_soa(const CasterArrays& casters,
       const std::vector<float>& from = source[axis][k];
       for (std::size_t j = 0; j < slots; ++j) to[j] = from[clustering.triangles[j]];
     }
+  out.slot_of.assign(casters.size(), ~0u);
+  for (std::size_t j = 0; j < slots; ++j) out.slot_of[clustering.triangles[j]] = std::uint32_t(j);
   return out;
 }
 
-std::vector<PacketNode> packet_nodes(const shadowcts::metric::TraversalScene& scene) {
+PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene) {
   using shadowcts::metric::CentreKind;
   using shadowcts::metric::no_node;
   using shadowcts::metric::TreeChild;
@@ -462,7 +593,11 @@ std::vector<PacketNode> packet_nodes(const shadowcts::metric::TraversalScene& sc
         if (tree_nodes[node].child[c] != no_node) stack.push_back(tree_nodes[node].child[c]);
     }
   }
-  std::vector<PacketNode> nodes(order.size());
+  PacketNodes out;
+  out.nodes.resize(order.size());
+  out.fast.resize(order.size());
+  out.clusters.resize(order.size());
+  std::vector<PacketNode>& nodes = out.nodes;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, order.size(), 512),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       for (std::size_t i = range.begin(); i != range.end(); ++i) {
@@ -522,9 +657,37 @@ std::vector<PacketNode> packet_nodes(const shadowcts::metric::TraversalScene& sc
                             }
                           }
                         }
+                        FastNode& f = out.fast[i];
+                        f.light_distance_low = float_below(n.light_distance);
+                        f.light_distance_high = float_above(n.light_distance);
+                        f.pivot_light_distance_low = float_below(n.pivot_light_distance);
+                        f.pivot_light_distance_high = float_above(n.pivot_light_distance);
+                        f.needed = 1u << inside;
+                        if (n.has_child[int(TreeChild::overlap)])
+                          f.needed |= (1u << overlap_low) | (1u << overlap_high);
+                        if (n.has_child[int(TreeChild::far)]) f.needed |= 1u << far_side;
+                        if (n.has_child[int(TreeChild::near)]) f.needed |= 1u << near_side;
+                        for (int c = 0; c < 3; ++c) {
+                          f.child[c] = n.child[c];
+                          f.has_child |= std::uint8_t(n.has_child[c] << c);
+                        }
+                        f.in_float = n.kind == NodeKind::point_cone;
+                        for (int k = 0; k < 3; ++k) f.a[k] = float(n.a[k]);
+                        for (int k = 0; k < thresholds; ++k) {
+                          f.cos_t[k] = float(n.cos_t[k]);
+                          f.sin_t[k] = float(n.sin_t[k]);
+                        }
+                        const std::uint32_t cluster = e.cluster;
+                        const shadowcts::metric::ClusterVolume& volume = (*scene.volumes)[cluster];
+                        NodeCluster& record = out.clusters[i];
+                        record.slab_normal = volume.slab_normal;
+                        record.low = volume.slab_min - frame.margin;
+                        record.high = volume.slab_max + frame.margin;
+                        record.begin = scene.clustering->cluster_begin[cluster];
+                        record.end = scene.clustering->cluster_begin[cluster + 1];
                       }
                     });
-  return nodes;
+  return out;
 }
 
 SampleTiles sample_tiles(const RegularSamples& samples, std::uint32_t width, std::uint32_t packet) {

@@ -5,16 +5,20 @@
 // pushed and popped in the order its own depth-first walk would push and pop them, so every
 // per-sample counter is the reference's (reference/metric/traversal.h).
 //
-// Exactness: the node tests decide in lanes only where the decision is certain, and hand a lane
-// back to the reference's scalar pivot_distance where a double comparison lies within 2^-40 (of an
-// angle, or of S in the plane) of its threshold. The angle test needs no atan2: for an angle
-// theta = atan2(s, c) with s >= 0 and a threshold T in [0, pi], sign(theta - T) is the sign of
-// s cos T - c sin T. The triangles of a candidate cluster are filtered in float lanes: a
-// triangle is skipped only where its float edge functions (from the reference's own float
-// ray-space vertices) certainly have mixed signs and certainly exceed the reference's near-edge
-// bound; every other one is decided by the reference's own triangle_blocks_sample.
+// Exactness: the node tests decide in lanes only where the decision is certain. A point light's
+// point cone is first tested in float (16 lanes per AVX-512 vector), which hands a lane to the
+// double test where it lies within 2^-14 of a threshold; the double test hands it to the
+// reference's scalar pivot_distance where a comparison lies within 2^-40 (of an angle, or of S in
+// the plane) of its threshold. The angle test needs no atan2: for an angle theta = atan2(s, c)
+// with s >= 0 and a threshold T in [0, pi], sign(theta - T) is the sign of s cos T - c sin T.
+// The triangles of a candidate cluster are filtered in float lanes: a triangle is skipped only
+// where the line of the ray certainly misses it (two float edge functions of the reference's own
+// float ray-space vertices certainly of opposite signs, beyond the rounding of the transform);
+// every other one is decided by the reference's own triangle_blocks_sample.
 #include <cstdint>
 #include <vector>
+
+#include <glm/vec3.hpp>
 
 #include "reference/metric/clustering.h"
 #include "reference/metric/counters.h"
@@ -28,6 +32,7 @@ namespace shadowcts::simd::metric {
 // Light-independent: part of the per-model precomputation.
 struct ClusterTriangles {
   std::vector<float> xyz[3][3];
+  std::vector<std::uint32_t> slot_of;  // per caster triangle: its slot (finds a receiver in O(1))
 };
 
 ClusterTriangles cluster_triangles_soa(const CasterArrays& casters,
@@ -67,7 +72,38 @@ struct alignas(64) PacketNode {
   double threshold[thresholds] = {};
 };
 
-std::vector<PacketNode> packet_nodes(const shadowcts::metric::TraversalScene& scene);
+// What a lane reads on every visit of a node, in float, two cache lines: the light-distance
+// bounds and, for a point light's point centre (NodeKind::point_cone), the angle test of every
+// threshold as in PacketNode. A float lane decides only where its comparison is certain (see
+// float_angle_window in traversal.cpp); every other lane takes the double PacketNode.
+struct alignas(128) FastNode {
+  // Floats below and above the doubles (light distances are compared in double by the reference).
+  float light_distance_low = 0, light_distance_high = 0;
+  float a[3] = {0, 0, 0};
+  float cos_t[thresholds] = {}, sin_t[thresholds] = {};
+  std::uint8_t in_float = 0;   // point_cone: the lanes are decided in float first
+  std::uint8_t needed = 0;     // bit k: threshold k decides something
+  std::uint8_t has_child = 0;  // bit c: TreeChild c exists
+  // Second line: read once a lane goes on.
+  alignas(64) float pivot_light_distance_low = 0, pivot_light_distance_high = 0;
+  std::uint32_t child[3] = {0, 0, 0};  // indices into the packet nodes
+};
+
+// The pivot cluster of a node as section 5.4 step 2 reads it: its slots and its slabs, widened by
+// the margin exactly as segment_meets_slabs widens them.
+struct NodeCluster {
+  glm::dvec3 slab_normal{0.0};
+  double low = 0.0, high = 0.0;
+  std::uint32_t begin = 0, end = 0;  // slots in cluster order
+};
+
+struct PacketNodes {
+  std::vector<PacketNode> nodes;  // doubles: the certain decisions in double, then the reference
+  std::vector<FastNode> fast;     // same order
+  std::vector<NodeCluster> clusters;
+};
+
+PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene);
 
 // The regular samples grouped into image tiles of `packet` samples (4 pixels wide).
 struct SampleTiles {
@@ -83,7 +119,7 @@ inline constexpr double default_decision_window = 0x1p-40;
 
 struct PacketTraversal {
   const shadowcts::metric::TraversalScene* scene = nullptr;  // the reference's, for its decisions
-  const std::vector<PacketNode>* nodes = nullptr;
+  const PacketNodes* nodes = nullptr;
   const ClusterTriangles* triangles = nullptr;
   const PreparedScene* prepared = nullptr;
   const SampleTiles* tiles = nullptr;
