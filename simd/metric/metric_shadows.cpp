@@ -48,12 +48,15 @@ std::uint64_t tree_depth(const ref::MetricTree& tree) {
   return deepest;
 }
 
-// As the reference's meshes_around_light: closed meshes whose bounding box, enlarged by the
-// margin, may hold the point light (then their clusters are never culled by their normals).
-std::vector<bool> meshes_around_light(const PreparedScene& scene, const ref::LightFrame& frame) {
+// The bounding box of every mesh's vertices, and of all of them: the reference reads them in two
+// sequential passes over the triangles (meshes_around_light and scene_partition_distance).
+struct CasterBoxes {
+  std::vector<glm::dvec3> lo, hi;  // per mesh
+  glm::dvec3 all_lo{INFINITY}, all_hi{-INFINITY};
+};
+
+CasterBoxes caster_boxes(const PreparedScene& scene) {
   const std::size_t meshes = scene.casters.mesh_closed.size();
-  std::vector<bool> around(meshes, false);
-  if (frame.directional) return around;
   // Per-mesh boxes, reduced in parallel: min and max do not depend on the order.
   using Boxes = std::pair<std::vector<glm::dvec3>, std::vector<glm::dvec3>>;
   const CasterArrays& t = scene.casters;
@@ -77,11 +80,25 @@ std::vector<bool> meshes_around_light(const PreparedScene& scene, const ref::Lig
         }
         return a;
       });
-  const std::vector<glm::dvec3>& lo = boxes.first;
-  const std::vector<glm::dvec3>& hi = boxes.second;
+  CasterBoxes out;
+  out.lo = boxes.first;
+  out.hi = boxes.second;
+  for (std::size_t m = 0; m < meshes; ++m) {
+    out.all_lo = glm::min(out.all_lo, out.lo[m]);
+    out.all_hi = glm::max(out.all_hi, out.hi[m]);
+  }
+  return out;
+}
+
+// As the reference's meshes_around_light: closed meshes whose bounding box, enlarged by the
+// margin, may hold the point light (then their clusters are never culled by their normals).
+std::vector<bool> meshes_around_light(const CasterBoxes& boxes, const ref::LightFrame& frame) {
+  const std::size_t meshes = boxes.lo.size();
+  std::vector<bool> around(meshes, false);
+  if (frame.directional) return around;
   for (std::size_t m = 0; m < meshes; ++m)
-    around[m] = glm::all(glm::greaterThanEqual(frame.light_position, lo[m] - frame.margin)) &&
-                glm::all(glm::lessThanEqual(frame.light_position, hi[m] + frame.margin));
+    around[m] = glm::all(glm::greaterThanEqual(frame.light_position, boxes.lo[m] - frame.margin)) &&
+                glm::all(glm::lessThanEqual(frame.light_position, boxes.hi[m] + frame.margin));
   return around;
 }
 
@@ -101,9 +118,11 @@ ref::LightStructure build_light_structure(const PreparedScene& scene,
                                           const ref::MetricOptions& options) {
   const Case& c = scene.source;
   ref::LightStructure structure;
-  structure.frame = ref::make_light_frame(c);
+  // The prepared scene's S is Case::scale(), which the reference computes again.
+  structure.frame = ref::make_light_frame(c, scene.scale);
   const ref::LightFrame& frame = structure.frame;
-  const std::vector<bool> around_light = meshes_around_light(scene, frame);
+  const CasterBoxes boxes = caster_boxes(scene);
+  const std::vector<bool> around_light = meshes_around_light(boxes, frame);
   const glm::dvec3 light = frame.directional ? frame.towards_light : frame.light_position;
   const std::size_t count = clustered.volumes.size();
   std::vector<ref::LightSpaceElement> all(count);
@@ -135,7 +154,8 @@ ref::LightStructure build_light_structure(const PreparedScene& scene,
   }
   const std::uint64_t seed = ref::mix_seed(c.parameters.seed, tree_stream);
   structure.tree = simd::metric::build_metric_tree_by_insertion(
-      frame, structure.elements, ref::scene_partition_distance(frame, c), seed);
+      frame, structure.elements, ref::box_partition_distance(frame, boxes.all_lo, boxes.all_hi),
+      seed);
   return structure;
 }
 

@@ -19,11 +19,13 @@ using shadowcts::metric::MetricTreeNode;
 using shadowcts::metric::no_node;
 using shadowcts::metric::TreeChild;
 
-// A subtree to build: positions[begin, end) are its members' positions in the insertion order,
-// ascending; the first is its pivot and its node index.
+// A subtree to build: slots [begin, end) of buffer `buffer` hold its members (their positions in
+// the insertion order, ascending, and copies of their elements); the first is its pivot and its
+// node index.
 struct Work {
   std::uint32_t begin, end;
   double partition_distance;
+  int buffer;
 };
 
 // Members of subtrees at least this large have their bounds computed in parallel and their
@@ -36,25 +38,38 @@ class Builder {
   Builder(const LightFrame& frame, const std::vector<LightSpaceElement>& elements,
           std::vector<std::uint32_t> order, MetricTree& tree)
       : frame_(frame),
-        elements_(elements),
         order_(std::move(order)),
-        positions_(order_.size()),
-        scratch_(order_.size()),
         child_(order_.size()),
         bounds_(order_.size()),
         tree_(tree) {
-    for (std::uint32_t i = 0; i < positions_.size(); ++i) positions_[i] = i;
+    // The members travel with copies of their elements, so that every split streams through
+    // contiguous memory instead of gathering elements from all over the array.
+    for (int b = 0; b < 2; ++b) {
+      positions_[b].resize(order_.size());
+      elements_[b].resize(order_.size());
+    }
+    tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, std::uint32_t(order_.size()), 4096),
+                      [&](const tbb::blocked_range<std::uint32_t>& range) {
+                        for (std::uint32_t i = range.begin(); i != range.end(); ++i) {
+                          positions_[0][i] = i;
+                          elements_[0][i] = elements[order_[i]];
+                        }
+                      });
     tree_.nodes.assign(order_.size(), MetricTreeNode{});
   }
 
   // Partitions one subtree's members into its children, writes its node and returns the
   // children's work (near with half the distance: rule 1; far and overlap keep it: rule 2).
   int split(const Work& work, Work children[3]) {
-    const std::uint32_t pivot_position = positions_[work.begin];
-    const LightSpaceElement& pivot = elements_[order_[pivot_position]];
+    const std::vector<std::uint32_t>& positions = positions_[work.buffer];
+    const std::vector<LightSpaceElement>& elements = elements_[work.buffer];
+    std::vector<std::uint32_t>& to_positions = positions_[1 - work.buffer];
+    std::vector<LightSpaceElement>& to_elements = elements_[1 - work.buffer];
+    const std::uint32_t pivot_position = positions[work.begin];
+    const LightSpaceElement& pivot = elements[work.begin];
     const auto classify = [&](std::uint32_t k) {
-      const DistanceBounds b = shadowcts::metric::element_distance_bounds(
-          frame_, pivot, elements_[order_[positions_[k]]]);
+      const DistanceBounds b =
+          shadowcts::metric::element_distance_bounds(frame_, pivot, elements[k]);
       bounds_[k] = b;
       child_[k] = std::uint8_t(shadowcts::metric::partition_child(b, work.partition_distance));
     };
@@ -73,30 +88,33 @@ class Builder {
     std::uint32_t count[3] = {0, 0, 0};
     // The folds in insertion order, as the insertion build updates the node element by element.
     for (std::uint32_t k = work.begin + 1; k < work.end; ++k) {
-      node.light_distance =
-          std::min(node.light_distance, elements_[order_[positions_[k]]].light_distance);
+      node.light_distance = std::min(node.light_distance, elements[k].light_distance);
       if (child_[k] == std::uint8_t(TreeChild::overlap)) {
         node.overlap_min = std::min(node.overlap_min, bounds_[k].near);
         node.overlap_max = std::max(node.overlap_max, bounds_[k].far);
       }
       ++count[child_[k]];
     }
-    // Stable three-way partition: each child keeps its members in insertion order.
+    // Stable three-way partition into the other buffer: each child keeps its members in
+    // insertion order.
     std::uint32_t next[3];
     next[0] = work.begin + 1;
     next[1] = next[0] + count[0];
     next[2] = next[1] + count[1];
     const std::uint32_t first[3] = {next[0], next[1], next[2]};
-    for (std::uint32_t k = work.begin + 1; k < work.end; ++k)
-      scratch_[next[child_[k]]++] = positions_[k];
-    for (std::uint32_t k = work.begin + 1; k < work.end; ++k) positions_[k] = scratch_[k];
+    for (std::uint32_t k = work.begin + 1; k < work.end; ++k) {
+      const std::uint32_t to = next[child_[k]]++;
+      to_positions[to] = positions[k];
+      to_elements[to] = elements[k];
+    }
     int children_count = 0;
     for (int c = 0; c < 3; ++c) {
       if (count[c] == 0) continue;
-      node.child[c] = positions_[first[c]];
+      node.child[c] = to_positions[first[c]];
       children[children_count++] = {
           first[c], first[c] + count[c],
-          c == int(TreeChild::near) ? work.partition_distance * 0.5 : work.partition_distance};
+          c == int(TreeChild::near) ? work.partition_distance * 0.5 : work.partition_distance,
+          1 - work.buffer};
     }
     tree_.nodes[pivot_position] = node;
     return children_count;
@@ -116,7 +134,7 @@ class Builder {
 
   void build(double initial_partition_distance) {
     if (order_.empty()) return;
-    const Work root{0, std::uint32_t(order_.size()), initial_partition_distance};
+    const Work root{0, std::uint32_t(order_.size()), initial_partition_distance, 0};
     std::vector<Work> roots{root};
     tbb::parallel_for_each(roots.begin(), roots.end(),
                            [&](const Work& work, tbb::feeder<Work>& feeder) {
@@ -132,10 +150,11 @@ class Builder {
 
  private:
   const LightFrame& frame_;
-  const std::vector<LightSpaceElement>& elements_;
-  std::vector<std::uint32_t> order_;      // insertion position -> element
-  std::vector<std::uint32_t> positions_;  // subtrees' members, by insertion position
-  std::vector<std::uint32_t> scratch_;
+  std::vector<std::uint32_t> order_;  // insertion position -> element
+  // Two buffers of subtrees' members (insertion positions and element copies): a split reads
+  // its subtree from one and writes its children to the other.
+  std::vector<std::uint32_t> positions_[2];
+  std::vector<LightSpaceElement> elements_[2];
   std::vector<std::uint8_t> child_;  // per slot of positions_: the member's TreeChild
   std::vector<DistanceBounds> bounds_;
   MetricTree& tree_;

@@ -598,95 +598,102 @@ PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene) {
   out.fast.resize(order.size());
   out.clusters.resize(order.size());
   std::vector<PacketNode>& nodes = out.nodes;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, order.size(), 512),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                        const shadowcts::metric::MetricTreeNode& t = tree_nodes[order[i]];
-                        const shadowcts::metric::LightSpaceElement& e = (*scene.elements)[t.pivot];
-                        PacketNode& n = nodes[i];
-                        n.light_distance = t.light_distance;
-                        n.pivot_light_distance = e.light_distance;
-                        n.pivot = t.pivot;
-                        for (int c = 0; c < 3; ++c) {
-                          n.has_child[c] = t.child[c] != no_node;
-                          n.child[c] = n.has_child[c] ? packed[t.child[c]] : 0;
-                        }
-                        n.radius = e.radius;
-                        // The reference's comparisons: distance <= 0, >= overlap_min - slack, <=
-                        // overlap_max + slack, >= delta - slack, <= delta + slack.
-                        n.threshold[inside] = 0.0;
-                        n.threshold[overlap_low] = t.overlap_min - frame.slack;
-                        n.threshold[overlap_high] = t.overlap_max + frame.slack;
-                        n.threshold[far_side] = t.partition_distance - frame.slack;
-                        n.threshold[near_side] = t.partition_distance + frame.slack;
-                        const bool point = e.centre == CentreKind::point;
-                        if (e.covers_everything) {
-                          n.kind = NodeKind::covers_everything;
-                        } else if (frame.directional) {
-                          n.kind = point ? NodeKind::disk : NodeKind::capsule_2d;
-                        } else {
-                          n.kind = point ? NodeKind::point_cone : NodeKind::arc_cone;
-                        }
-                        const glm::dvec3 a = n.kind == NodeKind::arc_cone ? e.arc.a : e.a;
-                        n.a[0] = a.x, n.a[1] = a.y, n.a[2] = a.z;
-                        if (n.kind == NodeKind::arc_cone) {
-                          n.b[0] = e.arc.b.x, n.b[1] = e.arc.b.y, n.b[2] = e.arc.b.z;
-                          n.normal[0] = e.arc.normal.x, n.normal[1] = e.arc.normal.y,
-                          n.normal[2] = e.arc.normal.z;
-                        }
-                        if (n.kind == NodeKind::capsule_2d) {
-                          // b - a and dot(b - a, b - a) as closest_parameter computes them (z is 0
-                          // in the plane).
-                          const glm::dvec3 ab = e.b - e.a;
-                          n.b[0] = ab.x, n.b[1] = ab.y;
-                          n.segment_length_squared = glm::dot(ab, ab);
-                        }
-                        if (!frame.directional && !e.covers_everything) {
-                          for (int k = 0; k < thresholds; ++k) {
-                            const double shifted = n.threshold[k] + e.radius;
-                            if (std::isnan(shifted)) {
-                              n.cos_t[k] = n.sin_t[k] =
-                                  0.0;  // always near: decided by the reference
-                            } else if (shifted < -0x1p-30) {
-                              n.cos_t[k] = 2.0;  // every angle is above
-                            } else if (shifted > std::numbers::pi + 0x1p-30) {
-                              n.cos_t[k] = -2.0;  // every angle is below
-                            } else {
-                              n.cos_t[k] = std::cos(shifted);
-                              n.sin_t[k] = std::sin(shifted);
-                            }
-                          }
-                        }
-                        FastNode& f = out.fast[i];
-                        f.light_distance_low = float_below(n.light_distance);
-                        f.light_distance_high = float_above(n.light_distance);
-                        f.pivot_light_distance_low = float_below(n.pivot_light_distance);
-                        f.pivot_light_distance_high = float_above(n.pivot_light_distance);
-                        f.needed = 1u << inside;
-                        if (n.has_child[int(TreeChild::overlap)])
-                          f.needed |= (1u << overlap_low) | (1u << overlap_high);
-                        if (n.has_child[int(TreeChild::far)]) f.needed |= 1u << far_side;
-                        if (n.has_child[int(TreeChild::near)]) f.needed |= 1u << near_side;
-                        for (int c = 0; c < 3; ++c) {
-                          f.child[c] = n.child[c];
-                          f.has_child |= std::uint8_t(n.has_child[c] << c);
-                        }
-                        f.in_float = n.kind == NodeKind::point_cone;
-                        for (int k = 0; k < 3; ++k) f.a[k] = float(n.a[k]);
-                        for (int k = 0; k < thresholds; ++k) {
-                          f.cos_t[k] = float(n.cos_t[k]);
-                          f.sin_t[k] = float(n.sin_t[k]);
-                        }
-                        const std::uint32_t cluster = e.cluster;
-                        const shadowcts::metric::ClusterVolume& volume = (*scene.volumes)[cluster];
-                        NodeCluster& record = out.clusters[i];
-                        record.slab_normal = volume.slab_normal;
-                        record.low = volume.slab_min - frame.margin;
-                        record.high = volume.slab_max + frame.margin;
-                        record.begin = scene.clustering->cluster_begin[cluster];
-                        record.end = scene.clustering->cluster_begin[cluster + 1];
-                      }
-                    });
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, order.size(), 512),
+      [&](const tbb::blocked_range<std::size_t>& range) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+          const shadowcts::metric::MetricTreeNode& t = tree_nodes[order[i]];
+          const shadowcts::metric::LightSpaceElement& e = (*scene.elements)[t.pivot];
+          PacketNode& n = nodes[i];
+          n.light_distance = t.light_distance;
+          n.pivot_light_distance = e.light_distance;
+          n.pivot = t.pivot;
+          for (int c = 0; c < 3; ++c) {
+            n.has_child[c] = t.child[c] != no_node;
+            n.child[c] = n.has_child[c] ? packed[t.child[c]] : 0;
+          }
+          n.radius = e.radius;
+          // The reference's comparisons: distance <= 0, >= overlap_min - slack, <=
+          // overlap_max + slack, >= delta - slack, <= delta + slack.
+          n.threshold[inside] = 0.0;
+          n.threshold[overlap_low] = t.overlap_min - frame.slack;
+          n.threshold[overlap_high] = t.overlap_max + frame.slack;
+          n.threshold[far_side] = t.partition_distance - frame.slack;
+          n.threshold[near_side] = t.partition_distance + frame.slack;
+          const bool point = e.centre == CentreKind::point;
+          if (e.covers_everything) {
+            n.kind = NodeKind::covers_everything;
+          } else if (frame.directional) {
+            n.kind = point ? NodeKind::disk : NodeKind::capsule_2d;
+          } else {
+            n.kind = point ? NodeKind::point_cone : NodeKind::arc_cone;
+          }
+          const glm::dvec3 a = n.kind == NodeKind::arc_cone ? e.arc.a : e.a;
+          n.a[0] = a.x, n.a[1] = a.y, n.a[2] = a.z;
+          if (n.kind == NodeKind::arc_cone) {
+            n.b[0] = e.arc.b.x, n.b[1] = e.arc.b.y, n.b[2] = e.arc.b.z;
+            n.normal[0] = e.arc.normal.x, n.normal[1] = e.arc.normal.y,
+            n.normal[2] = e.arc.normal.z;
+          }
+          if (n.kind == NodeKind::capsule_2d) {
+            // b - a and dot(b - a, b - a) as closest_parameter computes them (z is 0
+            // in the plane).
+            const glm::dvec3 ab = e.b - e.a;
+            n.b[0] = ab.x, n.b[1] = ab.y;
+            n.segment_length_squared = glm::dot(ab, ab);
+          }
+          // Only the thresholds a child needs (a leaf has none but `inside`): cos
+          // and sin are most of this loop's time.
+          const bool needed[thresholds] = {true, n.has_child[int(TreeChild::overlap)] != 0,
+                                           n.has_child[int(TreeChild::overlap)] != 0,
+                                           n.has_child[int(TreeChild::far)] != 0,
+                                           n.has_child[int(TreeChild::near)] != 0};
+          if (!frame.directional && !e.covers_everything) {
+            for (int k = 0; k < thresholds; ++k) {
+              if (!needed[k]) continue;
+              const double shifted = n.threshold[k] + e.radius;
+              if (std::isnan(shifted)) {
+                n.cos_t[k] = n.sin_t[k] = 0.0;  // always near: decided by the reference
+              } else if (shifted < -0x1p-30) {
+                n.cos_t[k] = 2.0;  // every angle is above
+              } else if (shifted > std::numbers::pi + 0x1p-30) {
+                n.cos_t[k] = -2.0;  // every angle is below
+              } else {
+                n.cos_t[k] = std::cos(shifted);
+                n.sin_t[k] = std::sin(shifted);
+              }
+            }
+          }
+          FastNode& f = out.fast[i];
+          f.light_distance_low = float_below(n.light_distance);
+          f.light_distance_high = float_above(n.light_distance);
+          f.pivot_light_distance_low = float_below(n.pivot_light_distance);
+          f.pivot_light_distance_high = float_above(n.pivot_light_distance);
+          f.needed = 1u << inside;
+          if (n.has_child[int(TreeChild::overlap)])
+            f.needed |= (1u << overlap_low) | (1u << overlap_high);
+          if (n.has_child[int(TreeChild::far)]) f.needed |= 1u << far_side;
+          if (n.has_child[int(TreeChild::near)]) f.needed |= 1u << near_side;
+          for (int c = 0; c < 3; ++c) {
+            f.child[c] = n.child[c];
+            f.has_child |= std::uint8_t(n.has_child[c] << c);
+          }
+          f.in_float = n.kind == NodeKind::point_cone;
+          for (int k = 0; k < 3; ++k) f.a[k] = float(n.a[k]);
+          for (int k = 0; k < thresholds; ++k) {
+            f.cos_t[k] = float(n.cos_t[k]);
+            f.sin_t[k] = float(n.sin_t[k]);
+          }
+          const std::uint32_t cluster = e.cluster;
+          const shadowcts::metric::ClusterVolume& volume = (*scene.volumes)[cluster];
+          NodeCluster& record = out.clusters[i];
+          record.slab_normal = volume.slab_normal;
+          record.low = volume.slab_min - frame.margin;
+          record.high = volume.slab_max + frame.margin;
+          record.begin = scene.clustering->cluster_begin[cluster];
+          record.end = scene.clustering->cluster_begin[cluster + 1];
+        }
+      });
   return out;
 }
 
