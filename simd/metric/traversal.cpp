@@ -56,6 +56,7 @@ struct Packet {
   std::uint32_t regular[P];
   const ViewSample* sample[P];
   std::uint32_t receiver[P];
+  std::uint32_t receiver_slot[P];  // the receiver's slot in cluster order, or ~0u
   LightSpaceQuery query[P];
   RaySpace ray[P];
   glm::dvec3 from[P], to[P];
@@ -244,11 +245,15 @@ NodeDecisions evaluate_node(const PacketTraversal& traversal, const PacketNode& 
 // The node tests of a point cone in float lanes (16 per AVX-512 vector). Returns the decisions of
 // the lanes it is certain of and sets `unsure` to the lanes the double path must decide.
 // Light distances: the float bounds below and above each double decide qld >= d wherever they
-// do not overlap. Angles: with float u, a, cos T and sin T, every operand at most 2 in magnitude,
-// f = s cos T - c sin T is within 2^-18 of its exact value for the double inputs (the rounding of
-// u and a moves |u x a| and u . a by a few 2^-24, the operations add a few more); a lane is
-// decided only where |f| exceeds `window` (at least 2^-14): then the double f lies beyond the
-// double path's own window, on the same side, and the double path would decide it alike.
+// do not overlap. Angles: with float u, a, cos T and sin T (|u|, |a| = 1 up to rounding,
+// |cos T| <= 2, |sin T| <= 1), f = s cos T - c sin T is within 2^-18 of its exact value for the
+// double inputs: rounding u and a to float moves each cross-product component by at most 4 u_f
+// and its two products and difference add 4 u_f more (u_f = 2^-24), so |u x a| moves by at most
+// sqrt(3) 8 u_f < 2^-20 (a norm is 1-Lipschitz; the squares and the root add a few u_f of it);
+// u . a moves by at most 16 u_f = 2^-20; with the two products and the difference of f at most
+// 2 * 2^-20 + 2^-20 + 12 u_f < 2^-18. A lane is decided only where |f| exceeds `window` (at least
+// 2^-16): then the double f lies beyond the double path's own window (2^-40), on the same side,
+// and the double path would decide it alike.
 template <std::size_t P>
 NodeDecisions evaluate_in_float(const FastNode& n, const Packet<P>& pk, std::uint32_t lanes,
                                 float window, std::uint32_t& unsure) {
@@ -383,10 +388,8 @@ bool cluster_blocks(const PacketTraversal& traversal, Packet<P>& pk, int l,
   if (!(std::max(s_from, s_to) >= cluster.low && std::min(s_from, s_to) <= cluster.high))
     return false;
   const shadowcts::metric::Clustering& clustering = *scene.clustering;
-  const std::uint32_t receiver = pk.receiver[l];
-  const std::vector<std::uint32_t>& slot_of = traversal.triangles->slot_of;
   // The slot of the receiver, which is never tested nor counted (at most one per cluster).
-  const std::uint32_t receiver_at = receiver < slot_of.size() ? slot_of[receiver] : ~0u;
+  const std::uint32_t receiver_at = pk.receiver_slot[l];
   const std::uint32_t end = cluster.end;
   for (std::uint32_t begin = cluster.begin; begin < end; begin += 64) {
     const std::uint32_t count = std::min<std::uint32_t>(64, end - begin);
@@ -430,6 +433,8 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
     // sample itself is read only by the reference's triangle decisions.
     pk.sample[l] = &prepared.view_samples.samples[prepared.samples.index[i]];
     pk.receiver[l] = prepared.samples.receiver[i];
+    const std::vector<std::uint32_t>& slot_of = traversal.triangles->slot_of;
+    pk.receiver_slot[l] = pk.receiver[l] < slot_of.size() ? slot_of[pk.receiver[l]] : ~0u;
     pk.regular[l] = i;
     shadowed[i] = 0;
     const glm::vec3 position(prepared.samples.px[i], prepared.samples.py[i],
@@ -459,9 +464,9 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
   const std::vector<FastNode>& fast = traversal.nodes->fast;
   const std::vector<NodeCluster>& clusters = traversal.nodes->clusters;
   if (nodes.empty() || active == 0) return;
-  // The float window: at least 2^-14 (see evaluate_in_float), wider where a test widens the
+  // The float window: at least 2^-16 (see evaluate_in_float), wider where a test widens the
   // double one, so that the lanes it hands back still reach the double path.
-  const float float_window = float(std::max(0x1p-14, 2.0 * traversal.decision_window));
+  const float float_window = float(std::max(0x1p-16, 2.0 * traversal.decision_window));
   stack.clear();
   stack.push_back({0, active});
   while (!stack.empty()) {

@@ -7,7 +7,7 @@
 //
 // Exactness: the node tests decide in lanes only where the decision is certain. A point light's
 // point cone is first tested in float (16 lanes per AVX-512 vector), which hands a lane to the
-// double test where it lies within 2^-14 of a threshold; the double test hands it to the
+// double test where it lies within 2^-16 of a threshold; the double test hands it to the
 // reference's scalar pivot_distance where a comparison lies within 2^-40 (of an angle, or of S in
 // the plane) of its threshold. The angle test needs no atan2: for an angle theta = atan2(s, c)
 // with s >= 0 and a threshold T in [0, pi], sign(theta - T) is the sign of s cos T - c sin T.
