@@ -337,8 +337,7 @@ std::uint64_t triangles_to_decide(const ClusterTriangles& triangles, std::uint32
            largest = hn::Set(df, 0x1p60f), zero = hn::Zero(df);
   std::uint64_t decide = 0;
   for (std::uint32_t j = 0; j < count; j += std::uint32_t(N)) {
-    VF x[3], y[3], lateral[3], extent[3];
-    auto in_range = hn::Not(hn::Lt(largest, zero));  // all true
+    VF x[3], y[3], scaled_lateral[3], extent[3];
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t slot = begin + j;
       const VF rx = hn::Sub(hn::LoadU(df, triangles.xyz[ray.kx][k].data() + slot), ox);
@@ -346,24 +345,29 @@ std::uint64_t triangles_to_decide(const ClusterTriangles& triangles, std::uint32
       const VF rz = hn::Sub(hn::LoadU(df, triangles.xyz[ray.kz][k].data() + slot), oz);
       x[k] = hn::Sub(rx, hn::Mul(shear_x, rz));
       y[k] = hn::Sub(ry, hn::Mul(shear_y, rz));
-      lateral[k] = hn::Add(hn::Abs(x[k]), hn::Abs(y[k]));
-      extent[k] = hn::Add(lateral[k], hn::Abs(rz));
-      in_range = hn::And(in_range, hn::Le(extent[k], largest));
+      const VF lateral = hn::Add(hn::Abs(x[k]), hn::Abs(y[k]));
+      extent[k] = hn::Add(lateral, hn::Abs(rz));
+      scaled_lateral[k] = hn::Mul(lateral_scale, lateral);
     }
+    // Compared one by one: a NaN extent fails its comparison (Max could drop it).
+    const auto in_range = hn::And(hn::Le(extent[0], largest),
+                                  hn::And(hn::Le(extent[1], largest), hn::Le(extent[2], largest)));
     // Edges (b, c), (c, a), (a, b), as exact_edge_function(p, q) = q.x p.y - q.y p.x.
     const int p_of[3] = {1, 2, 0}, q_of[3] = {2, 0, 1};
     auto negative = hn::Lt(largest, zero), positive = negative;  // all false
     for (int e = 0; e < 3; ++e) {
       const int p = p_of[e], q = q_of[e];
       const VF edge = hn::Sub(hn::Mul(x[q], y[p]), hn::Mul(y[q], x[p]));
-      const VF bound = hn::Add(
-          hn::Add(hn::Mul(lateral_scale,
-                          hn::Add(hn::Mul(extent[q], lateral[p]), hn::Mul(extent[p], lateral[q]))),
-                  hn::Mul(product_scale, hn::Mul(extent[p], extent[q]))),
-          absolute);
+      // n_q (9/8 2^-16 m_p + 9/8 2^-30 n_p) + (n_p 9/8 2^-16 m_q + 2^-60); fused or not, its
+      // rounding stays far inside the 9/8.
+      const VF bound =
+          hn::MulAdd(extent[q], hn::MulAdd(product_scale, extent[p], scaled_lateral[p]),
+                     hn::MulAdd(extent[p], scaled_lateral[q], absolute));
+      // Certain implies nonzero: the bound is at least 2^-60.
       const auto certain = hn::Gt(hn::Abs(edge), bound);
-      negative = hn::Or(negative, hn::And(certain, hn::Lt(edge, zero)));
-      positive = hn::Or(positive, hn::And(certain, hn::Gt(edge, zero)));
+      const auto below = hn::Lt(edge, zero);
+      negative = hn::Or(negative, hn::And(certain, below));
+      positive = hn::Or(positive, hn::AndNot(below, certain));
     }
     const auto skip = hn::And(in_range, hn::And(negative, positive));
     std::uint8_t bytes[8] = {};
