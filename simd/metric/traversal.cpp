@@ -254,7 +254,15 @@ NodeDecisions evaluate_node(const PacketTraversal& traversal, const PacketNode& 
 // 2 * 2^-20 + 2^-20 + 12 u_f < 2^-18. A lane is decided only where |f| exceeds `window` (at least
 // 2^-16): then the double f lies beyond the double path's own window (2^-40), on the same side,
 // and the double path would decide it alike.
-template <std::size_t P>
+//
+// An arc centre (arc = true) is distance_to_arc's two cases: where the arc certainly spans the
+// projection w = u - (u . n) n (both (a x w) . n and (w x b) . n above 2^-16, hence |w| > 0 in
+// double too) the angle is atan2(|u . n|, |w|), tested as above with s = |u . n|, c = |w|; where it
+// certainly does not (either below -2^-16), the nearer endpoint: below if either endpoint is,
+// above if both are. Each of those floats moves by less than 2^-18 from its double value (the
+// same count of operations on unit inputs, plus the projection's), so the same windows hold; a lane
+// where the span is not certain goes to the double path.
+template <bool arc, std::size_t P>
 NodeDecisions evaluate_in_float(const FastNode& n, const Packet<P>& pk, std::uint32_t lanes,
                                 float window, std::uint32_t& unsure) {
   const hn::ScalableTag<float> d;
@@ -285,14 +293,61 @@ NodeDecisions evaluate_in_float(const FastNode& n, const Packet<P>& pk, std::uin
       const V ax = hn::Set(d, n.a[0]), ay = hn::Set(d, n.a[1]), az = hn::Set(d, n.a[2]);
       V s, c;
       sine_cosine(ux, uy, uz, ax, ay, az, s, c);
-      for (int k = 0; k < thresholds; ++k) {
-        if (!(n.needed >> k & 1)) continue;
-        const V f = hn::Sub(hn::Mul(s, hn::Set(d, n.cos_t[k])), hn::Mul(c, hn::Set(d, n.sin_t[k])));
-        const std::uint32_t b = float_lane_bits(d, hn::Lt(f, lo)) & reached,
-                            a = float_lane_bits(d, hn::Gt(f, hi)) & reached;
-        doubt |= reached & ~(a | b);
-        below[k] |= b << j;
-        above[k] |= a << j;
+      const auto f_of = [&](V sine, V cosine, int k) {
+        return hn::Sub(hn::Mul(sine, hn::Set(d, n.cos_t[k])),
+                       hn::Mul(cosine, hn::Set(d, n.sin_t[k])));
+      };
+      if constexpr (!arc) {
+        for (int k = 0; k < thresholds; ++k) {
+          if (!(n.needed >> k & 1)) continue;
+          const V f = f_of(s, c, k);
+          const std::uint32_t b = float_lane_bits(d, hn::Lt(f, lo)) & reached,
+                              a = float_lane_bits(d, hn::Gt(f, hi)) & reached;
+          doubt |= reached & ~(a | b);
+          below[k] |= b << j;
+          above[k] |= a << j;
+        }
+      } else {
+        const V bx = hn::Set(d, n.b[0]), by = hn::Set(d, n.b[1]), bz = hn::Set(d, n.b[2]);
+        const V nx = hn::Set(d, n.normal[0]), ny = hn::Set(d, n.normal[1]),
+                nz = hn::Set(d, n.normal[2]);
+        const V h = hn::Add(hn::Add(hn::Mul(ux, nx), hn::Mul(uy, ny)), hn::Mul(uz, nz));
+        const V px = hn::Sub(ux, hn::Mul(h, nx)), py = hn::Sub(uy, hn::Mul(h, ny)),
+                pz = hn::Sub(uz, hn::Mul(h, nz));
+        const V length =
+            hn::Sqrt(hn::Add(hn::Add(hn::Mul(px, px), hn::Mul(py, py)), hn::Mul(pz, pz)));
+        // (a x w) . n and (w x b) . n.
+        const V from_a = hn::Add(hn::Add(hn::Mul(hn::Sub(hn::Mul(ay, pz), hn::Mul(py, az)), nx),
+                                         hn::Mul(hn::Sub(hn::Mul(az, px), hn::Mul(pz, ax)), ny)),
+                                 hn::Mul(hn::Sub(hn::Mul(ax, py), hn::Mul(px, ay)), nz));
+        const V to_b = hn::Add(hn::Add(hn::Mul(hn::Sub(hn::Mul(py, bz), hn::Mul(by, pz)), nx),
+                                       hn::Mul(hn::Sub(hn::Mul(pz, bx), hn::Mul(bz, px)), ny)),
+                               hn::Mul(hn::Sub(hn::Mul(px, by), hn::Mul(bx, py)), nz));
+        const V span_window = hn::Set(d, 0x1p-16f);
+        const std::uint32_t spans =
+            float_lane_bits(d, hn::And(hn::Gt(from_a, span_window), hn::Gt(to_b, span_window))) &
+            reached;
+        const std::uint32_t misses =
+            float_lane_bits(d, hn::Or(hn::Lt(from_a, hn::Neg(span_window)),
+                                      hn::Lt(to_b, hn::Neg(span_window)))) &
+            reached;
+        doubt |= reached & ~(spans | misses);
+        V sb, cb;
+        sine_cosine(ux, uy, uz, bx, by, bz, sb, cb);
+        const V sp = hn::Abs(h);
+        for (int k = 0; k < thresholds; ++k) {
+          if (!(n.needed >> k & 1)) continue;
+          const V fp = f_of(sp, length, k), fa = f_of(s, c, k), fb = f_of(sb, cb, k);
+          const std::uint32_t b =
+              (spans & float_lane_bits(d, hn::Lt(fp, lo))) |
+              (misses & float_lane_bits(d, hn::Or(hn::Lt(fa, lo), hn::Lt(fb, lo))));
+          const std::uint32_t a =
+              (spans & float_lane_bits(d, hn::Gt(fp, hi))) |
+              (misses & float_lane_bits(d, hn::And(hn::Gt(fa, hi), hn::Gt(fb, hi))));
+          doubt |= (spans | misses) & ~(a | b);
+          below[k] |= b << j;
+          above[k] |= a << j;
+        }
       }
       out.reached |= reached << j;
     }
@@ -483,7 +538,8 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
     NodeDecisions decisions;
     if (fn.in_float) {
       std::uint32_t unsure = 0;
-      decisions = evaluate_in_float(fn, pk, lanes, float_window, unsure);
+      decisions = fn.in_float == 1 ? evaluate_in_float<false>(fn, pk, lanes, float_window, unsure)
+                                   : evaluate_in_float<true>(fn, pk, lanes, float_window, unsure);
       if (unsure != 0) {
         const NodeDecisions exact = evaluate_node(traversal, nodes[index], pk, unsure);
         decisions.reached |= exact.reached;
@@ -687,8 +743,12 @@ PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene) {
             f.child[c] = n.child[c];
             f.has_child |= std::uint8_t(n.has_child[c] << c);
           }
-          f.in_float = n.kind == NodeKind::point_cone;
-          for (int k = 0; k < 3; ++k) f.a[k] = float(n.a[k]);
+          f.in_float = n.kind == NodeKind::point_cone ? 1 : n.kind == NodeKind::arc_cone ? 2 : 0;
+          for (int k = 0; k < 3; ++k) {
+            f.a[k] = float(n.a[k]);
+            f.b[k] = float(n.b[k]);
+            f.normal[k] = float(n.normal[k]);
+          }
           for (int k = 0; k < thresholds; ++k) {
             f.cos_t[k] = float(n.cos_t[k]);
             f.sin_t[k] = float(n.sin_t[k]);
