@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <optional>
 
@@ -475,8 +476,7 @@ bool cluster_blocks(const PacketTraversal& traversal, Packet<P>& pk, int l,
 
 template <std::size_t P>
 void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* members,
-                     std::uint32_t count, Packet<P>& pk,
-                     std::vector<std::pair<std::uint32_t, std::uint32_t>>& stack,
+                     std::uint32_t count, Packet<P>& pk, std::vector<std::uint64_t>& stack,
                      std::uint8_t* shadowed, TraversalCounters& counters) {
   const TraversalScene& scene = *traversal.scene;
   const LightFrame& frame = scene.frame;
@@ -499,11 +499,12 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
     const glm::vec3 position(prepared.samples.px[i], prepared.samples.py[i],
                              prepared.samples.pz[i]);
     const glm::dvec3 p(position);
-    pk.query[l] = shadowcts::metric::make_light_space_query(frame, p);
+    // Constructed in place (no temporary copied with wide loads of narrow stores).
+    std::construct_at(&pk.query[l], shadowcts::metric::make_light_space_query(frame, p));
     if (pk.query[l].at_light) continue;  // the segment is a point: nothing hits it
     const ShadowRay ray = frame.directional ? ray_to_directional_light(position, c.light->direction)
                                             : segment_to_point_light(position, c.light->position);
-    pk.ray[l] = make_ray_space(ray);
+    std::construct_at(&pk.ray[l], make_ray_space(ray));
     pk.from[l] = p;
     pk.to[l] =
         frame.directional ? p + scene.ray_length * frame.towards_light : frame.light_position;
@@ -526,11 +527,14 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
   // The float window: at least 2^-16 (see evaluate_in_float), wider where a test widens the
   // double one, so that the lanes it hands back still reach the double path.
   const float float_window = float(std::max(0x1p-16, 2.0 * traversal.decision_window));
+  // Entries are node | lanes << 32, written and read as one word: a pair written as two halves
+  // and read back at once stalls the store forwarding on every pop.
   stack.clear();
-  stack.push_back({0, active});
+  stack.push_back(std::uint64_t(active) << 32);
   while (!stack.empty()) {
-    const auto [index, pushed] = stack.back();
+    const std::uint64_t entry = stack.back();
     stack.pop_back();
+    const std::uint32_t index = std::uint32_t(entry), pushed = std::uint32_t(entry >> 32);
     const std::uint32_t lanes = pushed & active;
     if (lanes == 0) continue;
     counters.nodes_visited += std::uint64_t(std::popcount(lanes));
@@ -569,7 +573,7 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
       const FastNode* next = &fast[fn.child[child]];
       __builtin_prefetch(next);
       __builtin_prefetch(reinterpret_cast<const char*>(next) + 64);
-      stack.push_back({fn.child[child], mask});
+      stack.push_back(fn.child[child] | std::uint64_t(mask) << 32);
     };
     if (overlap) push(int(TreeChild::overlap), overlap);
     if (far) push(int(TreeChild::far), far);
@@ -581,7 +585,7 @@ template <std::size_t P>
 void traverse_tiles_of(const PacketTraversal& traversal, std::size_t tile_begin,
                        std::size_t tile_end, std::uint8_t* shadowed, TraversalCounters& counters) {
   Packet<P> packet;
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> stack;
+  std::vector<std::uint64_t> stack;
   stack.reserve(256);
   const SampleTiles& tiles = *traversal.tiles;
   for (std::size_t k = tile_begin; k < tile_end; ++k)
