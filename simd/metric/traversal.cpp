@@ -364,6 +364,78 @@ NodeDecisions evaluate_in_float(const FastNode& n, const Packet<P>& pk, std::uin
   return out;
 }
 
+// The node tests of a directional light's disk or 2D capsule in float lanes: distance = |u - x| -
+// radius, x the closest point of the centre, against each threshold, as f = |u - x| - (T +
+// radius) with T + radius rounded to float (FastNode::cos_t). Every plane coordinate, radius and
+// threshold is below 8 S in magnitude (nodes and scenes where that may fail stay in double), so
+// each rounding moves f by at most 2^-21 S and all of them together (the coordinates, the
+// closest parameter t in [0, 1], the difference, the norm) by less than 2^-18 S; `window` is at
+// least 2^-16 S, beyond which the double f is beyond the double path's window on the same side.
+template <bool capsule, std::size_t P>
+NodeDecisions evaluate_planar_in_float(const FastNode& n, const Packet<P>& pk, std::uint32_t lanes,
+                                       float window, std::uint32_t& unsure) {
+  const hn::ScalableTag<float> d;
+  using V = hn::Vec<decltype(d)>;
+  const std::size_t N = std::min(hn::Lanes(d), max_float_lanes);
+  const std::uint32_t chunk = N >= 32 ? ~0u : (1u << N) - 1;
+  const V lo = hn::Set(d, -window), hi = hn::Set(d, window);
+  NodeDecisions out;
+  std::uint32_t below[thresholds] = {}, above[thresholds] = {};
+  unsure = 0;
+  for (std::size_t j = 0; j < P; j += N) {
+    const std::uint32_t here = (lanes >> j) & chunk;
+    if (here == 0) continue;
+    const V qlo = hn::Load(d, pk.qlo + j), qhi = hn::Load(d, pk.qhi + j);
+    const std::uint32_t reached =
+        float_lane_bits(d, hn::Ge(qlo, hn::Set(d, n.light_distance_high))) & here;
+    const std::uint32_t not_reached =
+        float_lane_bits(d, hn::Lt(qhi, hn::Set(d, n.light_distance_low))) & here;
+    std::uint32_t doubt = here & ~(reached | not_reached);
+    if (reached != 0) {
+      const std::uint32_t deep =
+          float_lane_bits(d, hn::Ge(qlo, hn::Set(d, n.pivot_light_distance_high)));
+      const std::uint32_t shallow =
+          float_lane_bits(d, hn::Lt(qhi, hn::Set(d, n.pivot_light_distance_low)));
+      doubt |= reached & ~(deep | shallow);
+      out.deep |= (deep & reached) << j;
+      const V ux = hn::Load(d, pk.fx + j), uy = hn::Load(d, pk.fy + j);
+      const V ax = hn::Set(d, n.a[0]), ay = hn::Set(d, n.a[1]);
+      V ex = hn::Sub(ux, ax), ey = hn::Sub(uy, ay);
+      if constexpr (capsule) {
+        if (n.segment_length_squared > 0.0f) {
+          // closest_parameter, then u - (a + t (b - a)).
+          const V abx = hn::Set(d, n.b[0]), aby = hn::Set(d, n.b[1]);
+          V t = hn::Div(hn::Add(hn::Mul(ex, abx), hn::Mul(ey, aby)),
+                        hn::Set(d, n.segment_length_squared));
+          t = hn::Min(hn::Max(t, hn::Zero(d)), hn::Set(d, 1.0f));
+          ex = hn::Sub(ux, hn::Add(ax, hn::Mul(t, abx)));
+          ey = hn::Sub(uy, hn::Add(ay, hn::Mul(t, aby)));
+        }
+      }
+      const V length = hn::Sqrt(hn::Add(hn::Mul(ex, ex), hn::Mul(ey, ey)));
+      for (int k = 0; k < thresholds; ++k) {
+        if (!(n.needed >> k & 1)) continue;
+        const V f = hn::Sub(length, hn::Set(d, n.cos_t[k]));
+        const std::uint32_t b = float_lane_bits(d, hn::Lt(f, lo)) & reached,
+                            a = float_lane_bits(d, hn::Gt(f, hi)) & reached;
+        doubt |= reached & ~(a | b);
+        below[k] |= b << j;
+        above[k] |= a << j;
+      }
+      out.reached |= reached << j;
+    }
+    unsure |= doubt << j;
+  }
+  const std::uint32_t sure = ~unsure;
+  out.reached &= sure;
+  out.deep &= sure;
+  out.inside = below[inside] & sure;
+  out.overlap = n.needed >> overlap_low & 1 ? above[overlap_low] & below[overlap_high] & sure : 0;
+  out.far = n.needed >> far_side & 1 ? above[far_side] & sure : 0;
+  out.near = n.needed >> near_side & 1 ? below[near_side] & sure : 0;
+  return out;
+}
+
 // The cluster's slots [begin, begin + count), count <= 64, that the reference's
 // triangle_blocks_sample might not reject. A slot is left out only where the line of the ray
 // certainly misses the triangle, as line_certainly_misses_triangle (caster_blocks_sample.h)
@@ -527,6 +599,7 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
   // The float window: at least 2^-16 (see evaluate_in_float), wider where a test widens the
   // double one, so that the lanes it hands back still reach the double path.
   const float float_window = float(std::max(0x1p-16, 2.0 * traversal.decision_window));
+  const float planar_window = float_window * float(frame.scale);
   // Entries are node | lanes << 32, written and read as one word: a pair written as two halves
   // and read back at once stalls the store forwarding on every pop.
   stack.clear();
@@ -542,8 +615,20 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
     NodeDecisions decisions;
     if (fn.in_float) {
       std::uint32_t unsure = 0;
-      decisions = fn.in_float == 1 ? evaluate_in_float<false>(fn, pk, lanes, float_window, unsure)
-                                   : evaluate_in_float<true>(fn, pk, lanes, float_window, unsure);
+      switch (fn.in_float) {
+        case 1:
+          decisions = evaluate_in_float<false>(fn, pk, lanes, float_window, unsure);
+          break;
+        case 2:
+          decisions = evaluate_in_float<true>(fn, pk, lanes, float_window, unsure);
+          break;
+        case 3:
+          decisions = evaluate_planar_in_float<false>(fn, pk, lanes, planar_window, unsure);
+          break;
+        default:
+          decisions = evaluate_planar_in_float<true>(fn, pk, lanes, planar_window, unsure);
+          break;
+      }
       if (unsure != 0) {
         const NodeDecisions exact = evaluate_node(traversal, nodes[index], pk, unsure);
         decisions.reached |= exact.reached;
@@ -756,6 +841,24 @@ PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene) {
           for (int k = 0; k < thresholds; ++k) {
             f.cos_t[k] = float(n.cos_t[k]);
             f.sin_t[k] = float(n.sin_t[k]);
+          }
+          if (n.kind == NodeKind::disk || n.kind == NodeKind::capsule_2d) {
+            // The float planar test needs every value it reads below 8 S (its error bound) and
+            // normal floats for S, its window and a nonzero |b - a|^2; else the double path.
+            const double limit = 8.0 * frame.scale;
+            bool in_float = frame.scale >= 0x1p-60 && frame.scale <= 0x1p60;
+            const auto fits = [&](double x) { return std::fabs(x) <= limit; };
+            in_float = in_float && fits(n.a[0]) && fits(n.a[1]) && fits(n.b[0]) && fits(n.b[1]);
+            f.segment_length_squared = float(n.segment_length_squared);
+            if (n.kind == NodeKind::capsule_2d && n.segment_length_squared > 0.0)
+              in_float = in_float && f.segment_length_squared >= 0x1p-100f;
+            for (int k = 0; k < thresholds; ++k) {
+              if (!(f.needed >> k & 1)) continue;
+              const double shifted = n.threshold[k] + n.radius;
+              in_float = in_float && fits(shifted);
+              f.cos_t[k] = float(shifted);
+            }
+            if (in_float) f.in_float = n.kind == NodeKind::disk ? 3 : 4;
           }
           const std::uint32_t cluster = e.cluster;
           const shadowcts::metric::ClusterVolume& volume = (*scene.volumes)[cluster];

@@ -80,14 +80,18 @@ struct alignas(128) FastNode {
   // Floats below and above the doubles (light distances are compared in double by the reference).
   float light_distance_low = 0, light_distance_high = 0;
   float a[3] = {0, 0, 0};
+  // Cones: cos and sin of each threshold as PacketNode's; disk and capsule_2d: cos_t holds
+  // threshold + radius.
   float cos_t[thresholds] = {}, sin_t[thresholds] = {};
-  std::uint8_t in_float = 0;   // 1: point_cone, 2: arc_cone; the lanes are decided in float first
+  // 1: point_cone, 2: arc_cone, 3: disk, 4: capsule_2d: the lanes are decided in float first.
+  std::uint8_t in_float = 0;
   std::uint8_t needed = 0;     // bit k: threshold k decides something
   std::uint8_t has_child = 0;  // bit c: TreeChild c exists
   // Second line: read once a lane goes on.
   alignas(64) float pivot_light_distance_low = 0, pivot_light_distance_high = 0;
   std::uint32_t child[3] = {0, 0, 0};             // indices into the packet nodes
-  float b[3] = {0, 0, 0}, normal[3] = {0, 0, 0};  // arc_cone: as PacketNode's
+  float b[3] = {0, 0, 0}, normal[3] = {0, 0, 0};  // as PacketNode's
+  float segment_length_squared = 0;               // capsule_2d
 };
 
 // The pivot cluster of a node as section 5.4 step 2 reads it: its slots and its slabs, widened by
