@@ -571,12 +571,14 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
     const glm::vec3 position(prepared.samples.px[i], prepared.samples.py[i],
                              prepared.samples.pz[i]);
     const glm::dvec3 p(position);
-    // Constructed in place (no temporary copied with wide loads of narrow stores).
-    std::construct_at(&pk.query[l], shadowcts::metric::make_light_space_query(frame, p));
+    // Constructed in place by placement new (guaranteed elision; construct_at would copy a
+    // temporary, with wide loads of narrow stores).
+    ::new (static_cast<void*>(&pk.query[l]))
+        LightSpaceQuery(shadowcts::metric::make_light_space_query(frame, p));
     if (pk.query[l].at_light) continue;  // the segment is a point: nothing hits it
     const ShadowRay ray = frame.directional ? ray_to_directional_light(position, c.light->direction)
                                             : segment_to_point_light(position, c.light->position);
-    std::construct_at(&pk.ray[l], make_ray_space(ray));
+    ::new (static_cast<void*>(&pk.ray[l])) RaySpace(make_ray_space(ray));
     pk.from[l] = p;
     pk.to[l] =
         frame.directional ? p + scene.ray_length * frame.towards_light : frame.light_position;
