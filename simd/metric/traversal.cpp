@@ -80,6 +80,11 @@ HWY_INLINE std::uint32_t float_lane_bits(D d, M mask) {
   return std::uint32_t(bytes[0]) | (std::uint32_t(bytes[1]) << 8);
 }
 
+// Whether a threshold's lanes are read below it (inside, overlap_high, near_side) or above it.
+constexpr bool read_below(int k) {
+  return k == inside || k == overlap_high || k == near_side;
+}
+
 // The decisions of one node for the lanes of a packet, as lane masks.
 struct NodeDecisions {
   std::uint32_t reached = 0;  // step 1 passed: the sample is not closer to the light
@@ -290,6 +295,7 @@ NodeDecisions evaluate_in_float(const FastNode& n, const Packet<P>& pk, std::uin
           float_lane_bits(d, hn::Lt(qhi, hn::Set(d, n.pivot_light_distance_low)));
       doubt |= reached & ~(deep | shallow);
       out.deep |= (deep & reached) << j;
+      auto sure = hn::Eq(qlo, qlo);  // true but in NaN lanes, which `reached` leaves out
       const V ux = hn::Load(d, pk.fx + j), uy = hn::Load(d, pk.fy + j), uz = hn::Load(d, pk.fz + j);
       const V ax = hn::Set(d, n.a[0]), ay = hn::Set(d, n.a[1]), az = hn::Set(d, n.a[2]);
       V s, c;
@@ -302,11 +308,11 @@ NodeDecisions evaluate_in_float(const FastNode& n, const Packet<P>& pk, std::uin
         for (int k = 0; k < thresholds; ++k) {
           if (!(n.needed >> k & 1)) continue;
           const V f = f_of(s, c, k);
-          const std::uint32_t b = float_lane_bits(d, hn::Lt(f, lo)) & reached,
-                              a = float_lane_bits(d, hn::Gt(f, hi)) & reached;
-          doubt |= reached & ~(a | b);
-          below[k] |= b << j;
-          above[k] |= a << j;
+          const auto b = hn::Lt(f, lo), a = hn::Gt(f, hi);
+          // Sureness stays in mask registers; one side's bits are read per threshold.
+          sure = hn::And(sure, hn::Or(a, b));
+          (read_below(k) ? below : above)[k] |=
+              (float_lane_bits(d, read_below(k) ? b : a) & reached) << j;
         }
       } else {
         const V bx = hn::Set(d, n.b[0]), by = hn::Set(d, n.b[1]), bz = hn::Set(d, n.b[2]);
@@ -325,31 +331,26 @@ NodeDecisions evaluate_in_float(const FastNode& n, const Packet<P>& pk, std::uin
                                        hn::Mul(hn::Sub(hn::Mul(pz, bx), hn::Mul(bz, px)), ny)),
                                hn::Mul(hn::Sub(hn::Mul(px, by), hn::Mul(bx, py)), nz));
         const V span_window = hn::Set(d, 0x1p-16f);
-        const std::uint32_t spans =
-            float_lane_bits(d, hn::And(hn::Gt(from_a, span_window), hn::Gt(to_b, span_window))) &
-            reached;
-        const std::uint32_t misses =
-            float_lane_bits(d, hn::Or(hn::Lt(from_a, hn::Neg(span_window)),
-                                      hn::Lt(to_b, hn::Neg(span_window)))) &
-            reached;
-        doubt |= reached & ~(spans | misses);
+        // A lane where neither is certain is unsure for every threshold (a and b stay false).
+        const auto spans = hn::And(hn::Gt(from_a, span_window), hn::Gt(to_b, span_window));
+        const auto misses =
+            hn::Or(hn::Lt(from_a, hn::Neg(span_window)), hn::Lt(to_b, hn::Neg(span_window)));
         V sb, cb;
         sine_cosine(ux, uy, uz, bx, by, bz, sb, cb);
         const V sp = hn::Abs(h);
         for (int k = 0; k < thresholds; ++k) {
           if (!(n.needed >> k & 1)) continue;
           const V fp = f_of(sp, length, k), fa = f_of(s, c, k), fb = f_of(sb, cb, k);
-          const std::uint32_t b =
-              (spans & float_lane_bits(d, hn::Lt(fp, lo))) |
-              (misses & float_lane_bits(d, hn::Or(hn::Lt(fa, lo), hn::Lt(fb, lo))));
-          const std::uint32_t a =
-              (spans & float_lane_bits(d, hn::Gt(fp, hi))) |
-              (misses & float_lane_bits(d, hn::And(hn::Gt(fa, hi), hn::Gt(fb, hi))));
-          doubt |= (spans | misses) & ~(a | b);
-          below[k] |= b << j;
-          above[k] |= a << j;
+          const auto b = hn::Or(hn::And(spans, hn::Lt(fp, lo)),
+                                hn::And(misses, hn::Or(hn::Lt(fa, lo), hn::Lt(fb, lo))));
+          const auto a = hn::Or(hn::And(spans, hn::Gt(fp, hi)),
+                                hn::And(misses, hn::And(hn::Gt(fa, hi), hn::Gt(fb, hi))));
+          sure = hn::And(sure, hn::Or(a, b));
+          (read_below(k) ? below : above)[k] |=
+              (float_lane_bits(d, read_below(k) ? b : a) & reached) << j;
         }
       }
+      doubt |= reached & ~float_lane_bits(d, sure);
       out.reached |= reached << j;
     }
     unsure |= doubt << j;
@@ -398,6 +399,7 @@ NodeDecisions evaluate_planar_in_float(const FastNode& n, const Packet<P>& pk, s
           float_lane_bits(d, hn::Lt(qhi, hn::Set(d, n.pivot_light_distance_low)));
       doubt |= reached & ~(deep | shallow);
       out.deep |= (deep & reached) << j;
+      auto sure = hn::Eq(qlo, qlo);  // true but in NaN lanes, which `reached` leaves out
       const V ux = hn::Load(d, pk.fx + j), uy = hn::Load(d, pk.fy + j);
       const V ax = hn::Set(d, n.a[0]), ay = hn::Set(d, n.a[1]);
       V ex = hn::Sub(ux, ax), ey = hn::Sub(uy, ay);
@@ -416,12 +418,12 @@ NodeDecisions evaluate_planar_in_float(const FastNode& n, const Packet<P>& pk, s
       for (int k = 0; k < thresholds; ++k) {
         if (!(n.needed >> k & 1)) continue;
         const V f = hn::Sub(length, hn::Set(d, n.cos_t[k]));
-        const std::uint32_t b = float_lane_bits(d, hn::Lt(f, lo)) & reached,
-                            a = float_lane_bits(d, hn::Gt(f, hi)) & reached;
-        doubt |= reached & ~(a | b);
-        below[k] |= b << j;
-        above[k] |= a << j;
+        const auto b = hn::Lt(f, lo), a = hn::Gt(f, hi);
+        sure = hn::And(sure, hn::Or(a, b));
+        (read_below(k) ? below : above)[k] |= (float_lane_bits(d, read_below(k) ? b : a) & reached)
+                                              << j;
       }
+      doubt |= reached & ~float_lane_bits(d, sure);
       out.reached |= reached << j;
     }
     unsure |= doubt << j;
