@@ -596,9 +596,9 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
     pk.qhi[l] = float_above(pk.qld[l]);
     active |= 1u << l;
   }
-  const std::vector<PacketNode>& nodes = traversal.nodes->nodes;
-  const std::vector<FastNode>& fast = traversal.nodes->fast;
-  const std::vector<NodeCluster>& clusters = traversal.nodes->clusters;
+  const FilledArray<PacketNode>& nodes = traversal.nodes->nodes;
+  const FilledArray<FastNode>& fast = traversal.nodes->fast;
+  const FilledArray<NodeCluster>& clusters = traversal.nodes->clusters;
   if (nodes.empty() || active == 0) return;
   // The float window: at least 2^-16 (see evaluate_in_float), wider where a test widens the
   // double one, so that the lanes it hands back still reach the double path.
@@ -752,16 +752,27 @@ PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene) {
     }
   }
   PacketNodes out;
-  out.nodes.resize(order.size());
-  out.fast.resize(order.size());
-  out.clusters.resize(order.size());
-  std::vector<PacketNode>& nodes = out.nodes;
+  out.nodes = FilledArray<PacketNode>(order.size());
+  out.fast = FilledArray<FastNode>(order.size());
+  out.clusters = FilledArray<NodeCluster>(order.size());
+  FilledArray<PacketNode>& nodes = out.nodes;
+  const std::vector<shadowcts::metric::LightSpaceElement>& elements = *scene.elements;
+  const std::vector<shadowcts::metric::ClusterVolume>& volumes = *scene.volumes;
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, order.size(), 512),
       [&](const tbb::blocked_range<std::size_t>& range) {
         for (std::size_t i = range.begin(); i != range.end(); ++i) {
+          // The tree node, its pivot element and its cluster's volume lie at random places: each
+          // is fetched a few nodes ahead, once the one it is found through has arrived.
+          if (i + 16 < order.size()) __builtin_prefetch(&tree_nodes[order[i + 16]]);
+          if (i + 8 < order.size()) __builtin_prefetch(&elements[tree_nodes[order[i + 8]].pivot]);
+          if (i + 4 < order.size())
+            __builtin_prefetch(&volumes[elements[tree_nodes[order[i + 4]].pivot].cluster]);
           const shadowcts::metric::MetricTreeNode& t = tree_nodes[order[i]];
-          const shadowcts::metric::LightSpaceElement& e = (*scene.elements)[t.pivot];
+          const shadowcts::metric::LightSpaceElement& e = elements[t.pivot];
+          ::new (static_cast<void*>(&nodes[i])) PacketNode();
+          ::new (static_cast<void*>(&out.fast[i])) FastNode();
+          ::new (static_cast<void*>(&out.clusters[i])) NodeCluster();
           PacketNode& n = nodes[i];
           n.light_distance = t.light_distance;
           n.pivot_light_distance = e.light_distance;
@@ -865,7 +876,7 @@ PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene) {
             if (in_float) f.in_float = n.kind == NodeKind::disk ? 3 : 4;
           }
           const std::uint32_t cluster = e.cluster;
-          const shadowcts::metric::ClusterVolume& volume = (*scene.volumes)[cluster];
+          const shadowcts::metric::ClusterVolume& volume = volumes[cluster];
           NodeCluster& record = out.clusters[i];
           record.slab_normal = volume.slab_normal;
           record.low = volume.slab_min - frame.margin;

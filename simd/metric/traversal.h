@@ -16,6 +16,9 @@
 // float ray-space vertices certainly of opposite signs, beyond the rounding of the transform);
 // every other one is decided by the reference's own triangle_blocks_sample.
 #include <cstdint>
+#include <new>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -102,10 +105,45 @@ struct NodeCluster {
   std::uint32_t begin = 0, end = 0;  // slots in cluster order
 };
 
+// An array of trivially destructible records that the code filling it constructs (in parallel):
+// a std::vector would first value-initialise every record on one thread, touching some 30 MB of
+// fresh pages at 1M triangles serially before the parallel fill writes them again.
+template <class T>
+class FilledArray {
+  static_assert(std::is_trivially_destructible_v<T>);
+
+ public:
+  FilledArray() = default;
+  explicit FilledArray(std::size_t size)
+      : data_(static_cast<T*>(::operator new(size * sizeof(T), std::align_val_t(alignof(T))))),
+        size_(size) {}
+  FilledArray(FilledArray&& other) noexcept
+      : data_(std::exchange(other.data_, nullptr)), size_(std::exchange(other.size_, 0)) {}
+  FilledArray& operator=(FilledArray&& other) noexcept {
+    std::swap(data_, other.data_);
+    std::swap(size_, other.size_);
+    return *this;
+  }
+  FilledArray(const FilledArray&) = delete;
+  FilledArray& operator=(const FilledArray&) = delete;
+  ~FilledArray() {
+    if (data_ != nullptr) ::operator delete(data_, std::align_val_t(alignof(T)));
+  }
+  T& operator[](std::size_t i) { return data_[i]; }
+  const T& operator[](std::size_t i) const { return data_[i]; }
+  std::size_t size() const { return size_; }
+  bool empty() const { return size_ == 0; }
+  const T* data() const { return data_; }
+
+ private:
+  T* data_ = nullptr;
+  std::size_t size_ = 0;
+};
+
 struct PacketNodes {
-  std::vector<PacketNode> nodes;  // doubles: the certain decisions in double, then the reference
-  std::vector<FastNode> fast;     // same order
-  std::vector<NodeCluster> clusters;
+  FilledArray<PacketNode> nodes;  // doubles: the certain decisions in double, then the reference
+  FilledArray<FastNode> fast;     // same order
+  FilledArray<NodeCluster> clusters;
 };
 
 PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene);
