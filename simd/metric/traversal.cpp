@@ -298,13 +298,41 @@ NodeDecisions evaluate_in_float(const FastNode& n, const Packet<P>& pk, std::uin
       auto sure = hn::Eq(qlo, qlo);  // true but in NaN lanes, which `reached` leaves out
       const V ux = hn::Load(d, pk.fx + j), uy = hn::Load(d, pk.fy + j), uz = hn::Load(d, pk.fz + j);
       const V ax = hn::Set(d, n.a[0]), ay = hn::Set(d, n.a[1]), az = hn::Set(d, n.a[2]);
-      V s, c;
-      sine_cosine(ux, uy, uz, ax, ay, az, s, c);
+      // Angle between u and a as (|u x a|, u . a), in glm's order of operations (sine_cosine),
+      // with the root taken only where it is read.
+      const V cx = hn::Sub(hn::Mul(uy, az), hn::Mul(ay, uz));
+      const V cy = hn::Sub(hn::Mul(uz, ax), hn::Mul(az, ux));
+      const V cz = hn::Sub(hn::Mul(ux, ay), hn::Mul(ax, uy));
+      const V s2 = hn::Add(hn::Add(hn::Mul(cx, cx), hn::Mul(cy, cy)), hn::Mul(cz, cz));
+      const V c = hn::Add(hn::Add(hn::Mul(ux, ax), hn::Mul(uy, ay)), hn::Mul(uz, az));
       const auto f_of = [&](V sine, V cosine, int k) {
         return hn::Sub(hn::Mul(sine, hn::Set(d, n.cos_t[k])),
                        hn::Mul(cosine, hn::Set(d, n.sin_t[k])));
       };
       if constexpr (!arc) {
+        if (n.squared) {
+          // Every needed cos T >= 0: f < -W iff c sin T - W > 0 and s^2 cos^2 T < (c sin T -
+          // W)^2, f > W iff c sin T + W < 0 or s^2 cos^2 T > (c sin T + W)^2. No root: it was
+          // the longest latency of a walk step. The squares' roundings (a few 2^-24 relative)
+          // move the comparisons by far less than the error bound above allows.
+          const V zero = hn::Zero(d);
+          for (int k = 0; k < thresholds; ++k) {
+            if (!(n.needed >> k & 1)) continue;
+            const V lhs = hn::Mul(s2, hn::Set(d, n.cos_t[k] * n.cos_t[k]));
+            const V g = hn::Mul(c, hn::Set(d, n.sin_t[k]));
+            const V low = hn::Add(g, lo), high = hn::Add(g, hi);
+            const auto b = hn::And(hn::Gt(low, zero), hn::Lt(lhs, hn::Mul(low, low)));
+            const auto a = hn::Or(hn::Lt(high, zero), hn::Gt(lhs, hn::Mul(high, high)));
+            sure = hn::And(sure, hn::Or(a, b));
+            (read_below(k) ? below : above)[k] |=
+                (float_lane_bits(d, read_below(k) ? b : a) & reached) << j;
+          }
+          doubt |= reached & ~float_lane_bits(d, sure);
+          out.reached |= reached << j;
+          unsure |= doubt << j;
+          continue;
+        }
+        const V s = hn::Sqrt(s2);
         for (int k = 0; k < thresholds; ++k) {
           if (!(n.needed >> k & 1)) continue;
           const V f = f_of(s, c, k);
@@ -335,6 +363,7 @@ NodeDecisions evaluate_in_float(const FastNode& n, const Packet<P>& pk, std::uin
         const auto spans = hn::And(hn::Gt(from_a, span_window), hn::Gt(to_b, span_window));
         const auto misses =
             hn::Or(hn::Lt(from_a, hn::Neg(span_window)), hn::Lt(to_b, hn::Neg(span_window)));
+        const V s = hn::Sqrt(s2);
         V sb, cb;
         sine_cosine(ux, uy, uz, bx, by, bz, sb, cb);
         const V sp = hn::Abs(h);
@@ -848,6 +877,10 @@ PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene) {
             f.has_child |= std::uint8_t(n.has_child[c] << c);
           }
           f.in_float = n.kind == NodeKind::point_cone ? 1 : n.kind == NodeKind::arc_cone ? 2 : 0;
+          // The squared test needs cos T >= 0 for every needed threshold (the +2 sentinel too).
+          f.squared = f.in_float == 1;
+          for (int k = 0; k < thresholds; ++k)
+            if ((f.needed >> k & 1) && !(n.cos_t[k] >= 0.0)) f.squared = 0;
           for (int k = 0; k < 3; ++k) {
             f.a[k] = float(n.a[k]);
             f.b[k] = float(n.b[k]);

@@ -90,6 +90,7 @@ struct alignas(128) FastNode {
   std::uint8_t in_float = 0;
   std::uint8_t needed = 0;     // bit k: threshold k decides something
   std::uint8_t has_child = 0;  // bit c: TreeChild c exists
+  std::uint8_t squared = 0;    // point_cone with every needed cos T >= 0: tested without a root
   // Second line: read once a lane goes on.
   alignas(64) float pivot_light_distance_low = 0, pivot_light_distance_high = 0;
   std::uint32_t child[3] = {0, 0, 0};             // indices into the packet nodes
