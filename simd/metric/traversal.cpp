@@ -408,7 +408,6 @@ NodeDecisions evaluate_planar_in_float(const FastNode& n, const Packet<P>& pk, s
   using V = hn::Vec<decltype(d)>;
   const std::size_t N = std::min(hn::Lanes(d), max_float_lanes);
   const std::uint32_t chunk = N >= 32 ? ~0u : (1u << N) - 1;
-  const V lo = hn::Set(d, -window), hi = hn::Set(d, window);
   NodeDecisions out;
   std::uint32_t below[thresholds] = {}, above[thresholds] = {};
   unsure = 0;
@@ -443,11 +442,17 @@ NodeDecisions evaluate_planar_in_float(const FastNode& n, const Packet<P>& pk, s
           ey = hn::Sub(uy, hn::Add(ay, hn::Mul(t, aby)));
         }
       }
-      const V length = hn::Sqrt(hn::Add(hn::Mul(ex, ex), hn::Mul(ey, ey)));
+      // |e| - (T + r) < -W iff T + r - W > 0 and |e|^2 < (T + r - W)^2; > W iff T + r + W < 0
+      // or |e|^2 > (T + r + W)^2: per node constants against |e|^2, no root (the longest latency
+      // of a walk step). The squares' relative roundings (a few 2^-24, of values below 8 S) stay
+      // far inside the error bound above; S >= 2^-30 keeps the squares of any bound that matters
+      // normal.
+      const V length2 = hn::Add(hn::Mul(ex, ex), hn::Mul(ey, ey));
       for (int k = 0; k < thresholds; ++k) {
         if (!(n.needed >> k & 1)) continue;
-        const V f = hn::Sub(length, hn::Set(d, n.cos_t[k]));
-        const auto b = hn::Lt(f, lo), a = hn::Gt(f, hi);
+        const float low = n.cos_t[k] - window, high = n.cos_t[k] + window;
+        const auto b = low > 0.0f ? hn::Lt(length2, hn::Set(d, low * low)) : hn::Lt(qlo, qlo);
+        const auto a = high < 0.0f ? hn::Eq(qlo, qlo) : hn::Gt(length2, hn::Set(d, high * high));
         sure = hn::And(sure, hn::Or(a, b));
         (read_below(k) ? below : above)[k] |= (float_lane_bits(d, read_below(k) ? b : a) & reached)
                                               << j;
@@ -894,7 +899,7 @@ PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene) {
             // The float planar test needs every value it reads below 8 S (its error bound) and
             // normal floats for S, its window and a nonzero |b - a|^2; else the double path.
             const double limit = 8.0 * frame.scale;
-            bool in_float = frame.scale >= 0x1p-60 && frame.scale <= 0x1p60;
+            bool in_float = frame.scale >= 0x1p-30 && frame.scale <= 0x1p60;
             const auto fits = [&](double x) { return std::fabs(x) <= limit; };
             in_float = in_float && fits(n.a[0]) && fits(n.a[1]) && fits(n.b[0]) && fits(n.b[1]);
             f.segment_length_squared = float(n.segment_length_squared);
