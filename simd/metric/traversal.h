@@ -5,16 +5,17 @@
 // pushed and popped in the order its own depth-first walk would push and pop them, so every
 // per-sample counter is the reference's (reference/metric/traversal.h).
 //
-// Exactness: the node tests decide in lanes only where the decision is certain. A point light's
-// point cone is first tested in float (16 lanes per AVX-512 vector), which hands a lane to the
-// double test where it lies within 2^-16 of a threshold; the double test hands it to the
-// reference's scalar pivot_distance where a comparison lies within 2^-40 (of an angle, or of S in
-// the plane) of its threshold. The angle test needs no atan2: for an angle theta = atan2(s, c)
-// with s >= 0 and a threshold T in [0, pi], sign(theta - T) is the sign of s cos T - c sin T.
-// The triangles of a candidate cluster are filtered in float lanes: a triangle is skipped only
-// where the line of the ray certainly misses it (two float edge functions of the reference's own
-// float ray-space vertices certainly of opposite signs, beyond the rounding of the transform);
-// every other one is decided by the reference's own triangle_blocks_sample.
+// Exactness: the node tests decide in lanes only where the decision is certain. A node is first
+// tested in float (16 lanes per AVX-512 vector: cones and arcs of a point light, disks and 2D
+// capsules of a directional one), which hands a lane to the double test where it lies within
+// 2^-16 (of an angle, or of S in the plane) of a threshold; the double test hands it to the
+// reference's scalar pivot_distance where a comparison lies within 2^-40 of its threshold. The
+// angle test needs no atan2: for an angle theta = atan2(s, c) with s >= 0 and a threshold T in [0,
+// pi], sign(theta - T) is the sign of s cos T - c sin T. The triangles of a candidate cluster are
+// filtered in float lanes: a triangle is skipped only where the line of the ray certainly misses it
+// (two float edge functions of the reference's own float ray-space vertices certainly of opposite
+// signs, beyond the rounding of the transform); every other one is decided by the reference's own
+// triangle_blocks_sample.
 #include <cstdint>
 #include <new>
 #include <type_traits>
@@ -76,9 +77,10 @@ struct alignas(64) PacketNode {
 };
 
 // What a lane reads on every visit of a node, in float, two cache lines: the light-distance
-// bounds and, for a point light's point centre (NodeKind::point_cone), the angle test of every
-// threshold as in PacketNode. A float lane decides only where its comparison is certain (see
-// float_angle_window in traversal.cpp); every other lane takes the double PacketNode.
+// bounds and the centre and thresholds of PacketNode. A float lane decides only where its
+// comparison is certain (evaluate_in_float and evaluate_planar_in_float in traversal.cpp say
+// why); every other lane, and every lane of a node in_float leaves at 0, takes the double
+// PacketNode.
 struct alignas(128) FastNode {
   // Floats below and above the doubles (light distances are compared in double by the reference).
   float light_distance_low = 0, light_distance_high = 0;
