@@ -933,10 +933,26 @@ SampleTiles sample_tiles(const RegularSamples& samples, std::uint32_t width, std
   const std::uint32_t columns = (std::max(width, 1u) + tile_width - 1) / tile_width;
   std::vector<std::uint32_t> tile_of(samples.size());
   std::uint32_t tile_count = 0;
+  // The samples come in pixel order: the row advances without a division per sample (three
+  // divisions per sample cost some 20 ms at 1080p, inside the timed query).
+  std::uint32_t row = 0, row_start = 0, tile_row = 0;
   for (std::size_t i = 0; i < samples.size(); ++i) {
     const std::uint32_t pixel = samples.index[i];
-    const std::uint32_t x = width > 0 ? pixel % width : 0, y = width > 0 ? pixel / width : 0;
-    tile_of[i] = (y / tile_height) * columns + x / tile_width;
+    std::uint32_t x = 0;
+    if (width > 0) {
+      if (pixel < row_start) {  // out of order: start the row again
+        row = pixel / width;
+        row_start = row * width;
+        tile_row = row / tile_height;
+      }
+      while (pixel - row_start >= width) {
+        ++row;
+        row_start += width;
+        tile_row = row / tile_height;
+      }
+      x = pixel - row_start;
+    }
+    tile_of[i] = tile_row * columns + x / tile_width;
     tile_count = std::max(tile_count, tile_of[i] + 1);
   }
   std::vector<std::uint32_t> begin(tile_count + 1, 0);
