@@ -5,6 +5,7 @@
 #include <chrono>
 #include <ctime>
 #include <stdexcept>
+#include <utility>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -55,34 +56,61 @@ struct CasterBoxes {
   glm::dvec3 all_lo{INFINITY}, all_hi{-INFINITY};
 };
 
-CasterBoxes caster_boxes(const PreparedScene& scene) {
-  const std::size_t meshes = scene.casters.mesh_closed.size();
-  // Per-mesh boxes, reduced in parallel: min and max do not depend on the order.
-  using Boxes = std::pair<std::vector<glm::dvec3>, std::vector<glm::dvec3>>;
-  const CasterArrays& t = scene.casters;
-  const Boxes empty(std::vector<glm::dvec3>(meshes, glm::dvec3(INFINITY)),
-                    std::vector<glm::dvec3>(meshes, glm::dvec3(-INFINITY)));
-  const Boxes boxes = tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(0, t.size(), 16384), empty,
-      [&](const tbb::blocked_range<std::size_t>& range, Boxes box) {
-        for (std::size_t i = range.begin(); i != range.end(); ++i)
-          for (int k = 0; k < 3; ++k) {
-            const glm::dvec3 v(t.corner(i, k));
-            box.first[t.mesh[i]] = glm::min(box.first[t.mesh[i]], v);
-            box.second[t.mesh[i]] = glm::max(box.second[t.mesh[i]], v);
-          }
-        return box;
-      },
-      [](Boxes a, const Boxes& b) {
-        for (std::size_t m = 0; m < a.first.size(); ++m) {
-          a.first[m] = glm::min(a.first[m], b.first[m]);
-          a.second[m] = glm::max(a.second[m], b.second[m]);
+// Only the box of all vertices where the light is directional (the mesh boxes are read for a point
+// light only): per-mesh partial boxes cost a copy of every mesh's box per range of triangles.
+CasterBoxes caster_boxes(const PreparedScene& scene, bool per_mesh) {
+  if (!per_mesh) {
+    using Box = std::pair<glm::dvec3, glm::dvec3>;
+    const CasterArrays& t = scene.casters;
+    const Box all = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, t.size(), 16384),
+        Box(glm::dvec3(INFINITY), glm::dvec3(-INFINITY)),
+        [&](const tbb::blocked_range<std::size_t>& range, Box box) {
+          for (std::size_t i = range.begin(); i != range.end(); ++i)
+            for (int k = 0; k < 3; ++k) {
+              const glm::dvec3 v(t.corner(i, k));
+              box.first = glm::min(box.first, v);
+              box.second = glm::max(box.second, v);
+            }
+          return box;
+        },
+        [](const Box& a, const Box& b) {
+          return Box(glm::min(a.first, b.first), glm::max(a.second, b.second));
+        });
+    CasterBoxes out;
+    out.all_lo = all.first;
+    out.all_hi = all.second;
+    return out;
+  }
+  // Per-mesh boxes, reduced in parallel: min and max do not depend on the order. A body per
+  // worker (not a copy of every box per range of triangles).
+  struct MeshBoxes {
+    const CasterArrays* t;
+    std::vector<glm::dvec3> lo, hi;
+    MeshBoxes(const CasterArrays& casters, std::size_t meshes)
+        : t(&casters), lo(meshes, glm::dvec3(INFINITY)), hi(meshes, glm::dvec3(-INFINITY)) {}
+    MeshBoxes(MeshBoxes& other, tbb::split) : MeshBoxes(*other.t, other.lo.size()) {}
+    void operator()(const tbb::blocked_range<std::size_t>& range) {
+      for (std::size_t i = range.begin(); i != range.end(); ++i)
+        for (int k = 0; k < 3; ++k) {
+          const glm::dvec3 v(t->corner(i, k));
+          lo[t->mesh[i]] = glm::min(lo[t->mesh[i]], v);
+          hi[t->mesh[i]] = glm::max(hi[t->mesh[i]], v);
         }
-        return a;
-      });
+    }
+    void join(const MeshBoxes& other) {
+      for (std::size_t m = 0; m < lo.size(); ++m) {
+        lo[m] = glm::min(lo[m], other.lo[m]);
+        hi[m] = glm::max(hi[m], other.hi[m]);
+      }
+    }
+  };
+  const std::size_t meshes = scene.casters.mesh_closed.size();
+  MeshBoxes boxes(scene.casters, meshes);
+  tbb::parallel_reduce(tbb::blocked_range<std::size_t>(0, scene.casters.size(), 16384), boxes);
   CasterBoxes out;
-  out.lo = boxes.first;
-  out.hi = boxes.second;
+  out.lo = std::move(boxes.lo);
+  out.hi = std::move(boxes.hi);
   for (std::size_t m = 0; m < meshes; ++m) {
     out.all_lo = glm::min(out.all_lo, out.lo[m]);
     out.all_hi = glm::max(out.all_hi, out.hi[m]);
@@ -92,8 +120,8 @@ CasterBoxes caster_boxes(const PreparedScene& scene) {
 
 // As the reference's meshes_around_light: closed meshes whose bounding box, enlarged by the
 // margin, may hold the point light (then their clusters are never culled by their normals).
-std::vector<bool> meshes_around_light(const CasterBoxes& boxes, const ref::LightFrame& frame) {
-  const std::size_t meshes = boxes.lo.size();
+std::vector<bool> meshes_around_light(const CasterBoxes& boxes, const ref::LightFrame& frame,
+                                      std::size_t meshes) {
   std::vector<bool> around(meshes, false);
   if (frame.directional) return around;
   for (std::size_t m = 0; m < meshes; ++m)
@@ -121,8 +149,9 @@ ref::LightStructure build_light_structure(const PreparedScene& scene,
   // The prepared scene's S is Case::scale(), which the reference computes again.
   structure.frame = ref::make_light_frame(c, scene.scale);
   const ref::LightFrame& frame = structure.frame;
-  const CasterBoxes boxes = caster_boxes(scene);
-  const std::vector<bool> around_light = meshes_around_light(boxes, frame);
+  const CasterBoxes boxes = caster_boxes(scene, !frame.directional);
+  const std::vector<bool> around_light =
+      meshes_around_light(boxes, frame, scene.casters.mesh_closed.size());
   const glm::dvec3 light = frame.directional ? frame.towards_light : frame.light_position;
   const std::size_t count = clustered.volumes.size();
   std::vector<ref::LightSpaceElement> all(count);
