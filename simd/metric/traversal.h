@@ -94,11 +94,13 @@ struct alignas(128) FastNode {
   std::uint8_t has_child = 0;  // bit c: TreeChild c exists
   std::uint8_t squared = 0;    // point_cone with every needed cos T >= 0: tested without a root
   // Second line: read once a lane goes on.
-  alignas(64) float pivot_light_distance_low = 0, pivot_light_distance_high = 0;
+  alignas(64) float pivot_light_distance_low = 0;  // alignas binds per declarator: one each
+  float pivot_light_distance_high = 0;
   std::uint32_t child[3] = {0, 0, 0};             // indices into the packet nodes
   float b[3] = {0, 0, 0}, normal[3] = {0, 0, 0};  // as PacketNode's
   float segment_length_squared = 0;               // capsule_2d
 };
+static_assert(sizeof(FastNode) == 128, "two cache lines");
 
 // The pivot cluster of a node as section 5.4 step 2 reads it: its slots and its slabs, widened by
 // the margin exactly as segment_meets_slabs widens them.
