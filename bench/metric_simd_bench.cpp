@@ -169,7 +169,7 @@ void BM_MetricSimdQueryOnly(benchmark::State& state, const std::string& generato
   traversal.triangles = &triangles;
   traversal.prepared = &scene;
   traversal.tiles = &tiles;
-  std::vector<std::uint8_t> shadowed(scene.samples.size(), 0);
+  std::vector<std::uint8_t> shadowed(scene.view_samples.samples.size(), 0);
   metric::TraversalCounters counters;
   for (auto _ : state) {
     counters = {};

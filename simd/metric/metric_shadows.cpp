@@ -226,20 +226,21 @@ SimdMetricRun run_metric(const PreparedScene& scene, const SimdMetricOptions& op
   traversal.prepared = &scene;
   traversal.tiles = &tiles;
   traversal.decision_window = options.decision_window;
-  std::vector<std::uint8_t> shadowed(scene.samples.size(), 0);
+  // Written by the traversal per view sample (0 for the others): no serial scatter afterwards.
+  run.output.shadowed.assign(scene.view_samples.samples.size(), 0);
+  std::uint8_t* const shadowed = run.output.shadowed.data();
   std::atomic<std::uint64_t> nodes_visited{0}, clusters_without_hit{0}, triangle_tests{0};
   phase_progress::begin(tiles.size(), "sample tiles");
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tiles.size(), 16),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       ref::TraversalCounters local;
-                      traverse_tiles(traversal, range.begin(), range.end(), shadowed.data(), local);
+                      traverse_tiles(traversal, range.begin(), range.end(), shadowed, local);
                       // Sums of integers: the totals do not depend on the partitioning.
                       nodes_visited += local.nodes_visited;
                       clusters_without_hit += local.clusters_tested_without_hit;
                       triangle_tests += local.triangle_tests;
                       phase_progress::advance(range.size());
                     });
-  run.output.shadowed = scene.per_view_sample(shadowed, std::uint8_t(0));
   run.traversal_seconds = seconds_since(start);
   run.traversal_cpu_seconds = process_cpu_seconds() - cpu_start;
 

@@ -54,7 +54,7 @@ struct Packet {
   // that a full float vector can always be loaded (lanes past P are masked off).
   alignas(64) float fx[max_float_lanes], fy[max_float_lanes], fz[max_float_lanes];
   alignas(64) float qlo[max_float_lanes], qhi[max_float_lanes];
-  std::uint32_t regular[P];
+  std::uint32_t sample_index[P];  // the view sample's (ViewSamples::samples) index
   const ViewSample* sample[P];
   std::uint32_t receiver[P];
   std::uint32_t receiver_slot[P];  // the receiver's slot in cluster order, or ~0u
@@ -602,8 +602,8 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
     pk.receiver[l] = prepared.samples.receiver[i];
     const std::vector<std::uint32_t>& slot_of = traversal.triangles->slot_of;
     pk.receiver_slot[l] = pk.receiver[l] < slot_of.size() ? slot_of[pk.receiver[l]] : ~0u;
-    pk.regular[l] = i;
-    shadowed[i] = 0;
+    pk.sample_index[l] = prepared.samples.index[i];
+    shadowed[prepared.samples.index[i]] = 0;
     const glm::vec3 position(prepared.samples.px[i], prepared.samples.py[i],
                              prepared.samples.pz[i]);
     const glm::dvec3 p(position);
@@ -682,7 +682,7 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
     for (std::uint32_t visit = decisions.inside & decisions.deep; visit != 0; visit &= visit - 1) {
       const int l = std::countr_zero(visit);
       if (cluster_blocks(traversal, pk, l, clusters[index], counters)) {
-        shadowed[pk.regular[l]] = 1;
+        shadowed[pk.sample_index[l]] = 1;
         active &= ~(1u << l);
       }
     }

@@ -179,8 +179,9 @@ struct PacketTraversal {
   double decision_window = default_decision_window;
 };
 
-// Answers the samples of tiles [tile_begin, tile_end): shadowed[i] for regular sample i, and adds
-// the work to `counters`. Dispatched to the best Highway target of the CPU.
+// Answers the samples of tiles [tile_begin, tile_end): shadowed[v] for the view sample v
+// (ViewSamples::samples) of each of their regular samples, and adds the work to `counters`.
+// Dispatched to the best Highway target of the CPU.
 void traverse_tiles(const PacketTraversal& traversal, std::size_t tile_begin, std::size_t tile_end,
                     std::uint8_t* shadowed, shadowcts::metric::TraversalCounters& counters);
 
