@@ -58,9 +58,13 @@ double max_distance_to_centre(const LightFrame& frame, const LightSpaceElement& 
 }  // namespace
 
 LightFrame make_light_frame(const Case& c) {
+  return make_light_frame(c, c.scale());
+}
+
+LightFrame make_light_frame(const Case& c, double scale) {
   if (!c.light) throw std::invalid_argument("metric: the case has no shadow light");
   LightFrame frame;
-  frame.scale = c.scale();
+  frame.scale = scale;
   frame.margin = 0x1p-18 * frame.scale;
   frame.depth_slack = 1e-10 * frame.scale;
   if (c.light->kind == ShadowLightKind::point) {

@@ -43,6 +43,8 @@ struct LightFrame {
 };
 
 LightFrame make_light_frame(const Case& c);
+// The same for a caller that has the case's scale (Case::scale()) already.
+LightFrame make_light_frame(const Case& c, double scale);
 
 enum class CentreKind : std::uint8_t { point, segment };
 

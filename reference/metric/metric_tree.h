@@ -48,6 +48,8 @@ inline TreeChild partition_child(const DistanceBounds& bounds, double partition_
 // bounding sphere (its radius in the plane for a directional light; pi when a point light is
 // inside it).
 double scene_partition_distance(const LightFrame& frame, const Case& c);
+// The same from the bounding box [lo, hi] of every caster vertex.
+double box_partition_distance(const LightFrame& frame, const glm::dvec3& lo, const glm::dvec3& hi);
 
 // Section 5.3: elements inserted one by one in an order shuffled with `seed`.
 MetricTree build_metric_tree_by_insertion(const LightFrame& frame,

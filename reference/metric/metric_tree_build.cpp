@@ -18,6 +18,10 @@ double scene_partition_distance(const LightFrame& frame, const Case& c) {
       lo = glm::min(lo, glm::dvec3(v));
       hi = glm::max(hi, glm::dvec3(v));
     }
+  return box_partition_distance(frame, lo, hi);
+}
+
+double box_partition_distance(const LightFrame& frame, const glm::dvec3& lo, const glm::dvec3& hi) {
   const glm::dvec3 centre = 0.5 * (lo + hi);
   const double radius = 0.5 * glm::length(hi - lo);
   if (frame.directional) return radius;

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <ctime>
 #include <stdexcept>
+#include <utility>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -48,40 +49,84 @@ std::uint64_t tree_depth(const ref::MetricTree& tree) {
   return deepest;
 }
 
+// The bounding box of every mesh's vertices, and of all of them: the reference reads them in two
+// sequential passes over the triangles (meshes_around_light and scene_partition_distance).
+struct CasterBoxes {
+  std::vector<glm::dvec3> lo, hi;  // per mesh
+  glm::dvec3 all_lo{INFINITY}, all_hi{-INFINITY};
+};
+
+// Only the box of all vertices where the light is directional (the mesh boxes are read for a point
+// light only): per-mesh partial boxes cost a copy of every mesh's box per range of triangles.
+CasterBoxes caster_boxes(const PreparedScene& scene, bool per_mesh) {
+  if (!per_mesh) {
+    using Box = std::pair<glm::dvec3, glm::dvec3>;
+    const CasterArrays& t = scene.casters;
+    const Box all = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, t.size(), 16384),
+        Box(glm::dvec3(INFINITY), glm::dvec3(-INFINITY)),
+        [&](const tbb::blocked_range<std::size_t>& range, Box box) {
+          for (std::size_t i = range.begin(); i != range.end(); ++i)
+            for (int k = 0; k < 3; ++k) {
+              const glm::dvec3 v(t.corner(i, k));
+              box.first = glm::min(box.first, v);
+              box.second = glm::max(box.second, v);
+            }
+          return box;
+        },
+        [](const Box& a, const Box& b) {
+          return Box(glm::min(a.first, b.first), glm::max(a.second, b.second));
+        });
+    CasterBoxes out;
+    out.all_lo = all.first;
+    out.all_hi = all.second;
+    return out;
+  }
+  // Per-mesh boxes, reduced in parallel: min and max do not depend on the order. A body per
+  // worker (not a copy of every box per range of triangles).
+  struct MeshBoxes {
+    const CasterArrays* t;
+    std::vector<glm::dvec3> lo, hi;
+    MeshBoxes(const CasterArrays& casters, std::size_t meshes)
+        : t(&casters), lo(meshes, glm::dvec3(INFINITY)), hi(meshes, glm::dvec3(-INFINITY)) {}
+    MeshBoxes(MeshBoxes& other, tbb::split) : MeshBoxes(*other.t, other.lo.size()) {}
+    void operator()(const tbb::blocked_range<std::size_t>& range) {
+      for (std::size_t i = range.begin(); i != range.end(); ++i)
+        for (int k = 0; k < 3; ++k) {
+          const glm::dvec3 v(t->corner(i, k));
+          lo[t->mesh[i]] = glm::min(lo[t->mesh[i]], v);
+          hi[t->mesh[i]] = glm::max(hi[t->mesh[i]], v);
+        }
+    }
+    void join(const MeshBoxes& other) {
+      for (std::size_t m = 0; m < lo.size(); ++m) {
+        lo[m] = glm::min(lo[m], other.lo[m]);
+        hi[m] = glm::max(hi[m], other.hi[m]);
+      }
+    }
+  };
+  const std::size_t meshes = scene.casters.mesh_closed.size();
+  MeshBoxes boxes(scene.casters, meshes);
+  tbb::parallel_reduce(tbb::blocked_range<std::size_t>(0, scene.casters.size(), 16384), boxes);
+  CasterBoxes out;
+  out.lo = std::move(boxes.lo);
+  out.hi = std::move(boxes.hi);
+  for (std::size_t m = 0; m < meshes; ++m) {
+    out.all_lo = glm::min(out.all_lo, out.lo[m]);
+    out.all_hi = glm::max(out.all_hi, out.hi[m]);
+  }
+  return out;
+}
+
 // As the reference's meshes_around_light: closed meshes whose bounding box, enlarged by the
 // margin, may hold the point light (then their clusters are never culled by their normals).
-std::vector<bool> meshes_around_light(const PreparedScene& scene, const ref::LightFrame& frame) {
-  const std::size_t meshes = scene.casters.mesh_closed.size();
+std::vector<bool> meshes_around_light(const CasterBoxes& boxes, const ref::LightFrame& frame,
+                                      std::size_t meshes) {
   std::vector<bool> around(meshes, false);
   if (frame.directional) return around;
-  // Per-mesh boxes, reduced in parallel: min and max do not depend on the order.
-  using Boxes = std::pair<std::vector<glm::dvec3>, std::vector<glm::dvec3>>;
-  const CasterArrays& t = scene.casters;
-  const Boxes empty(std::vector<glm::dvec3>(meshes, glm::dvec3(INFINITY)),
-                    std::vector<glm::dvec3>(meshes, glm::dvec3(-INFINITY)));
-  const Boxes boxes = tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(0, t.size(), 16384), empty,
-      [&](const tbb::blocked_range<std::size_t>& range, Boxes box) {
-        for (std::size_t i = range.begin(); i != range.end(); ++i)
-          for (int k = 0; k < 3; ++k) {
-            const glm::dvec3 v(t.corner(i, k));
-            box.first[t.mesh[i]] = glm::min(box.first[t.mesh[i]], v);
-            box.second[t.mesh[i]] = glm::max(box.second[t.mesh[i]], v);
-          }
-        return box;
-      },
-      [](Boxes a, const Boxes& b) {
-        for (std::size_t m = 0; m < a.first.size(); ++m) {
-          a.first[m] = glm::min(a.first[m], b.first[m]);
-          a.second[m] = glm::max(a.second[m], b.second[m]);
-        }
-        return a;
-      });
-  const std::vector<glm::dvec3>& lo = boxes.first;
-  const std::vector<glm::dvec3>& hi = boxes.second;
   for (std::size_t m = 0; m < meshes; ++m)
-    around[m] = glm::all(glm::greaterThanEqual(frame.light_position, lo[m] - frame.margin)) &&
-                glm::all(glm::lessThanEqual(frame.light_position, hi[m] + frame.margin));
+    around[m] = glm::all(glm::greaterThanEqual(frame.light_position, boxes.lo[m] - frame.margin)) &&
+                glm::all(glm::lessThanEqual(frame.light_position, boxes.hi[m] + frame.margin));
   return around;
 }
 
@@ -101,9 +146,12 @@ ref::LightStructure build_light_structure(const PreparedScene& scene,
                                           const ref::MetricOptions& options) {
   const Case& c = scene.source;
   ref::LightStructure structure;
-  structure.frame = ref::make_light_frame(c);
+  // The prepared scene's S is Case::scale(), which the reference computes again.
+  structure.frame = ref::make_light_frame(c, scene.scale);
   const ref::LightFrame& frame = structure.frame;
-  const std::vector<bool> around_light = meshes_around_light(scene, frame);
+  const CasterBoxes boxes = caster_boxes(scene, !frame.directional);
+  const std::vector<bool> around_light =
+      meshes_around_light(boxes, frame, scene.casters.mesh_closed.size());
   const glm::dvec3 light = frame.directional ? frame.towards_light : frame.light_position;
   const std::size_t count = clustered.volumes.size();
   std::vector<ref::LightSpaceElement> all(count);
@@ -135,7 +183,8 @@ ref::LightStructure build_light_structure(const PreparedScene& scene,
   }
   const std::uint64_t seed = ref::mix_seed(c.parameters.seed, tree_stream);
   structure.tree = simd::metric::build_metric_tree_by_insertion(
-      frame, structure.elements, ref::scene_partition_distance(frame, c), seed);
+      frame, structure.elements, ref::box_partition_distance(frame, boxes.all_lo, boxes.all_hi),
+      seed);
   return structure;
 }
 
@@ -162,7 +211,7 @@ SimdMetricRun run_metric(const PreparedScene& scene, const SimdMetricOptions& op
   traversal_scene.tree = &structure.tree;
   traversal_scene.frame = structure.frame;
   traversal_scene.ray_length = 4.0 * structure.frame.scale;  // as the reference
-  const std::vector<PacketNode> nodes = packet_nodes(traversal_scene);
+  const PacketNodes nodes = packet_nodes(traversal_scene);
   run.build_seconds = seconds_since(start);
   run.build_cpu_seconds = process_cpu_seconds() - cpu_start;
 
@@ -177,20 +226,21 @@ SimdMetricRun run_metric(const PreparedScene& scene, const SimdMetricOptions& op
   traversal.prepared = &scene;
   traversal.tiles = &tiles;
   traversal.decision_window = options.decision_window;
-  std::vector<std::uint8_t> shadowed(scene.samples.size(), 0);
+  // Written by the traversal per view sample (0 for the others): no serial scatter afterwards.
+  run.output.shadowed.assign(scene.view_samples.samples.size(), 0);
+  std::uint8_t* const shadowed = run.output.shadowed.data();
   std::atomic<std::uint64_t> nodes_visited{0}, clusters_without_hit{0}, triangle_tests{0};
   phase_progress::begin(tiles.size(), "sample tiles");
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tiles.size(), 16),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       ref::TraversalCounters local;
-                      traverse_tiles(traversal, range.begin(), range.end(), shadowed.data(), local);
+                      traverse_tiles(traversal, range.begin(), range.end(), shadowed, local);
                       // Sums of integers: the totals do not depend on the partitioning.
                       nodes_visited += local.nodes_visited;
                       clusters_without_hit += local.clusters_tested_without_hit;
                       triangle_tests += local.triangle_tests;
                       phase_progress::advance(range.size());
                     });
-  run.output.shadowed = scene.per_view_sample(shadowed, std::uint8_t(0));
   run.traversal_seconds = seconds_since(start);
   run.traversal_cpu_seconds = process_cpu_seconds() - cpu_start;
 

@@ -5,16 +5,24 @@
 // pushed and popped in the order its own depth-first walk would push and pop them, so every
 // per-sample counter is the reference's (reference/metric/traversal.h).
 //
-// Exactness: the node tests decide in lanes only where the decision is certain, and hand a lane
-// back to the reference's scalar pivot_distance where a double comparison lies within 2^-40 (of an
-// angle, or of S in the plane) of its threshold. The angle test needs no atan2: for an angle
-// theta = atan2(s, c) with s >= 0 and a threshold T in [0, pi], sign(theta - T) is the sign of
-// s cos T - c sin T. The triangles of a candidate cluster are filtered in float lanes: a
-// triangle is skipped only where its float edge functions (from the reference's own float
-// ray-space vertices) certainly have mixed signs and certainly exceed the reference's near-edge
-// bound; every other one is decided by the reference's own triangle_blocks_sample.
+// Exactness: the node tests decide in lanes only where the decision is certain. A node is first
+// tested in float (16 lanes per AVX-512 vector: cones and arcs of a point light, disks and 2D
+// capsules of a directional one), which hands a lane to the double test where it lies within
+// 2^-16 (of an angle, or of S in the plane) of a threshold; the double test hands it to the
+// reference's scalar pivot_distance where a comparison lies within 2^-40 of its threshold. The
+// angle test needs no atan2: for an angle theta = atan2(s, c) with s >= 0 and a threshold T in [0,
+// pi], sign(theta - T) is the sign of s cos T - c sin T. The triangles of a candidate cluster are
+// filtered in float lanes: a triangle is skipped only where the line of the ray certainly misses it
+// (two float edge functions of the reference's own float ray-space vertices certainly of opposite
+// signs, beyond the rounding of the transform); every other one is decided by the reference's own
+// triangle_blocks_sample.
 #include <cstdint>
+#include <new>
+#include <type_traits>
+#include <utility>
 #include <vector>
+
+#include <glm/vec3.hpp>
 
 #include "reference/metric/clustering.h"
 #include "reference/metric/counters.h"
@@ -28,6 +36,7 @@ namespace shadowcts::simd::metric {
 // Light-independent: part of the per-model precomputation.
 struct ClusterTriangles {
   std::vector<float> xyz[3][3];
+  std::vector<std::uint32_t> slot_of;  // per caster triangle: its slot (finds a receiver in O(1))
 };
 
 ClusterTriangles cluster_triangles_soa(const CasterArrays& casters,
@@ -67,7 +76,82 @@ struct alignas(64) PacketNode {
   double threshold[thresholds] = {};
 };
 
-std::vector<PacketNode> packet_nodes(const shadowcts::metric::TraversalScene& scene);
+// What a lane reads on every visit of a node, in float, two cache lines: the light-distance
+// bounds and the centre and thresholds of PacketNode. A float lane decides only where its
+// comparison is certain (evaluate_in_float and evaluate_planar_in_float in traversal.cpp say
+// why); every other lane, and every lane of a node in_float leaves at 0, takes the double
+// PacketNode.
+struct alignas(128) FastNode {
+  // Floats below and above the doubles (light distances are compared in double by the reference).
+  float light_distance_low = 0, light_distance_high = 0;
+  float a[3] = {0, 0, 0};
+  // Cones: cos and sin of each threshold as PacketNode's; disk and capsule_2d: cos_t holds
+  // threshold + radius.
+  float cos_t[thresholds] = {}, sin_t[thresholds] = {};
+  // 1: point_cone, 2: arc_cone, 3: disk, 4: capsule_2d: the lanes are decided in float first.
+  std::uint8_t in_float = 0;
+  std::uint8_t needed = 0;     // bit k: threshold k decides something
+  std::uint8_t has_child = 0;  // bit c: TreeChild c exists
+  std::uint8_t squared = 0;    // point_cone with every needed cos T >= 0: tested without a root
+  // Second line: read once a lane goes on.
+  alignas(64) float pivot_light_distance_low = 0;  // alignas binds per declarator: one each
+  float pivot_light_distance_high = 0;
+  std::uint32_t child[3] = {0, 0, 0};             // indices into the packet nodes
+  float b[3] = {0, 0, 0}, normal[3] = {0, 0, 0};  // as PacketNode's
+  float segment_length_squared = 0;               // capsule_2d
+};
+static_assert(sizeof(FastNode) == 128, "two cache lines");
+
+// The pivot cluster of a node as section 5.4 step 2 reads it: its slots and its slabs, widened by
+// the margin exactly as segment_meets_slabs widens them.
+struct NodeCluster {
+  glm::dvec3 slab_normal{0.0};
+  double low = 0.0, high = 0.0;
+  std::uint32_t begin = 0, end = 0;  // slots in cluster order
+};
+
+// An array of trivially destructible records that the code filling it constructs (in parallel):
+// a std::vector would first value-initialise every record on one thread, touching some 30 MB of
+// fresh pages at 1M triangles serially before the parallel fill writes them again.
+template <class T>
+class FilledArray {
+  static_assert(std::is_trivially_destructible_v<T>);
+
+ public:
+  FilledArray() = default;
+  explicit FilledArray(std::size_t size)
+      : data_(static_cast<T*>(::operator new(size * sizeof(T), std::align_val_t(alignof(T))))),
+        size_(size) {}
+  FilledArray(FilledArray&& other) noexcept
+      : data_(std::exchange(other.data_, nullptr)), size_(std::exchange(other.size_, 0)) {}
+  FilledArray& operator=(FilledArray&& other) noexcept {
+    std::swap(data_, other.data_);
+    std::swap(size_, other.size_);
+    return *this;
+  }
+  FilledArray(const FilledArray&) = delete;
+  FilledArray& operator=(const FilledArray&) = delete;
+  ~FilledArray() {
+    if (data_ != nullptr) ::operator delete(data_, std::align_val_t(alignof(T)));
+  }
+  T& operator[](std::size_t i) { return data_[i]; }
+  const T& operator[](std::size_t i) const { return data_[i]; }
+  std::size_t size() const { return size_; }
+  bool empty() const { return size_ == 0; }
+  const T* data() const { return data_; }
+
+ private:
+  T* data_ = nullptr;
+  std::size_t size_ = 0;
+};
+
+struct PacketNodes {
+  FilledArray<PacketNode> nodes;  // doubles: the certain decisions in double, then the reference
+  FilledArray<FastNode> fast;     // same order
+  FilledArray<NodeCluster> clusters;
+};
+
+PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene);
 
 // The regular samples grouped into image tiles of `packet` samples (4 pixels wide).
 struct SampleTiles {
@@ -83,7 +167,7 @@ inline constexpr double default_decision_window = 0x1p-40;
 
 struct PacketTraversal {
   const shadowcts::metric::TraversalScene* scene = nullptr;  // the reference's, for its decisions
-  const std::vector<PacketNode>* nodes = nullptr;
+  const PacketNodes* nodes = nullptr;
   const ClusterTriangles* triangles = nullptr;
   const PreparedScene* prepared = nullptr;
   const SampleTiles* tiles = nullptr;
@@ -95,8 +179,9 @@ struct PacketTraversal {
   double decision_window = default_decision_window;
 };
 
-// Answers the samples of tiles [tile_begin, tile_end): shadowed[i] for regular sample i, and adds
-// the work to `counters`. Dispatched to the best Highway target of the CPU.
+// Answers the samples of tiles [tile_begin, tile_end): shadowed[v] for the view sample v
+// (ViewSamples::samples) of each of their regular samples, and adds the work to `counters`.
+// Dispatched to the best Highway target of the CPU.
 void traverse_tiles(const PacketTraversal& traversal, std::size_t tile_begin, std::size_t tile_end,
                     std::uint8_t* shadowed, shadowcts::metric::TraversalCounters& counters);
 

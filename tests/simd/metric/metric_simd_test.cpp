@@ -206,6 +206,39 @@ TEST(SimdMetric, LightInsideVolumesSharedEdgesAndATJunction) {
   }
 }
 
+// Every regular sample lands in exactly one tile, the tile of its pixel (4 pixels wide, packet / 4
+// high), whether the pixels come in order (as the prepared scene gives them) or not.
+TEST(SimdMetric, SampleTilesHoldEverySampleInItsPixelsTile) {
+  const std::uint32_t width = 13;
+  for (const bool in_order : {true, false}) {
+    RegularSamples samples;
+    for (std::uint32_t pixel = 0; pixel < width * 11; pixel += (pixel % 7 == 3 ? 5 : 1))
+      samples.index.push_back(pixel);
+    if (!in_order) std::swap(samples.index[3], samples.index[samples.index.size() - 4]);
+    for (const std::uint32_t packet : {8u, 16u}) {
+      SCOPED_TRACE(std::string(in_order ? "in order" : "out of order") + ", packet " +
+                   std::to_string(packet));
+      const SampleTiles tiles = sample_tiles(samples, width, packet);
+      std::vector<int> seen(samples.size(), 0);
+      const std::uint32_t columns = (width + 3) / 4;
+      for (std::size_t t = 0; t < tiles.size(); ++t) {
+        ASSERT_LE(tiles.begin[t + 1] - tiles.begin[t], packet);
+        std::uint32_t tile = ~0u;
+        for (std::uint32_t k = tiles.begin[t]; k < tiles.begin[t + 1]; ++k) {
+          const std::uint32_t i = tiles.samples[k];
+          ++seen[i];
+          const std::uint32_t pixel = samples.index[i];
+          const std::uint32_t expected =
+              (pixel / width) / (packet / 4) * columns + pixel % width / 4;
+          if (tile == ~0u) tile = expected;
+          EXPECT_EQ(expected, tile) << "sample " << i;
+        }
+      }
+      for (std::size_t i = 0; i < seen.size(); ++i) EXPECT_EQ(seen[i], 1) << "sample " << i;
+    }
+  }
+}
+
 // A tree of identical elements is a chain as deep as it is long: the build must not recurse.
 TEST(SimdMetric, TreeOfIdenticalElementsIsTheReferenceChain) {
   ref::LightFrame frame;
