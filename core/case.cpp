@@ -4,6 +4,8 @@
 #include <cmath>
 #include <string>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
 #include <glm/geometric.hpp>
 
 #include "shadowcts/errors.h"
@@ -97,9 +99,21 @@ void validate_parameters(const Case& c) {
 }  // namespace
 
 double Case::scale() const {
-  double s = 0.0;
-  for (const Triangle& t : triangles)
-    s = std::max({s, max_abs(t.v0), max_abs(t.v1), max_abs(t.v2)});
+  // A maximum of float magnitudes: exact in float, and independent of how the reduction splits
+  // (a NaN coordinate is never taken, as in a sequential std::max). Read by every algorithm and
+  // oracle at 1M triangles, so in parallel.
+  const float largest = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, triangles.size(), 16384), 0.0f,
+      [&](const tbb::blocked_range<std::size_t>& range, float m) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+          const Triangle& t = triangles[i];
+          for (int k = 0; k < 3; ++k)
+            m = std::max({m, std::fabs(t.v0[k]), std::fabs(t.v1[k]), std::fabs(t.v2[k])});
+        }
+        return m;
+      },
+      [](float a, float b) { return std::max(a, b); });
+  double s = largest;
   s = std::max(s, max_abs(camera.position));
   if (light && light->kind == ShadowLightKind::point) s = std::max(s, max_abs(light->position));
   return s;
