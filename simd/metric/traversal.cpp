@@ -67,17 +67,29 @@ struct Packet {
 // Lane bits of a mask of at most 8 lanes (doubles in vectors of at most 512 bits).
 template <class D, class M>
 HWY_INLINE std::uint32_t lane_bits(D d, M mask) {
+#if HWY_TARGET <= HWY_AVX3
+  (void)d;
+  return std::uint32_t(mask.raw);  // as float_lane_bits
+#else
   std::uint8_t bytes[8] = {};
   hn::StoreMaskBits(d, mask, bytes);
   return bytes[0];
+#endif
 }
 
 // Lane bits of a mask of at most 16 lanes (floats in vectors of at most 512 bits).
 template <class D, class M>
 HWY_INLINE std::uint32_t float_lane_bits(D d, M mask) {
+#if HWY_TARGET <= HWY_AVX3
+  // An AVX-512 mask register holds the lane bits: no round trip through memory (a walk step
+  // reads some ten masks).
+  (void)d;
+  return std::uint32_t(mask.raw);
+#else
   std::uint8_t bytes[8] = {};
   hn::StoreMaskBits(d, mask, bytes);
   return std::uint32_t(bytes[0]) | (std::uint32_t(bytes[1]) << 8);
+#endif
 }
 
 // Whether a threshold's lanes are read below it (inside, overlap_high, near_side) or above it.
@@ -536,12 +548,7 @@ std::uint64_t triangles_to_decide(const TriangleGroup* groups, std::uint32_t cou
       positive = hn::Or(positive, hn::AndNot(below, certain));
     }
     const auto skip = hn::And(in_range, hn::And(negative, positive));
-    std::uint8_t bytes[8] = {};
-    hn::StoreMaskBits(df, hn::Not(skip), bytes);
-    std::uint64_t bits = 0;
-    for (std::size_t byte = 0; byte < (N + 7) / 8; ++byte)
-      bits |= std::uint64_t(bytes[byte]) << (8 * byte);
-    decide |= bits << j;
+    decide |= std::uint64_t(float_lane_bits(df, hn::Not(skip))) << j;
   }
   return count >= 64 ? decide : decide & ((std::uint64_t(1) << count) - 1);
 }
