@@ -67,17 +67,29 @@ struct Packet {
 // Lane bits of a mask of at most 8 lanes (doubles in vectors of at most 512 bits).
 template <class D, class M>
 HWY_INLINE std::uint32_t lane_bits(D d, M mask) {
+#if HWY_TARGET <= HWY_AVX3
+  (void)d;
+  return std::uint32_t(mask.raw);  // as float_lane_bits
+#else
   std::uint8_t bytes[8] = {};
   hn::StoreMaskBits(d, mask, bytes);
   return bytes[0];
+#endif
 }
 
 // Lane bits of a mask of at most 16 lanes (floats in vectors of at most 512 bits).
 template <class D, class M>
 HWY_INLINE std::uint32_t float_lane_bits(D d, M mask) {
+#if HWY_TARGET <= HWY_AVX3
+  // An AVX-512 mask register holds the lane bits: no round trip through memory (a walk step
+  // reads some ten masks).
+  (void)d;
+  return std::uint32_t(mask.raw);
+#else
   std::uint8_t bytes[8] = {};
   hn::StoreMaskBits(d, mask, bytes);
   return std::uint32_t(bytes[0]) | (std::uint32_t(bytes[1]) << 8);
+#endif
 }
 
 // Whether a threshold's lanes are read below it (inside, overlap_high, near_side) or above it.
@@ -485,8 +497,8 @@ NodeDecisions evaluate_planar_in_float(const FastNode& n, const Packet<P>& pk, s
 // mixed: it misses; (2) the exact line misses too, so the reference answers "passes" whether or
 // not it goes on to its exact test (ray_near_triangle_edge's looser bound only decides whether it
 // does). Non-finite values compare false and leave the slot to the reference.
-std::uint64_t triangles_to_decide(const ClusterTriangles& triangles, std::uint32_t begin,
-                                  std::uint32_t count, const RaySpace& ray) {
+std::uint64_t triangles_to_decide(const TriangleGroup* groups, std::uint32_t count,
+                                  const RaySpace& ray) {
   if (ray.zero_direction) return 0;  // the reference's tests hit nothing
   const hn::ScalableTag<float> df;
   using VF = hn::Vec<decltype(df)>;
@@ -502,11 +514,13 @@ std::uint64_t triangles_to_decide(const ClusterTriangles& triangles, std::uint32
   std::uint64_t decide = 0;
   for (std::uint32_t j = 0; j < count; j += std::uint32_t(N)) {
     VF x[3], y[3], scaled_lateral[3], extent[3];
+    // N divides 16: a vector never leaves its group.
+    const TriangleGroup& group = groups[j / 16];
+    const std::uint32_t lane = j % 16;
     for (int k = 0; k < 3; ++k) {
-      const std::uint32_t slot = begin + j;
-      const VF rx = hn::Sub(hn::LoadU(df, triangles.xyz[ray.kx][k].data() + slot), ox);
-      const VF ry = hn::Sub(hn::LoadU(df, triangles.xyz[ray.ky][k].data() + slot), oy);
-      const VF rz = hn::Sub(hn::LoadU(df, triangles.xyz[ray.kz][k].data() + slot), oz);
+      const VF rx = hn::Sub(hn::Load(df, group.xyz[ray.kx][k] + lane), ox);
+      const VF ry = hn::Sub(hn::Load(df, group.xyz[ray.ky][k] + lane), oy);
+      const VF rz = hn::Sub(hn::Load(df, group.xyz[ray.kz][k] + lane), oz);
       x[k] = hn::Sub(rx, hn::Mul(shear_x, rz));
       y[k] = hn::Sub(ry, hn::Mul(shear_y, rz));
       const VF lateral = hn::Add(hn::Abs(x[k]), hn::Abs(y[k]));
@@ -534,12 +548,7 @@ std::uint64_t triangles_to_decide(const ClusterTriangles& triangles, std::uint32
       positive = hn::Or(positive, hn::AndNot(below, certain));
     }
     const auto skip = hn::And(in_range, hn::And(negative, positive));
-    std::uint8_t bytes[8] = {};
-    hn::StoreMaskBits(df, hn::Not(skip), bytes);
-    std::uint64_t bits = 0;
-    for (std::size_t byte = 0; byte < (N + 7) / 8; ++byte)
-      bits |= std::uint64_t(bytes[byte]) << (8 * byte);
-    decide |= bits << j;
+    decide |= std::uint64_t(float_lane_bits(df, hn::Not(skip))) << j;
   }
   return count >= 64 ? decide : decide & ((std::uint64_t(1) << count) - 1);
 }
@@ -561,7 +570,9 @@ bool cluster_blocks(const PacketTraversal& traversal, Packet<P>& pk, int l,
   const std::uint32_t end = cluster.end;
   for (std::uint32_t begin = cluster.begin; begin < end; begin += 64) {
     const std::uint32_t count = std::min<std::uint32_t>(64, end - begin);
-    const std::uint64_t decide = triangles_to_decide(*traversal.triangles, begin, count, pk.ray[l]);
+    const std::uint64_t decide = triangles_to_decide(
+        traversal.triangles->groups.data() + cluster.group + (begin - cluster.begin) / 16, count,
+        pk.ray[l]);
     const std::uint32_t* slots = clustering.triangles.data() + begin;
     const std::uint32_t receiver_slot =
         receiver_at >= begin && receiver_at - begin < count ? receiver_at - begin : count;
@@ -746,20 +757,29 @@ void traverse_tiles(const PacketTraversal& traversal, std::size_t tile_begin, st
   HWY_DYNAMIC_DISPATCH(TraverseTiles)(traversal, tile_begin, tile_end, shadowed, counters);
 }
 
+std::vector<std::uint32_t> first_groups(const shadowcts::metric::Clustering& clustering) {
+  const std::size_t clusters = clustering.cluster_begin.size() - 1;
+  std::vector<std::uint32_t> first(clusters + 1, 0);
+  for (std::size_t k = 0; k < clusters; ++k)
+    first[k + 1] = first[k] + (clustering.size(k) + 15) / 16;
+  return first;
+}
+
 ClusterTriangles cluster_triangles_soa(const CasterArrays& casters,
                                        const shadowcts::metric::Clustering& clustering) {
-  // Room for one full vector (up to 16 floats) past the last slot.
-  constexpr std::size_t padding = 16;
   ClusterTriangles out;
-  const std::size_t slots = clustering.triangles.size();
+  const std::vector<std::uint32_t> first = first_groups(clustering);
+  out.groups.assign(first.back(), TriangleGroup{});  // zero padding: finite, and masked off
   const std::vector<float>* source[3] = {casters.x, casters.y, casters.z};
-  for (int axis = 0; axis < 3; ++axis)
-    for (int k = 0; k < 3; ++k) {
-      std::vector<float>& to = out.xyz[axis][k];
-      to.assign(slots + padding, 0.0f);
-      const std::vector<float>& from = source[axis][k];
-      for (std::size_t j = 0; j < slots; ++j) to[j] = from[clustering.triangles[j]];
+  const std::size_t clusters = first.size() - 1;
+  for (std::size_t c = 0; c < clusters; ++c)
+    for (std::uint32_t j = 0; j < clustering.size(c); ++j) {
+      const std::uint32_t t = clustering.triangles[clustering.cluster_begin[c] + j];
+      TriangleGroup& group = out.groups[first[c] + j / 16];
+      for (int axis = 0; axis < 3; ++axis)
+        for (int k = 0; k < 3; ++k) group.xyz[axis][k][j % 16] = source[axis][k][t];
     }
+  const std::size_t slots = clustering.triangles.size();
   out.slot_of.assign(casters.size(), ~0u);
   for (std::size_t j = 0; j < slots; ++j) out.slot_of[clustering.triangles[j]] = std::uint32_t(j);
   return out;
@@ -792,6 +812,7 @@ PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene) {
   FilledArray<PacketNode>& nodes = out.nodes;
   const std::vector<shadowcts::metric::LightSpaceElement>& elements = *scene.elements;
   const std::vector<shadowcts::metric::ClusterVolume>& volumes = *scene.volumes;
+  const std::vector<std::uint32_t> first_group = first_groups(*scene.clustering);
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, order.size(), 512),
       [&](const tbb::blocked_range<std::size_t>& range) {
@@ -921,6 +942,7 @@ PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene) {
           record.high = volume.slab_max + frame.margin;
           record.begin = scene.clustering->cluster_begin[cluster];
           record.end = scene.clustering->cluster_begin[cluster + 1];
+          record.group = first_group[cluster];
         }
       });
   return out;

@@ -31,13 +31,22 @@
 
 namespace shadowcts::simd::metric {
 
-// The caster triangles in cluster order as structure of arrays: corner k of the triangle in slot
-// j is (xyz[0][k][j], xyz[1][k][j], xyz[2][k][j]); padded so that full vectors can be loaded.
+// The caster triangles of each cluster in groups of 16 slots (a cluster's last group padded with
+// zeros), a group holding the 9 coordinate vectors of its slots side by side: the filter of a
+// cluster reads adjacent whole cache lines, not two straddled lines in each of 9 distant arrays.
+// Corner k of the triangle in slot j of group g is (xyz[0][k][j], xyz[1][k][j], xyz[2][k][j]).
 // Light-independent: part of the per-model precomputation.
+struct alignas(64) TriangleGroup {
+  float xyz[3][3][16];
+};
+
 struct ClusterTriangles {
-  std::vector<float> xyz[3][3];
+  std::vector<TriangleGroup> groups;   // cluster k's from first_groups(...)[k] on
   std::vector<std::uint32_t> slot_of;  // per caster triangle: its slot (finds a receiver in O(1))
 };
+
+// Per cluster, its first group in ClusterTriangles::groups; one more entry for the end.
+std::vector<std::uint32_t> first_groups(const shadowcts::metric::Clustering& clustering);
 
 ClusterTriangles cluster_triangles_soa(const CasterArrays& casters,
                                        const shadowcts::metric::Clustering& clustering);
@@ -108,6 +117,7 @@ struct NodeCluster {
   glm::dvec3 slab_normal{0.0};
   double low = 0.0, high = 0.0;
   std::uint32_t begin = 0, end = 0;  // slots in cluster order
+  std::uint32_t group = 0;           // its first ClusterTriangles group
 };
 
 // An array of trivially destructible records that the code filling it constructs (in parallel):
