@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -134,6 +135,45 @@ std::vector<bool> front_face_culling_meshes(const Case& c, const ViewSamples& sa
   return culled;
 }
 
+std::optional<CanonicalCaster> canonical_caster(const Case& c, std::size_t i,
+                                                const std::vector<bool>& culled_meshes,
+                                                bool directional, const glm::vec3& light,
+                                                SetupCounts& counts) {
+  const Triangle& t = c.triangles[i];
+  if (t.mesh >= c.meshes.size())
+    throw InputError(c.source, "triangles[" + std::to_string(i) + "].mesh",
+                     "mesh id " + std::to_string(t.mesh) + " out of range");
+  if (!c.meshes[t.mesh].caster) return std::nullopt;
+  ++counts.casters;
+  if (triangle_has_zero_area(t.v0, t.v1, t.v2)) {
+    ++counts.zero_area;
+    return std::nullopt;
+  }
+  const int winding = directional
+                          ? geometry::orientation_towards(glm::dvec3(t.v0), glm::dvec3(t.v1),
+                                                          glm::dvec3(t.v2), glm::dvec3(light))
+                          : geometry::orientation(glm::dvec3(t.v0), glm::dvec3(t.v1),
+                                                  glm::dvec3(t.v2), glm::dvec3(light));
+  if (winding == 0) {
+    ++counts.edge_on;
+    return std::nullopt;
+  }
+  if (culled_meshes[t.mesh] && winding > 0) {
+    ++counts.front_faces_culled;
+    return std::nullopt;
+  }
+  // Canonical vertex order p < q < r; each swap flips the orientation.
+  CanonicalCaster caster{{t.v0, t.v1, t.v2}, winding};
+  std::array<glm::vec3, 3>& v = caster.vertices;
+  for (int pass = 0; pass < 2; ++pass)
+    for (int k = 0; k < 2 - pass; ++k)
+      if (lexicographically_less(v[std::size_t(k) + 1], v[std::size_t(k)])) {
+        std::swap(v[std::size_t(k)], v[std::size_t(k) + 1]);
+        caster.orientation = -caster.orientation;
+      }
+  return caster;
+}
+
 bool set_up_shadow_volume(const Case& c, std::size_t i, const std::vector<bool>& culled_meshes,
                           const SetupOptions& options, double scene_bound, SetupCounts& counts,
                           ShadowVolume& volume) {
@@ -142,40 +182,12 @@ bool set_up_shadow_volume(const Case& c, std::size_t i, const std::vector<bool>&
   // Any two points within the scene bound are at most this far apart.
   const double diameter = 2.0 * std::sqrt(3.0) * scene_bound;
   {
-    const Triangle& t = c.triangles[i];
-    if (t.mesh >= c.meshes.size())
-      throw InputError(c.source, "triangles[" + std::to_string(i) + "].mesh",
-                       "mesh id " + std::to_string(t.mesh) + " out of range");
-    if (!c.meshes[t.mesh].caster) return false;
-    ++counts.casters;
-    if (triangle_has_zero_area(t.v0, t.v1, t.v2)) {
-      ++counts.zero_area;
-      return false;
-    }
-    const int winding =
-        light.directional
-            ? geometry::orientation_towards(glm::dvec3(t.v0), glm::dvec3(t.v1), glm::dvec3(t.v2),
-                                            glm::dvec3(light.direction))
-            : geometry::orientation(glm::dvec3(t.v0), glm::dvec3(t.v1), glm::dvec3(t.v2),
-                                    glm::dvec3(light.position));
-    if (winding == 0) {
-      ++counts.edge_on;
-      return false;
-    }
-    if (culled_meshes[t.mesh] && winding > 0) {
-      ++counts.front_faces_culled;
-      return false;
-    }
-
-    // Canonical vertex order p < q < r; each swap flips the orientation.
-    std::array<glm::vec3, 3> v = {t.v0, t.v1, t.v2};
-    int orientation = winding;
-    for (int pass = 0; pass < 2; ++pass)
-      for (int k = 0; k < 2 - pass; ++k)
-        if (lexicographically_less(v[std::size_t(k) + 1], v[std::size_t(k)])) {
-          std::swap(v[std::size_t(k)], v[std::size_t(k) + 1]);
-          orientation = -orientation;
-        }
+    const std::optional<CanonicalCaster> caster =
+        canonical_caster(c, i, culled_meshes, light.directional,
+                         light.directional ? light.direction : light.position, counts);
+    if (!caster) return false;
+    const std::array<glm::vec3, 3>& v = caster->vertices;
+    const int orientation = caster->orientation;
     const std::array<glm::dvec3, 3> d = {glm::dvec3(v[0]), glm::dvec3(v[1]), glm::dvec3(v[2])};
 
     volume = ShadowVolume{};

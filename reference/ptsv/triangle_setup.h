@@ -24,6 +24,7 @@
 // can cost culling, never a shadow.
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -98,6 +99,23 @@ struct SetupCounts {
 // sample_reach: per sample (ReceiverRule::reject_reach).
 std::vector<bool> front_face_culling_meshes(const Case& c, const ViewSamples& samples,
                                             const std::vector<double>& sample_reach);
+
+// A caster triangle's vertices in the canonical order p < q < r (lexicographic on x, y, z: the
+// order both triangles of a shared edge build its planes from) and its orientation in that order
+// towards the light: +1 or -1.
+struct CanonicalCaster {
+  std::array<glm::vec3, 3> vertices;
+  int orientation = 0;
+};
+
+// set_up_shadow_volume's checks, in its order and with its counts: nullopt, the reason counted,
+// when triangle i casts no volume (its mesh casts nothing, zero area, edge-on to the light, a
+// culled front face). light: the point light's position, or the direction towards a directional
+// light.
+std::optional<CanonicalCaster> canonical_caster(const Case& c, std::size_t i,
+                                                const std::vector<bool>& culled_meshes,
+                                                bool directional, const glm::vec3& light,
+                                                SetupCounts& counts);
 
 // The volume of triangle i, as set_up_shadow_volumes makes it (for ports that set triangles up in
 // parallel): false, with the reason counted, when the triangle casts none.

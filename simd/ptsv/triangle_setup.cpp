@@ -18,6 +18,7 @@
 #include <limits>
 #include <memory>
 #include <new>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -30,8 +31,6 @@
 
 #include "shadowcts/errors.h"
 #include "shadowcts/geometry/camera_frame.h"
-#include "shadowcts/geometry/exact_orientation.h"
-#include "shadowcts/geometry/triangle_area.h"
 
 #include "simd/ptsv/triangle_setup.h"
 
@@ -364,12 +363,6 @@ HWY_EXPORT(SetUpBatch);
 
 namespace {
 
-bool lexicographically_less(const glm::vec3& a, const glm::vec3& b) {
-  if (a.x != b.x) return a.x < b.x;
-  if (a.y != b.y) return a.y < b.y;
-  return a.z < b.z;
-}
-
 // The nearest float at or above c.
 float rounded_up(double c) {
   const float f = float(c);
@@ -447,44 +440,14 @@ PackedVolumes set_up_shadow_volumes(const Case& c, const std::vector<bool>& cull
         b.diameter = diameter;
         b.directional_t_max = directional_t_max;
         for (std::size_t i = r.begin(); i != r.end(); ++i) {
-          // ref::set_up_shadow_volume's checks, in its order and with its counts.
-          const Triangle& t = c.triangles[i];
-          if (t.mesh >= c.meshes.size())
-            throw InputError(c.source, "triangles[" + std::to_string(i) + "].mesh",
-                             "mesh id " + std::to_string(t.mesh) + " out of range");
-          if (!c.meshes[t.mesh].caster) continue;
-          ++local.casters;
-          if (triangle_has_zero_area(t.v0, t.v1, t.v2)) {
-            ++local.zero_area;
-            continue;
-          }
-          const int winding =
-              out.directional
-                  ? geometry::orientation_towards(glm::dvec3(t.v0), glm::dvec3(t.v1),
-                                                  glm::dvec3(t.v2), glm::dvec3(out.light))
-                  : geometry::orientation(glm::dvec3(t.v0), glm::dvec3(t.v1), glm::dvec3(t.v2),
-                                          glm::dvec3(out.light));
-          if (winding == 0) {
-            ++local.edge_on;
-            continue;
-          }
-          if (culled_meshes[t.mesh] && winding > 0) {
-            ++local.front_faces_culled;
-            continue;
-          }
-          // Canonical vertex order p < q < r; each swap flips the orientation.
-          std::array<glm::vec3, 3> v = {t.v0, t.v1, t.v2};
-          int orientation = winding;
-          for (int pass = 0; pass < 2; ++pass)
-            for (int k = 0; k < 2 - pass; ++k)
-              if (lexicographically_less(v[std::size_t(k) + 1], v[std::size_t(k)])) {
-                std::swap(v[std::size_t(k)], v[std::size_t(k) + 1]);
-                orientation = -orientation;
-              }
+          const std::optional<ref::CanonicalCaster> caster =
+              ref::canonical_caster(c, i, culled_meshes, out.directional, out.light, local);
+          if (!caster) continue;
           const std::size_t at = b.size++;
           for (int k = 0; k < 3; ++k)
-            for (int a = 0; a < 3; ++a) b.vertex[k][a][at] = double(v[std::size_t(k)][a]);
-          b.orientation[at] = double(orientation);
+            for (int a = 0; a < 3; ++a)
+              b.vertex[k][a][at] = double(caster->vertices[std::size_t(k)][a]);
+          b.orientation[at] = double(caster->orientation);
           b.triangle[at] = std::uint32_t(i);
           if (b.size == SetupBatch::capacity) run_batch(b, local);
         }
