@@ -260,6 +260,43 @@ NodeDecisions evaluate_node(const PacketTraversal& traversal, const PacketNode& 
   return out;
 }
 
+// Of the lanes `here` of chunk j: those whose light distance certainly reaches the node
+// (returned), the deep ones among them (into out.deep, by the pivot's distance), and in `doubt`
+// those whose reach or depth the float bounds leave open.
+template <class D, class V>
+HWY_INLINE std::uint32_t reaching_lanes(D d, const FastNode& n, V qlo, V qhi, std::uint32_t here,
+                                        std::size_t j, NodeDecisions& out, std::uint32_t& doubt) {
+  const std::uint32_t reached =
+      float_lane_bits(d, hn::Ge(qlo, hn::Set(d, n.light_distance_high))) & here;
+  const std::uint32_t not_reached =
+      float_lane_bits(d, hn::Lt(qhi, hn::Set(d, n.light_distance_low))) & here;
+  doubt = here & ~(reached | not_reached);
+  if (reached != 0) {
+    const std::uint32_t deep =
+        float_lane_bits(d, hn::Ge(qlo, hn::Set(d, n.pivot_light_distance_high)));
+    const std::uint32_t shallow =
+        float_lane_bits(d, hn::Lt(qhi, hn::Set(d, n.pivot_light_distance_low)));
+    doubt |= reached & ~(deep | shallow);
+    out.deep |= (deep & reached) << j;
+  }
+  return reached;
+}
+
+// The node's decisions from the lanes read below and above each threshold, for the lanes no
+// test left unsure.
+inline NodeDecisions certain_decisions(const FastNode& n, NodeDecisions out,
+                                       const std::uint32_t* below, const std::uint32_t* above,
+                                       std::uint32_t unsure) {
+  const std::uint32_t sure = ~unsure;
+  out.reached &= sure;
+  out.deep &= sure;
+  out.inside = below[inside] & sure;
+  out.overlap = n.needed >> overlap_low & 1 ? above[overlap_low] & below[overlap_high] & sure : 0;
+  out.far = n.needed >> far_side & 1 ? above[far_side] & sure : 0;
+  out.near = n.needed >> near_side & 1 ? below[near_side] & sure : 0;
+  return out;
+}
+
 // The node tests of a point cone in float lanes (16 per AVX-512 vector). Returns the decisions of
 // the lanes it is certain of and sets `unsure` to the lanes the double path must decide.
 // Light distances: the float bounds below and above each double decide qld >= d wherever they
@@ -295,18 +332,9 @@ NodeDecisions evaluate_in_float(const FastNode& n, const Packet<P>& pk, std::uin
     const std::uint32_t here = (lanes >> j) & chunk;
     if (here == 0) continue;
     const V qlo = hn::Load(d, pk.qlo + j), qhi = hn::Load(d, pk.qhi + j);
-    const std::uint32_t reached =
-        float_lane_bits(d, hn::Ge(qlo, hn::Set(d, n.light_distance_high))) & here;
-    const std::uint32_t not_reached =
-        float_lane_bits(d, hn::Lt(qhi, hn::Set(d, n.light_distance_low))) & here;
-    std::uint32_t doubt = here & ~(reached | not_reached);
+    std::uint32_t doubt = 0;
+    const std::uint32_t reached = reaching_lanes(d, n, qlo, qhi, here, j, out, doubt);
     if (reached != 0) {
-      const std::uint32_t deep =
-          float_lane_bits(d, hn::Ge(qlo, hn::Set(d, n.pivot_light_distance_high)));
-      const std::uint32_t shallow =
-          float_lane_bits(d, hn::Lt(qhi, hn::Set(d, n.pivot_light_distance_low)));
-      doubt |= reached & ~(deep | shallow);
-      out.deep |= (deep & reached) << j;
       auto sure = hn::Eq(qlo, qlo);  // true but in NaN lanes, which `reached` leaves out
       const V ux = hn::Load(d, pk.fx + j), uy = hn::Load(d, pk.fy + j), uz = hn::Load(d, pk.fz + j);
       const V ax = hn::Set(d, n.a[0]), ay = hn::Set(d, n.a[1]), az = hn::Set(d, n.a[2]);
@@ -396,14 +424,7 @@ NodeDecisions evaluate_in_float(const FastNode& n, const Packet<P>& pk, std::uin
     }
     unsure |= doubt << j;
   }
-  const std::uint32_t sure = ~unsure;
-  out.reached &= sure;
-  out.deep &= sure;
-  out.inside = below[inside] & sure;
-  out.overlap = n.needed >> overlap_low & 1 ? above[overlap_low] & below[overlap_high] & sure : 0;
-  out.far = n.needed >> far_side & 1 ? above[far_side] & sure : 0;
-  out.near = n.needed >> near_side & 1 ? below[near_side] & sure : 0;
-  return out;
+  return certain_decisions(n, out, below, above, unsure);
 }
 
 // The node tests of a directional light's disk or 2D capsule in float lanes: distance = |u - x| -
@@ -427,18 +448,9 @@ NodeDecisions evaluate_planar_in_float(const FastNode& n, const Packet<P>& pk, s
     const std::uint32_t here = (lanes >> j) & chunk;
     if (here == 0) continue;
     const V qlo = hn::Load(d, pk.qlo + j), qhi = hn::Load(d, pk.qhi + j);
-    const std::uint32_t reached =
-        float_lane_bits(d, hn::Ge(qlo, hn::Set(d, n.light_distance_high))) & here;
-    const std::uint32_t not_reached =
-        float_lane_bits(d, hn::Lt(qhi, hn::Set(d, n.light_distance_low))) & here;
-    std::uint32_t doubt = here & ~(reached | not_reached);
+    std::uint32_t doubt = 0;
+    const std::uint32_t reached = reaching_lanes(d, n, qlo, qhi, here, j, out, doubt);
     if (reached != 0) {
-      const std::uint32_t deep =
-          float_lane_bits(d, hn::Ge(qlo, hn::Set(d, n.pivot_light_distance_high)));
-      const std::uint32_t shallow =
-          float_lane_bits(d, hn::Lt(qhi, hn::Set(d, n.pivot_light_distance_low)));
-      doubt |= reached & ~(deep | shallow);
-      out.deep |= (deep & reached) << j;
       auto sure = hn::Eq(qlo, qlo);  // true but in NaN lanes, which `reached` leaves out
       const V ux = hn::Load(d, pk.fx + j), uy = hn::Load(d, pk.fy + j);
       const V ax = hn::Set(d, n.a[0]), ay = hn::Set(d, n.a[1]);
@@ -474,14 +486,7 @@ NodeDecisions evaluate_planar_in_float(const FastNode& n, const Packet<P>& pk, s
     }
     unsure |= doubt << j;
   }
-  const std::uint32_t sure = ~unsure;
-  out.reached &= sure;
-  out.deep &= sure;
-  out.inside = below[inside] & sure;
-  out.overlap = n.needed >> overlap_low & 1 ? above[overlap_low] & below[overlap_high] & sure : 0;
-  out.far = n.needed >> far_side & 1 ? above[far_side] & sure : 0;
-  out.near = n.needed >> near_side & 1 ? below[near_side] & sure : 0;
-  return out;
+  return certain_decisions(n, out, below, above, unsure);
 }
 
 // The cluster's slots [begin, begin + count), count <= 64, that the reference's
