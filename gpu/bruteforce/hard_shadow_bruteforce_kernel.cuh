@@ -5,6 +5,11 @@
 // staged through shared memory one tile at a time, so a block reads each triangle from global
 // memory once.
 //
+// A caster whose box misses the exact segment's (shadowcts/geometry/segment_box.h) is skipped
+// before the ray-space transform, most of a pair's cost. A hit the float test is certain of lies
+// inside both boxes, so only uncertain answers about casters the exact segment misses are left
+// out: fewer samples come back unsure, none changes its exact answer.
+//
 // The float test is exact for one perturbation of each triangle's vertices and of L - p; beside
 // an edge its miss may be a crack (a T-junction) and its hit a rounding of L - p near the light,
 // so a sample that no triangle hits away from its edges but that passes near an edge comes back
@@ -28,6 +33,7 @@
 #include "gpu/emulator/kernel.h"
 #include "shadowcts/geometry/edge_proximity.h"
 #include "shadowcts/geometry/receiver_half_space.h"
+#include "shadowcts/geometry/segment_box.h"
 #include "shadowcts/geometry/segment_triangle.h"
 
 namespace shadowcts::SHADOWCTS_KERNEL_NAMESPACE {
@@ -38,6 +44,7 @@ constexpr int casters_per_tile = threads_per_block;  // each thread stages one c
 
 struct TileCaster {
   float vertices[9];
+  FloatBox box;  // the triangle's bounding box
   std::uint32_t triangle;
 };
 
@@ -81,12 +88,14 @@ __global__ void SHADOWCTS_BRUTEFORCE_LAUNCH_BOUNDS bruteforce_hard_shadow(
   const bool has_sample = sample < sample_count;
 
   RaySpace ray;
+  FloatBox segment{};
   std::uint32_t receiver = 0;
   glm::vec3 position(0.0f);
   if (has_sample) {
     position = sample_positions[sample];
     ray = make_ray_space(directional_light ? ray_to_directional_light(position, light)
                                            : segment_to_point_light(position, light));
+    segment = segment_box(position, light, directional_light);
     receiver = sample_receivers[sample];
   }
   // The rule's half-space, built by counts_for_sample at its first call.
@@ -112,6 +121,7 @@ __global__ void SHADOWCTS_BRUTEFORCE_LAUNCH_BOUNDS bruteforce_hard_shadow(
       slot.vertices[6] = caster.v2.x;
       slot.vertices[7] = caster.v2.y;
       slot.vertices[8] = caster.v2.z;
+      slot.box = triangle_box(caster.v0, caster.v1, caster.v2);
       slot.triangle = caster.triangle;
       tile[threadIdx.x] = slot;
     }
@@ -123,7 +133,7 @@ __global__ void SHADOWCTS_BRUTEFORCE_LAUNCH_BOUNDS bruteforce_hard_shadow(
     for (std::uint32_t i = 0; i < tile_size; ++i) {
       const TileCaster caster = tile[i];  // every lane reads the same slot: a broadcast
       ++tests;  // the receiver counts as a visited pair, as in the reference backend
-      if (caster.triangle == receiver) continue;
+      if (caster.triangle == receiver || !boxes_overlap(caster.box, segment)) continue;
       const float* v = caster.vertices;
       const glm::vec3 v0(v[0], v[1], v[2]), v1(v[3], v[4], v[5]), v2(v[6], v[7], v[8]);
       const bool float_hit = ray_hits_triangle(ray, v0, v1, v2);

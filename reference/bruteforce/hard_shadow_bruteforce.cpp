@@ -25,16 +25,7 @@ ExactBruteforce::ExactBruteforce(const PreparedScene& scene)
   const CasterArrays& tris = scene.casters;
   for (std::uint32_t t = 0; t < tris.size(); ++t) {
     if (tris.casts[t] == 0) continue;
-    CasterBox box;
-    const std::vector<float>* axes[3][3] = {{&tris.x[0], &tris.x[1], &tris.x[2]},
-                                            {&tris.y[0], &tris.y[1], &tris.y[2]},
-                                            {&tris.z[0], &tris.z[1], &tris.z[2]}};
-    for (int k = 0; k < 3; ++k) {
-      box.lo[k] = std::min({(*axes[k][0])[t], (*axes[k][1])[t], (*axes[k][2])[t]});
-      box.hi[k] = std::max({(*axes[k][0])[t], (*axes[k][1])[t], (*axes[k][2])[t]});
-    }
-    box.triangle = t;
-    casters_.push_back(box);
+    casters_.push_back({triangle_box(tris.corner(t, 0), tris.corner(t, 1), tris.corner(t, 2)), t});
   }
 }
 
@@ -43,26 +34,14 @@ bool ExactBruteforce::shadowed(std::size_t i, std::uint64_t& pairs, std::uint64_
   const CasterArrays& tris = scene_.casters;
   const glm::dvec3 p(samples.position(i));
   const std::uint32_t receiver = samples.receiver[i];
-  // The box of the segment (of the ray, unbounded away from p): float bounds, so the box test is
-  // exact and only drops casters that cannot meet the segment.
-  float lo[3], hi[3];
-  for (int k = 0; k < 3; ++k) {
-    const float pk = float(p[k]);
-    if (light_.directional) {
-      lo[k] = light_.direction[k] < 0.0 ? -INFINITY : pk;
-      hi[k] = light_.direction[k] > 0.0 ? INFINITY : pk;
-    } else {
-      lo[k] = std::min(pk, float(light_.position[k]));
-      hi[k] = std::max(pk, float(light_.position[k]));
-    }
-  }
+  // Only drops casters that cannot meet the segment (shadowcts/geometry/segment_box.h).
+  const FloatBox segment = segment_box(
+      samples.position(i), glm::vec3(light_.directional ? light_.direction : light_.position),
+      light_.directional);
   std::optional<geometry::ReceiverHalfSpace> half_space;  // built at the first box hit
   for (const CasterBox& box : casters_) {
     ++pairs;
-    if (box.triangle == receiver) continue;
-    if (box.hi[0] < lo[0] || box.lo[0] > hi[0] || box.hi[1] < lo[1] || box.lo[1] > hi[1] ||
-        box.hi[2] < lo[2] || box.lo[2] > hi[2])
-      continue;
+    if (box.triangle == receiver || !boxes_overlap(box.box, segment)) continue;
     if (!half_space)
       half_space =
           sample_half_space(scene_.source, light_, scene_.view_samples.samples[samples.index[i]]);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "shadowcts/algorithm.h"
+#include "shadowcts/geometry/segment_box.h"
 #include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/prepared_scene.h"
 
@@ -31,7 +32,7 @@ class ExactBruteforce {
 
  private:
   struct CasterBox {
-    float lo[3], hi[3];
+    FloatBox box;
     std::uint32_t triangle;
   };
   const PreparedScene& scene_;

@@ -19,6 +19,7 @@
 #include "hand_built_case.h"
 #include "shadowcts/geometry/edge_proximity.h"
 #include "shadowcts/geometry/receiver_half_space.h"
+#include "shadowcts/geometry/segment_box.h"
 #include "shadowcts/geometry/segment_triangle.h"
 #include "shadowcts/hard_shadow_oracle.h"
 #include "shadowcts/registry.h"
@@ -37,10 +38,10 @@ std::uint64_t counter(const AlgorithmOutput& output, const std::string& name) {
   return 0;
 }
 
-// The kernel's contract on the host: only casters that the receiver half-space rule lets shadow
-// the sample take part; shadowed at the first such hit away from the triangle's edges, else
-// unsure when such a caster passes near an edge; pair_tests counts casters visited, the receiver
-// included.
+// The kernel's contract on the host: casters whose box misses the segment's are skipped; only
+// casters that the receiver half-space rule lets shadow the sample take part; shadowed at the first
+// such hit away from the triangle's edges, else unsure when such a caster passes near an edge;
+// pair_tests counts casters visited, the receiver included.
 BruteforceShadowResult evaluate_on_host(const BruteforceShadowInput& input) {
   BruteforceShadowResult result;
   result.shadowed.assign(input.sample_positions.size(), bruteforce_sample_lit);
@@ -53,10 +54,13 @@ BruteforceShadowResult evaluate_on_host(const BruteforceShadowInput& input) {
     const geometry::ReceiverHalfSpace half_space =
         geometry::receiver_half_space(glm::dvec3(r.v0), glm::dvec3(r.v1), glm::dvec3(r.v2),
                                       input.directional_light, glm::dvec3(input.light));
+    const FloatBox segment = segment_box(p, input.light, input.directional_light);
     bool near_edge = false;
     for (const BruteforceCaster& caster : input.casters) {
       ++result.pair_tests;
-      if (caster.triangle == input.sample_receivers[i]) continue;
+      if (caster.triangle == input.sample_receivers[i] ||
+          !boxes_overlap(triangle_box(caster.v0, caster.v1, caster.v2), segment))
+        continue;
       const bool hit = ray_hits_triangle(ray, caster.v0, caster.v1, caster.v2);
       const bool beside_edge =
           ray_within_rounding_of_triangle_edge(ray, caster.v0, caster.v1, caster.v2);
