@@ -142,6 +142,9 @@ EmulatorError::EmulatorError(ErrorKind kind_, std::string kernel_, Uint3 block_,
       line(line_) {}
 
 namespace detail {
+
+thread_local std::byte* untracked_shared_base = nullptr;
+
 namespace {
 
 // ---------------------------------------------------------------------------------------------
@@ -507,8 +510,16 @@ Thread* Block::pick() {
 
 void Block::run() {
   struct Current {
-    explicit Current(Block* block) { t_block = block; }
-    ~Current() { t_block = nullptr; }
+    explicit Current(Block* block) {
+      t_block = block;
+      untracked_shared_base = block->track_ || block->launch_.options.schedule == Schedule::random
+                                  ? nullptr
+                                  : block->shared_base();
+    }
+    ~Current() {
+      t_block = nullptr;
+      untracked_shared_base = nullptr;
+    }
   } current(this);
   for (Thread& t : threads_) {
     t.fiber =

@@ -156,6 +156,10 @@ std::byte* shared_base();
 enum class Access { read, write, atomic };
 // Yield point, then race/uninitialized tracking of bytes [offset, offset + size).
 void shared_access(std::size_t offset, std::size_t size, Access access, const Location& where);
+// The running block's shared arena while its accesses need neither tracking nor yield points
+// (run-until-block schedule, race checks off), else null: then a load or store is a plain copy,
+// not two calls into the emulator per access.
+extern thread_local std::byte* untracked_shared_base;
 [[noreturn]] void shared_out_of_bounds(std::size_t index, std::size_t extent,
                                        const Location& where);
 
@@ -209,15 +213,23 @@ using element_t = std::conditional_t<std::is_array_v<T>, NotAnElement, T>;
 
 template <typename T>
 T shared_load(std::size_t offset, const Location& where) {
-  shared_access(offset, sizeof(T), Access::read, where);
+  std::byte* base = untracked_shared_base;
+  if (base == nullptr) {
+    shared_access(offset, sizeof(T), Access::read, where);
+    base = shared_base();
+  }
   T value;
-  std::memcpy(&value, shared_base() + offset, sizeof(T));
+  std::memcpy(&value, base + offset, sizeof(T));
   return value;
 }
 template <typename T>
 void shared_store(std::size_t offset, const T& value, const Location& where) {
-  shared_access(offset, sizeof(T), Access::write, where);
-  std::memcpy(shared_base() + offset, &value, sizeof(T));
+  std::byte* base = untracked_shared_base;
+  if (base == nullptr) {
+    shared_access(offset, sizeof(T), Access::write, where);
+    base = shared_base();
+  }
+  std::memcpy(base + offset, &value, sizeof(T));
 }
 
 // Operations of one shared location, shared by the lvalue (SharedVar) and rvalue (SharedRef)
@@ -459,11 +471,15 @@ T global_rmw(T* address, Op op) {
 }
 template <typename T, typename Op>
 T shared_rmw(const SharedPtr<T>& address, Op op) {
-  shared_access(address.offset(), sizeof(T), Access::atomic, address.where());
+  std::byte* base = untracked_shared_base;
+  if (base == nullptr) {
+    shared_access(address.offset(), sizeof(T), Access::atomic, address.where());
+    base = shared_base();
+  }
   T old;
-  std::memcpy(&old, shared_base() + address.offset(), sizeof(T));
+  std::memcpy(&old, base + address.offset(), sizeof(T));
   const T updated = op(old);
-  std::memcpy(shared_base() + address.offset(), &updated, sizeof(T));
+  std::memcpy(base + address.offset(), &updated, sizeof(T));
   return old;
 }
 template <typename T, typename Op>
