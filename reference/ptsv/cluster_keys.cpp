@@ -17,6 +17,7 @@ int bits_for(std::uint64_t count) {
 }  // namespace
 
 double ClusterKeyLayout::slice_start(std::uint32_t k) const {
+  if (tables && k < tables->slice_start.size()) return tables->slice_start[k];
   if (k == 0) return 0.0;
   return near * std::pow(slice_ratio, double(k));
 }
@@ -45,6 +46,15 @@ std::uint32_t ClusterKeyLayout::interleave(const ClusterCoordinate& c) const {
 
 ClusterCoordinate ClusterKeyLayout::deinterleave(std::uint32_t key) const {
   ClusterCoordinate c;
+  if (tables) {
+    for (int b = 0; b < 4; ++b) {
+      const ClusterCoordinate& part = tables->part[b][(key >> (8 * b)) & 0xFFu];
+      c.x |= part.x;
+      c.y |= part.y;
+      c.slice |= part.slice;
+    }
+    return c;
+  }
   int position = 0;
   const int most = std::max({x_bits, y_bits, depth_bits});
   for (int bit = 0; bit < most; ++bit) {
@@ -82,6 +92,16 @@ KeyLayoutResult make_cluster_key_layout(const Camera& camera, std::uint32_t widt
                      std::to_string(width) + "x" + std::to_string(height) + " and near/far " +
                      std::to_string(camera.near_plane) + "/" + std::to_string(camera.far_plane) +
                      "), the layout has " + std::to_string(key_bits_available);
+  if (result.problem.empty()) {
+    auto tables = std::make_shared<ClusterKeyTables>();
+    if (layout.depth_bits <= 16)
+      for (std::uint32_t k = 0; k <= (1u << layout.depth_bits); ++k)
+        tables->slice_start.push_back(layout.slice_start(k));
+    for (int b = 0; b < 4; ++b)
+      for (std::uint32_t v = 0; v < 256; ++v)
+        tables->part[b][v] = layout.deinterleave(v << (8 * b));
+    layout.tables = std::move(tables);
+  }
   return result;
 }
 

@@ -12,6 +12,7 @@
 // with more bits keeps its top bits above the others', as in Figure 2), and a case that needs more
 // than the 32 bits of the key is refused, never wrapped around.
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,6 +31,8 @@ inline constexpr std::uint32_t no_key = 0xFFFFFFFFu;
 struct ClusterCoordinate {
   std::uint32_t x = 0, y = 0, slice = 0;
 };
+
+struct ClusterKeyTables;
 
 struct ClusterKeyLayout {
   std::uint32_t tiles_x = 0, tiles_y = 0;
@@ -52,6 +55,18 @@ struct ClusterKeyLayout {
 
   std::uint32_t interleave(const ClusterCoordinate& c) const;
   ClusterCoordinate deinterleave(std::uint32_t key) const;
+
+  // Set by make_cluster_key_layout: slice_start and deinterleave answered from tables of their
+  // own values (a node test of the implicit bounds asks for both, twice, per child). Without
+  // them (a layout put together by hand) they compute.
+  std::shared_ptr<const ClusterKeyTables> tables;
+};
+
+struct ClusterKeyTables {
+  std::vector<double> slice_start;  // of slices 0 .. 2^depth_bits, for depth_bits <= 16
+  // deinterleave places each key bit independently: a key's coordinates are the OR of the parts
+  // of its four bytes, part[b][v] = deinterleave(v << 8 b).
+  ClusterCoordinate part[4][256];
 };
 
 // The layout for a camera and an image of width x height samples, or why there is none (the
