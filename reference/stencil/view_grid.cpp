@@ -49,6 +49,11 @@ void set_orientation(Polygon& p) {
   }
   const double size = std::max(hi[0] - lo[0], hi[1] - lo[1]);
   p.orientation = std::fabs(area) > 1e-9 * size * size ? (area > 0.0 ? 1 : -1) : 0;
+  for (int i = 0; i < p.n; ++i) {
+    const int j = (i + 1) % p.n;
+    p.nx[i] = double(p.orientation) * (p.y[i] - p.y[j]);
+    p.ny[i] = double(p.orientation) * (p.x[j] - p.x[i]);
+  }
 }
 
 bool x_range_in_band(const Polygon& p, double y0, double y1, double& x0, double& x1) {
@@ -361,11 +366,9 @@ bool ViewGrid::Outline::may_contain(double x, double y) const {
     if (p.orientation == 0) return true;
     bool inside = true;
     for (int i = 0; i < p.n && inside; ++i) {
-      const int j = (i + 1) % p.n;
-      // The edge's normal towards the inside; the point may lie up to `margin` (per axis)
-      // outside, plus the rounding of this expression.
-      const double nx = double(p.orientation) * (p.y[i] - p.y[j]);
-      const double ny = double(p.orientation) * (p.x[j] - p.x[i]);
+      // The point may lie up to `margin` (per axis) outside the edge, plus the rounding of this
+      // expression.
+      const double nx = p.nx[i], ny = p.ny[i];
       const double dx = x - p.x[i], dy = y - p.y[i];
       const double side = nx * dx + ny * dy;
       const double tolerance = margin * (std::fabs(nx) + std::fabs(ny)) +

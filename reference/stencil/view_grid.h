@@ -59,7 +59,8 @@ class ViewGrid {
     struct Polygon {
       double x[4] = {}, y[4] = {};
       int n = 0;
-      int orientation = 0;  // sign of the area; 0: too thin to tell, contains everything
+      int orientation = 0;            // sign of the area; 0: too thin to tell, contains everything
+      double nx[4] = {}, ny[4] = {};  // edge i's normal towards the inside, set with orientation
     };
     Polygon part[2];  // a quad's two triangles
     int parts = 0;
