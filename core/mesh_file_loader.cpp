@@ -3,6 +3,8 @@
 // MeshIO.hh registers OpenMesh's readers with its IOManager.
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/IO/importer/BaseImporter.hh>
+#include <OpenMesh/Core/IO/reader/OFFReader.hh>
+#include <OpenMesh/Core/IO/reader/PLYReader.hh>
 
 #include <algorithm>
 #include <cctype>
@@ -14,6 +16,7 @@
 #include <fstream>
 #include <initializer_list>
 #include <limits>
+#include <locale>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -391,13 +394,12 @@ DeclaredCounts scan_stl(const std::string& path, std::istream& in) {
   return counts;
 }
 
-// ---- OFF and PLY: the file is walked the way OpenMesh's reader walks it, before OpenMesh sees
-// it. OpenMesh trusts the declared counts (it reserves memory for them and loops over them even
-// past the end of the file) and checks its stream only for hard I/O errors, so a count that
-// does not parse, or one larger than the file, makes it allocate gigabytes or loop forever (both
-// found by the fuzz targets). Every value is therefore checked here with the same token
-// boundaries as OpenMesh's `stream >> value`, and a file is handed to OpenMesh only when each
-// of its reads will succeed on what was checked.
+// ---- OFF and PLY: OpenMesh's readers trust the declared counts and loop over them even past
+// the end of the file, checking their stream only for hard I/O errors; a value that does not
+// parse leaves the stream failed and every later value unread (found by the fuzz targets as
+// 17 GB allocations and endless loops). They read here from a stream that throws on the first
+// failed read instead (read_through_throwing_stream), so what remains to check before them is
+// only what they misread without a failed read: the OFF keyword line and the PLY header.
 
 // Whitespace-separated tokens, as `stream >> value` reads them (the C locale's whitespace), with
 // the line each one is on.
@@ -440,13 +442,6 @@ class TokenReader {
   std::size_t token_line_ = 0;
 };
 
-// Bytes from the stream's position to the end of the file (0 once the stream has failed).
-std::uint64_t bytes_left(std::istream& in, std::uintmax_t file_size) {
-  const auto position = in.tellg();
-  if (position < 0 || static_cast<std::uintmax_t>(position) > file_size) return 0;
-  return file_size - static_cast<std::uintmax_t>(position);
-}
-
 // A count or index as `stream >> unsigned` reads it, restricted to plain digits (it would also
 // take a sign and wrap "-1" to 4294967295).
 std::optional<std::uint32_t> parse_u32(const std::string& token) {
@@ -455,14 +450,6 @@ std::optional<std::uint32_t> parse_u32(const std::string& token) {
   if (token.empty() || error != std::errc() || rest != token.data() + token.size())
     return std::nullopt;
   return value;
-}
-
-bool is_int32(const std::string& token) {
-  std::string_view text(token);
-  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
-  std::int32_t value = 0;
-  const auto [rest, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  return !text.empty() && error == std::errc() && rest == text.data() + text.size();
 }
 
 // The next token, or an InputError saying which element the file ends in.
@@ -485,210 +472,22 @@ std::uint32_t required_u32(const std::string& path, TokenReader& tokens, const s
   return *value;
 }
 
-// Little- or big-endian unsigned integer of `bytes` bytes, or nullopt at the end of the file.
-std::optional<std::uint32_t> read_binary_u32(std::istream& in, int bytes, bool big_endian) {
-  unsigned char raw[4] = {};
-  if (!in.read(reinterpret_cast<char*>(raw), bytes)) return std::nullopt;
-  std::uint32_t value = 0;
-  for (int i = 0; i < bytes; ++i) {
-    const int shift = 8 * (big_endian ? bytes - 1 - i : i);
-    value |= std::uint32_t(raw[i]) << shift;
-  }
-  return value;
-}
-
-std::string too_large(std::uint64_t needed, std::uint64_t available) {
-  return "needs at least " + std::to_string(needed) + " bytes, but only " +
-         std::to_string(available) + " follow the header";
-}
-
 // -- OFF ----------------------------------------------------------------------------------------
 
-struct OffKeyword {
-  bool readable = false;  // OpenMesh's reader accepts it (3D only)
-  bool binary = false;
-  bool normals = false, colors = false, texcoords = false;
-};
-
-// The first line as OpenMesh's OFF reader decodes it: [ST][C][N][4][n]OFF, then "BINARY" after
-// exactly one character. It looks at no more than 4095 characters.
-OffKeyword off_keyword(const std::string& first_line, bool had_newline) {
-  OffKeyword keyword;
-  std::string line = first_line.substr(0, 4095);
-  // Characters OpenMesh counts: the line, and the newline when there was one.
-  std::size_t remaining = line.size() + (had_newline && first_line.size() < 4095 ? 1 : 0);
-  line.append(16, '\0');
-  std::size_t p = 0;
-  auto take = [&](char c) {
-    if (remaining == 0 || line[p] != c) return false;
-    ++p;
-    --remaining;
-    return true;
-  };
-  if (remaining > 1 && line[0] == 'S' && line[1] == 'T') {
-    keyword.texcoords = true;
-    p = 2;
-    remaining -= 2;
-  }
-  keyword.colors = take('C');
-  keyword.normals = take('N');
-  const bool four_dimensional = take('4');
-  const bool n_dimensional = take('n');
-  if (remaining < 3 || line.compare(p, 3, "OFF") != 0) return keyword;
-  p += 4;
-  remaining = remaining >= 4 ? remaining - 4 : 0;
-  keyword.binary = remaining >= 6 && line.compare(p, 6, "BINARY") == 0;
-  keyword.readable = !four_dimensional && !n_dimensional;
-  return keyword;
-}
-
-// Binary OFF: little-endian 32-bit counts, vertices of 3 floats (+ 3 normal floats, 3 colour
-// integers, 2 texture floats as the keyword says), faces as a count and that many indices.
-DeclaredCounts scan_binary_off(const std::string& path, std::istream& in, const OffKeyword& keyword,
-                               std::uintmax_t file_size) {
-  std::uint32_t header[3];
-  for (std::uint32_t& value : header) {
-    const auto read = read_binary_u32(in, 4, false);
-    if (!read)
-      throw InputError(path, "header", "file ends before the vertex, face and edge counts");
-    value = *read;
-  }
-  const std::uint32_t vertices = header[0], faces = header[1];
-  const std::uint64_t vertex_bytes =
-      12 + (keyword.normals ? 12 : 0) + (keyword.colors ? 12 : 0) + (keyword.texcoords ? 8 : 0);
-  const std::uint64_t needed = vertices * vertex_bytes + std::uint64_t(faces) * 4;
-  const std::uint64_t available = bytes_left(in, file_size);
-  if (needed > available) {
-    throw InputError(path, "header",
-                     "declares " + std::to_string(vertices) + " vertices and " +
-                         std::to_string(faces) + " faces, which " + too_large(needed, available));
-  }
-  for (std::uint32_t vertex = 0; vertex < vertices; ++vertex) {
-    float xyz[3];
-    in.read(reinterpret_cast<char*>(xyz), sizeof xyz);
-    if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2]))
-      throw InputError(path, "vertex " + std::to_string(vertex), "non-finite coordinate");
-    in.ignore(static_cast<std::streamsize>(vertex_bytes - sizeof xyz));
-  }
-  DeclaredCounts counts;
-  std::size_t triangles = 0;
-  for (std::uint32_t face = 0; face < faces; ++face) {
-    const std::string element = "face " + std::to_string(face);
-    const auto corners = read_binary_u32(in, 4, false);
-    if (!corners) {
-      throw InputError(
-          path, element,
-          "file ends before the " + std::to_string(faces) + " faces its header declares");
-    }
-    const std::uint64_t left = bytes_left(in, file_size);
-    if (std::uint64_t(*corners) * 4 > left) {
-      throw InputError(path, element,
-                       std::to_string(*corners) + " vertex indices need " +
-                           std::to_string(std::uint64_t(*corners) * 4) + " bytes, only " +
-                           std::to_string(left) + " are left");
-    }
-    std::vector<long long> indices;
-    for (std::uint32_t corner = 0; corner < *corners; ++corner) {
-      const std::uint32_t index = *read_binary_u32(in, 4, false);
-      if (index >= vertices) {
-        throw InputError(path, element,
-                         "vertex index " + std::to_string(index) + " is out of range (" +
-                             std::to_string(vertices) + " vertices)");
-      }
-      indices.push_back(index);
-    }
-    counts.face(path, element, std::move(indices));
-    triangles += *corners - 2;
-  }
-  counts.vertices = vertices;
-  counts.triangles = triangles;
-  return counts;
-}
-
-// OFF: the keyword line, counts "vertices faces edges", vertices (3 coordinates, 3 more with N,
-// the rest of the line is colour and texture), faces (a count, then that many indices, then
-// with C the rest of the line).
-DeclaredCounts scan_off(const std::string& path, std::istream& in) {
-  std::error_code size_error;
-  const std::uintmax_t file_size = std::filesystem::file_size(path, size_error);
+// OpenMesh's OFF reader skips the rest of the keyword line, so counts written there ("OFF 3 1 0")
+// would make it take the first vertex for the counts. Returns whether the file is binary.
+bool check_off_keyword_line(const std::string& path, std::istream& in) {
   std::string first_line;
-  if (size_error || !std::getline(in, first_line)) return {};  // OpenMesh reports it
-  const OffKeyword keyword = off_keyword(first_line, !in.eof());
-  if (!keyword.readable) return {};  // not an OFF file OpenMesh can read: it says so
-  if (keyword.binary) return scan_binary_off(path, in, keyword, file_size);
-  const auto keyword_tokens = split_whitespace(first_line);
-  if (keyword_tokens.size() > 1) {
+  std::getline(in, first_line);
+  const auto tokens = split_whitespace(first_line);
+  const bool off = !tokens.empty() && tokens[0].size() >= 3 && tokens[0].ends_with("OFF");
+  const bool binary = off && tokens.size() == 2 && tokens[1] == "BINARY";
+  if (off && tokens.size() > 1 && !binary) {
     throw InputError(path, "line 1",
                      "text after the OFF keyword: the counts must be on the next line (the reader "
                      "skips the rest of the keyword line)");
   }
-
-  TokenReader tokens(in, 2);
-  const std::string header = "header";
-  const std::uint32_t vertices = required_u32(path, tokens, header, "vertex count");
-  const std::uint32_t faces = required_u32(path, tokens, header, "face count");
-  required_u32(path, tokens, header, "edge count");
-  // Every number takes at least one character and a separator (the last one may end the file):
-  // counts the rest of the file cannot hold are refused before anything is read.
-  const std::uint64_t room = bytes_left(in, file_size) + 1;
-  const std::uint64_t vertex_room = 2 * (keyword.normals ? 6 : 3);
-  if (vertices > room / vertex_room) {
-    throw InputError(path, "vertex " + std::to_string(room / vertex_room),
-                     "the file ends before the " + std::to_string(vertices) +
-                         " vertices its header declares (the " + std::to_string(room - 1) +
-                         " bytes after the counts hold at most " +
-                         std::to_string(room / vertex_room) + ")");
-  }
-  const std::uint64_t face_room = (room - vertices * vertex_room) / 2;
-  if (faces > face_room) {
-    throw InputError(path, "face " + std::to_string(face_room),
-                     "the file ends before the " + std::to_string(faces) +
-                         " faces its header declares (the bytes after the vertices hold at most " +
-                         std::to_string(face_room) + ")");
-  }
-
-  for (std::uint32_t vertex = 0; vertex < vertices; ++vertex) {
-    const std::string element = "vertex " + std::to_string(vertex);
-    const std::string what = "the " + std::to_string(vertices) + " vertices its header declares";
-    for (int axis = 0; axis < (keyword.normals ? 6 : 3); ++axis) {
-      const std::string token = required_token(path, tokens, element, what);
-      if (axis < 3) {
-        check_position_token(path, token, element + tokens.at_line());
-      } else {
-        check_coordinate_token(path, token, element + tokens.at_line());
-      }
-    }
-    tokens.skip_rest_of_line();
-  }
-  DeclaredCounts counts;
-  std::size_t triangles = 0;
-  for (std::uint32_t face = 0; face < faces; ++face) {
-    const std::string element = "face " + std::to_string(face);
-    const std::string what = "the " + std::to_string(faces) + " faces its header declares";
-    const std::string count = required_token(path, tokens, element, what);
-    const std::string located = element + tokens.at_line();
-    const auto corners = parse_u32(count);
-    if (!corners) {
-      throw InputError(path, located, "malformed face (vertex count, then that many indices)");
-    }
-    std::vector<long long> indices;
-    for (std::uint32_t corner = 0; corner < *corners; ++corner) {
-      const std::string token = required_token(path, tokens, located, what);
-      const auto index = parse_u32(token);
-      if (!index || *index >= vertices) {
-        throw InputError(path, located,
-                         "vertex index '" + token + "' is out of range (" +
-                             std::to_string(vertices) + " vertices)");
-      }
-      indices.push_back(*index);
-    }
-    counts.face(path, located, std::move(indices));
-    if (keyword.colors) tokens.skip_rest_of_line();
-    triangles += *corners - 2;
-  }
-  counts.vertices = vertices;
-  counts.triangles = triangles;
-  return counts;
+  return binary;
 }
 
 // -- PLY ----------------------------------------------------------------------------------------
@@ -708,23 +507,6 @@ PlyType ply_type(const std::string& name) {
   for (const auto& [type_name, type] : ply_type_names)
     if (name == type_name) return type;
   return PlyType::unknown;
-}
-
-int ply_size(PlyType type) {
-  switch (type) {
-    case PlyType::int8:
-    case PlyType::uint8:
-      return 1;
-    case PlyType::int16:
-    case PlyType::uint16:
-      return 2;
-    case PlyType::float64:
-      return 8;
-    case PlyType::unknown:
-      return 0;
-    default:
-      return 4;
-  }
 }
 
 // The 1- and 4-byte integers OpenMesh's binary reader can read as indices and colours.
@@ -774,7 +556,6 @@ PlyRole ply_role(const std::string& element, const std::string& property) {
 struct PlyHeader {
   bool binary = false, big_endian = false;
   std::vector<PlyElement> elements;
-  std::uint64_t body_start = 0;            // binary: where OpenMesh starts reading the data
   std::vector<std::string> skipped_words;  // header words the reader does not know, once each
 };
 
@@ -851,9 +632,10 @@ PlyProperty read_ply_property(const std::string& path, TokenReader& tokens, PlyE
   return property;
 }
 
-// The header, token by token as OpenMesh reads it. OpenMesh loops forever when its stream fails
-// before end_header (a count that does not parse, the end of the file): every read is checked.
-PlyHeader read_ply_header(const std::string& path, std::istream& in, TokenReader& tokens) {
+// The header, token by token as OpenMesh reads it: what its reader would misread without a failed
+// read is refused (a property before any element, which it adds to an element that does not
+// exist; a second vertex or face element; shapes and types its reader drops or reads as zeros).
+PlyHeader read_ply_header(const std::string& path, TokenReader& tokens) {
   PlyHeader header;
   const std::string end = "the end_header line";
   const std::string format = required_token(path, tokens, "header", end);
@@ -874,23 +656,9 @@ PlyHeader read_ply_header(const std::string& path, std::istream& in, TokenReader
 
   std::set<std::string> seen;
   for (;;) {
-    const auto before_keyword = in.tellg();
     const auto keyword = tokens.next();
-    // OpenMesh's reader loops forever on a header without end_header: refuse it here.
     if (!keyword) throw InputError(path, "header", "the PLY header has no end_header line");
-    if (*keyword == "end_header") {
-      if (header.binary) {
-        // OpenMesh seeks to 12 (or, after "\r\n", 14) bytes past where this token's leading
-        // whitespace began: the data it reads start there.
-        in.seekg(before_keyword);
-        char c[2] = {};
-        in.read(c, 2);
-        header.body_start =
-            static_cast<std::uint64_t>(before_keyword) + (c[0] == '\r' && c[1] == '\n' ? 14 : 12);
-        in.clear();
-      }
-      break;
-    }
+    if (*keyword == "end_header") break;
     if (*keyword == "comment") {
       tokens.skip_rest_of_line();
     } else if (*keyword == "element") {
@@ -918,20 +686,16 @@ PlyHeader read_ply_header(const std::string& path, std::istream& in, TokenReader
   return header;
 }
 
-// PLY: the header declares the elements; the data are walked the way OpenMesh reads them (up to
-// the end of the face element, where it stops), so that no count, list length or index it reads
-// is out of range.
-DeclaredCounts scan_ply(const std::string& path, std::istream& in) {
-  std::error_code size_error;
-  const std::uintmax_t file_size = std::filesystem::file_size(path, size_error);
-  if (size_error) return {};
+// PLY: the header as OpenMesh's reader parses it, with what it would misread refused; the data
+// are left to the reader.
+PlyHeader check_ply_header(const std::string& path, std::istream& in) {
   std::string first_line;
   std::getline(in, first_line);
   const auto first = split_whitespace(first_line);
   if (first.size() != 1 || (first[0] != "ply" && first[0] != "PLY"))
     throw InputError(path, "line 1", "not a PLY file (the first line is not 'ply')");
   TokenReader tokens(in, 2);
-  const PlyHeader header = read_ply_header(path, in, tokens);
+  PlyHeader header = read_ply_header(path, tokens);
   const PlyElement* vertex_element = nullptr;
   for (const PlyElement& element : header.elements)
     if (element.name == "vertex") vertex_element = &element;
@@ -946,123 +710,74 @@ DeclaredCounts scan_ply(const std::string& path, std::istream& in) {
                            " property " + axis);
     }
   }
-  const std::uint32_t vertices = vertex_element->count;
-
-  // Caps by the file size, before anything is read: each value takes at least its size (binary)
-  // or one character and a separator (text; the last one may end the file).
-  const std::uint64_t available =
-      header.binary ? (header.body_start <= file_size ? file_size - header.body_start : 0)
-                    : bytes_left(in, file_size) + 1;
-  std::uint64_t needed = 0;
+  // The reader loops over every instance even when it reads nothing for one (an element without
+  // properties): a count beyond what the file could hold would spin it for minutes.
+  std::error_code size_error;
+  const std::uintmax_t file_size = std::filesystem::file_size(path, size_error);
   for (const PlyElement& element : header.elements) {
-    std::uint64_t per_instance = 0;
-    for (const PlyProperty& p : element.properties)
-      per_instance += header.binary ? ply_size(p.list ? p.count_type : p.type) : 2;
-    const std::uint64_t bytes =
-        std::uint64_t(element.count) * std::max<std::uint64_t>(1, per_instance);
-    if (bytes > available) {
+    if (!size_error && element.count > file_size) {
       throw InputError(path, element.located,
-                       "declares " + std::to_string(element.count) + " instances, which " +
-                           too_large(bytes, available));
+                       "declares " + std::to_string(element.count) + " instances, more than the " +
+                           std::to_string(file_size) + " bytes of the file can hold");
     }
-    needed += bytes;
   }
-  if (needed > available) {
-    throw InputError(path, "header", "the declared elements " + too_large(needed, available));
-  }
-
-  if (header.binary) in.seekg(static_cast<std::streamoff>(header.body_start));
-  DeclaredCounts counts;
-  for (const PlyElement& element : header.elements) {
-    const std::string what = "the " + std::to_string(element.count) + " '" + element.name +
-                             "' elements its header declares";
-    for (std::uint32_t i = 0; i < element.count; ++i) {
-      const std::string element_i = element.name + " " + std::to_string(i);
-      for (const PlyProperty& p : element.properties) {
-        if (!header.binary) {
-          const std::string token = required_token(path, tokens, element_i, what);
-          const std::string located = element_i + tokens.at_line();
-          if (p.role == PlyRole::coordinate) {
-            check_position_token(path, token, located);
-          } else if (p.role == PlyRole::float_value ||
-                     (p.role == PlyRole::color && p.type == PlyType::float32)) {
-            check_coordinate_token(path, token, located);
-          } else if (p.role == PlyRole::color && !is_int32(token)) {
-            throw InputError(path, located, "colour '" + token + "' is not an integer");
-          } else if (p.role == PlyRole::vertex_list) {
-            const auto corners = parse_u32(token);
-            if (!corners)
-              throw InputError(path, located, "vertex count '" + token + "' is not a number");
-            std::vector<long long> indices;
-            for (std::uint32_t corner = 0; corner < *corners; ++corner) {
-              const std::string index = required_token(path, tokens, located, what);
-              const auto value = parse_u32(index);
-              if (!value || *value >= vertices) {
-                throw InputError(path, located,
-                                 "vertex index '" + index + "' is out of range (" +
-                                     std::to_string(vertices) + " vertices)");
-              }
-              indices.push_back(*value);
-            }
-            counts.face(path, located, std::move(indices));
-          }
-          continue;
-        }
-        const std::string& located = element_i;
-        if (p.role == PlyRole::vertex_list) {
-          const auto corners = read_binary_u32(in, ply_size(p.count_type), header.big_endian);
-          if (!corners) throw InputError(path, located, "file ends before " + what);
-          // An int count is read as signed and converted: -1 becomes 4294967295.
-          std::uint32_t n = *corners;
-          if (p.count_type == PlyType::int32) n = std::uint32_t(std::int32_t(n));
-          const std::uint64_t bytes = std::uint64_t(n) * ply_size(p.type);
-          const std::uint64_t left = bytes_left(in, file_size);
-          if (bytes > left) {
-            throw InputError(path, located,
-                             std::to_string(n) + " vertex indices need " + std::to_string(bytes) +
-                                 " bytes, only " + std::to_string(left) + " are left");
-          }
-          std::vector<long long> indices;
-          for (std::uint32_t corner = 0; corner < n; ++corner) {
-            std::uint32_t index = *read_binary_u32(in, ply_size(p.type), header.big_endian);
-            if (p.type == PlyType::int8) index = std::uint32_t(std::int32_t(std::int8_t(index)));
-            if (index >= vertices) {
-              throw InputError(path, located,
-                               "vertex index " + std::to_string(index) + " is out of range (" +
-                                   std::to_string(vertices) + " vertices)");
-            }
-            indices.push_back(index);
-          }
-          counts.face(path, located, std::move(indices));
-          continue;
-        }
-        if (!in.ignore(ply_size(p.type)) || in.gcount() != ply_size(p.type))
-          throw InputError(path, located, "file ends before " + what);
-      }
-    }
-    if (element.name == "face") break;  // OpenMesh reads nothing after the faces
-  }
-  counts.vertices = vertices;
-  counts.skipped_words = header.skipped_words;
-  return counts;
+  return header;
 }
 
-// The words of a list, quoted, the first four of them.
-std::string quoted_list(const std::vector<std::string>& words) {
-  std::string list;
-  for (std::size_t i = 0; i < words.size() && i < 4; ++i)
-    list += (list.empty() ? "'" : ", '") + words[i] + "'";
-  if (words.size() > 4) list += ", ... (" + std::to_string(words.size()) + " words)";
-  return list;
+// The line (from 1) that a byte offset of the file is on; counted only for messages.
+std::size_t line_at(const std::string& path, std::uint64_t offset) {
+  std::ifstream in(path, std::ios::binary);
+  std::size_t line = 1;
+  for (char c; offset > 0 && in.get(c); --offset) line += c == '\n' ? 1 : 0;
+  return line;
+}
+
+// The whitespace-separated word of the file around a byte offset: where a read stopped, the word
+// it failed on ("" at the end of the file).
+std::string word_at(const std::string& path, std::uint64_t offset) {
+  constexpr std::uint64_t reach = 64;
+  const std::uint64_t start = offset > reach ? offset - reach : 0;
+  std::ifstream in(path, std::ios::binary);
+  in.seekg(static_cast<std::streamoff>(start));
+  std::string window(2 * reach, '\0');
+  in.read(window.data(), static_cast<std::streamsize>(window.size()));
+  window.resize(static_cast<std::size_t>(in.gcount()));
+  const auto space = [](char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; };
+  std::size_t begin = std::min<std::size_t>(offset - start, window.size()), end = begin;
+  while (begin > 0 && !space(window[begin - 1])) --begin;
+  while (end < window.size() && !space(window[end])) ++end;
+  return window.substr(begin, end - begin);
+}
+
+// A word of the file in a message, cut short.
+std::string quoted(const std::string& word) {
+  return "'" + (word.size() > 24 ? word.substr(0, 24) + "..." : word) + "'";
+}
+
+// What is wrong with `word` as a float coordinate, in the words of the coordinate checks; nullopt
+// for a finite number in float range.
+std::optional<std::string> float_problem(const std::string& word) {
+  double value = 0.0;
+  const char* begin = word.data() + (!word.empty() && word[0] == '+' ? 1 : 0);
+  const auto [rest, error] = std::from_chars(begin, word.data() + word.size(), value);
+  if (error == std::errc::result_out_of_range ||
+      (error == std::errc() && std::isfinite(value) &&
+       std::fabs(value) > static_cast<double>(std::numeric_limits<float>::max())))
+    return quoted(word) + " is out of float range";
+  if (error != std::errc() || rest != word.data() + word.size())
+    return quoted(word) + " is not a number";
+  if (!std::isfinite(value)) return quoted(word) + " is not finite";
+  return std::nullopt;
 }
 
 // What OpenMesh's reader reads, received as it reads it: every vertex, and every face with its
 // corners as the file gives them. Nothing goes through OpenMesh's mesh topology, so a face that a
 // PolyMesh would reject (a complex edge or vertex: three faces on an edge, inconsistent
 // orientation) is kept as it is; a conformance suite must not change its input. Faces that name
-// a vertex more than once have no area: they are counted and dropped (the pre-checks name the
-// first one with its line). Problems are recorded, not thrown, so that no exception crosses
-// OpenMesh's reader; the first one is reported once the reader returns.
+// a vertex more than once have no area: they are counted and dropped. Problems are recorded, not
+// thrown, so that no exception of ours crosses OpenMesh's reader; the first one is reported once
+// the reader returns. When the reader reads from a stream the importer watches (OFF, PLY), its
+// messages name the line (text) and the element a failed read stopped in.
 class FaceKeepingImporter final : public OpenMesh::IO::BaseImporter {
  public:
   using Point = OpenMesh::Vec3f;
@@ -1077,8 +792,13 @@ class FaceKeepingImporter final : public OpenMesh::IO::BaseImporter {
   std::size_t faces_read = 0;               // every add_face call
   std::size_t repeated_vertex_faces = 0;    // dropped: a corner repeats
   std::size_t repeated_vertex_triangles = 0;
-  std::optional<std::string> first_repeated_vertex;  // "face 3 (from 0) uses vertex 1 (from 0) ..."
+  std::optional<std::string> first_repeated_vertex;  // "face 3 (line 9) uses vertex 1 ..."
   std::optional<std::pair<std::string, std::string>> problem;  // element, what is wrong
+  // The counts the OFF and PLY readers declare to reserve() before their data.
+  std::optional<std::size_t> declared_vertices, declared_faces;
+
+  FaceKeepingImporter(std::string path, const std::istream* watched, bool text)
+      : path_(std::move(path)), watched_(watched), text_(text) {}
 
   // Fan triangulation (corner 0, i, i + 1), as OpenMesh's TriMesh splits a polygon.
   std::vector<Triangle> triangles() const {
@@ -1095,28 +815,64 @@ class FaceKeepingImporter final : public OpenMesh::IO::BaseImporter {
     return out;
   }
 
+  // A read of the watched stream failed (its exception ended the reader): names the word it
+  // failed on, or the end of the file, and the element it was reading.
+  void read_failed() {
+    const std::uint64_t offset = position();
+    const std::string word = text_ ? word_at(path_, offset) : "";
+    std::error_code error;
+    const bool at_end = std::filesystem::file_size(path_, error) <= offset;
+    // Counts and indices are whole numbers; vertices hold coordinates.
+    const bool whole = !declared_vertices || (!vertex_open_ && points.size() >= *declared_vertices);
+    const auto problem = float_problem(word);
+    if (word.empty() || (at_end && !problem)) {
+      // The end of the file, or right after the last number: the next read ran out.
+      fail(reading(false), "the file ends before " + still_declared());
+    } else if (!whole && problem) {
+      fail(reading(true), *problem);
+    } else {
+      fail(reading(true), quoted(word) + " is not a whole number from 0 to 4294967295");
+    }
+  }
+
+  // Every vertex and face the reader's counts declared arrived.
+  void require_declared_counts() {
+    if (declared_vertices &&
+        (points.size() < *declared_vertices || faces_read < declared_faces.value_or(0))) {
+      fail(reading(false), "the file ends before " + still_declared());
+    }
+  }
+
   VertexHandle add_vertex(const Point& point) override {
     points.push_back(point);
+    check_point(points.size() - 1);
     return VertexHandle(static_cast<int>(points.size() - 1));
   }
-  VertexHandle add_vertex() override { return add_vertex(Point(0.0f, 0.0f, 0.0f)); }
+  // The PLY reader adds a vertex before it reads it and sets its point after.
+  VertexHandle add_vertex() override {
+    points.emplace_back(0.0f, 0.0f, 0.0f);
+    vertex_open_ = true;
+    return VertexHandle(static_cast<int>(points.size() - 1));
+  }
   void set_point(VertexHandle vertex, const Point& point) override {
-    if (valid(vertex)) points[static_cast<std::size_t>(vertex.idx())] = point;
+    vertex_open_ = false;
+    if (!valid(vertex)) return;
+    points[static_cast<std::size_t>(vertex.idx())] = point;
+    check_point(static_cast<std::size_t>(vertex.idx()));
   }
 
   FaceHandle add_face(const VHandles& indices) override {
     // Faces and vertices as the reader numbers them: from 0, in the order it hands them over.
-    const std::string element = "face " + std::to_string(faces_read++) + " (from 0)";
+    const std::size_t face = faces_read++;
     if (indices.size() < 3) {
-      fail(element,
+      fail(located("face", face),
            "has " + std::to_string(indices.size()) + " corner(s); a face needs at least 3");
       return FaceHandle();
     }
     for (const VertexHandle vertex : indices) {
       if (!valid(vertex)) {
-        fail(element, "vertex index " + std::to_string(vertex.idx()) +
-                          " (from 0) is out of range (" + std::to_string(points.size()) +
-                          " vertices read)");
+        fail(located("face", face), "vertex index " + number(vertex.idx()) + " is out of range (" +
+                                        std::to_string(points.size()) + " vertices read)");
         return FaceHandle();
       }
     }
@@ -1126,8 +882,8 @@ class FaceKeepingImporter final : public OpenMesh::IO::BaseImporter {
         ++repeated_vertex_faces;
         repeated_vertex_triangles += indices.size() - 2;
         if (!first_repeated_vertex) {
-          first_repeated_vertex = element + " uses vertex " + std::to_string(indices[i].idx()) +
-                                  " (from 0) more than once";
+          first_repeated_vertex = located("face", face) + " uses vertex " +
+                                  number(indices[i].idx()) + " more than once";
         }
         return FaceHandle();
       }
@@ -1146,8 +902,11 @@ class FaceKeepingImporter final : public OpenMesh::IO::BaseImporter {
 
   // Like OpenMesh's importer for its TriMesh, so that each reader takes the path it took before.
   bool is_triangle_mesh() const override { return true; }
-  // The declared counts are not trusted with memory: nothing is reserved.
-  void reserve(unsigned int, unsigned int, unsigned int) override {}
+  // The declared counts are not trusted with memory: nothing is reserved, they are only kept.
+  void reserve(unsigned int vertices, unsigned int, unsigned int faces) override {
+    declared_vertices = vertices;
+    declared_faces = faces;
+  }
   size_t n_vertices() const override { return points.size(); }
   size_t n_faces() const override { return face_corners.size(); }
   size_t n_edges() const override { return 0; }
@@ -1187,13 +946,140 @@ class FaceKeepingImporter final : public OpenMesh::IO::BaseImporter {
   void add_texture_information(int, std::string) override {}
 
  private:
+  std::string path_;
+  const std::istream* watched_;  // the stream the reader reads, or null (OBJ, STL: by path)
+  bool text_;
+  bool vertex_open_ = false;  // added, its point not yet set
+
   bool valid(VertexHandle vertex) const {
     return vertex.idx() >= 0 && static_cast<std::size_t>(vertex.idx()) < points.size();
   }
   void fail(const std::string& element, std::string what) {
     if (!problem) problem.emplace(element, std::move(what));
   }
+  // A vertex the reader delivered: finite, and no larger than a case accepts.
+  void check_point(std::size_t vertex) {
+    const Point& p = points[vertex];
+    const std::string coordinates = "(" + std::to_string(p[0]) + ", " + std::to_string(p[1]) +
+                                    ", " + std::to_string(p[2]) + ")";
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
+      fail(located("vertex", vertex), "non-finite coordinate " + coordinates);
+    } else if (std::max({std::fabs(p[0]), std::fabs(p[1]), std::fabs(p[2])}) >
+               max_scene_coordinate) {
+      fail(located("vertex", vertex),
+           "coordinate beyond 1e30 (the largest coordinate a case accepts) " + coordinates);
+    }
+  }
+
+  std::uint64_t position() const {
+    const auto at = watched_->rdbuf()->pubseekoff(0, std::ios::cur, std::ios::in);
+    return at < 0 ? 0 : static_cast<std::uint64_t>(at);
+  }
+  // A vertex or face number (from 0) as the reader gives it: with the line the reader is on in a
+  // watched text file, marked "(from 0)" where no line says which one it is.
+  std::string located(const std::string& kind, std::size_t n) const {
+    return kind + " " + std::to_string(n) + (!watched_ ? " (from 0)" : "") +
+           (watched_ && text_ ? " (line " + std::to_string(line_at(path_, position())) + ")" : "");
+  }
+  std::string number(int n) const { return std::to_string(n) + (!watched_ ? " (from 0)" : ""); }
+
+  // The element a read failed in: the header before reserve() declared the counts, then the
+  // vertices, then the faces.
+  std::string reading(bool with_line) const {
+    const std::string line =
+        with_line && text_ ? " (line " + std::to_string(line_at(path_, position())) + ")" : "";
+    if (!declared_vertices) return "header" + line;
+    if (vertex_open_) return "vertex " + std::to_string(points.size() - 1) + line;
+    if (points.size() < *declared_vertices) return "vertex " + std::to_string(points.size()) + line;
+    return "face " + std::to_string(faces_read) + line;
+  }
+  std::string still_declared() const {
+    if (!declared_vertices) return "the end of its header";
+    if (vertex_open_ || points.size() < *declared_vertices)
+      return "the " + std::to_string(*declared_vertices) + " vertices its header declares";
+    return "the " + std::to_string(declared_faces.value_or(0)) + " faces its header declares";
+  }
 };
+
+// The numbers the OFF and PLY readers extract with `stream >> value`, one whole word each and
+// checked as a value of its kind. A standard read stops inside a word ("1,5", "0.5x", "1.5" where
+// a count belongs) and leaves the rest of it to the next read, which takes it for the next value;
+// and it reads "1e-400" as 0 and "-1" as a count of 4294967295. Here the word is read by the
+// standard extraction and fails unless all of it is read and it is a plain number of its kind.
+class CheckedNumbers final : public std::num_get<char> {
+ protected:
+  template <typename T, typename Accept>
+  iter_type word(iter_type in, iter_type end, std::ios_base::iostate& err, T& value,
+                 Accept accept) const {
+    std::string text;
+    for (; in != end && !std::isspace(static_cast<unsigned char>(*in)); ++in) text.push_back(*in);
+    std::istringstream read(text);
+    read.imbue(std::locale::classic());
+    if (!(read >> value) || read.peek() != std::char_traits<char>::eof() || !accept(text))
+      err |= std::ios_base::failbit;
+    if (in == end) err |= std::ios_base::eofbit;
+    return in;
+  }
+  static bool digits(std::string_view text) {
+    return !text.empty() && text.find_first_not_of("0123456789") == std::string_view::npos;
+  }
+  iter_type do_get(iter_type in, iter_type end, std::ios_base&, std::ios_base::iostate& err,
+                   unsigned int& value) const override {
+    return word(in, end, err, value, [](const std::string& text) { return digits(text); });
+  }
+  iter_type do_get(iter_type in, iter_type end, std::ios_base&, std::ios_base::iostate& err,
+                   long& value) const override {  // what `>> int` reads
+    return word(in, end, err, value, [](const std::string& text) {
+      return digits(std::string_view(text).substr(text[0] == '+' || text[0] == '-' ? 1 : 0));
+    });
+  }
+  iter_type do_get(iter_type in, iter_type end, std::ios_base&, std::ios_base::iostate& err,
+                   float& value) const override {
+    return word(in, end, err, value, [](const std::string& text) { return !float_problem(text); });
+  }
+  iter_type do_get(iter_type in, iter_type end, std::ios_base&, std::ios_base::iostate& err,
+                   double& value) const override {
+    return word(in, end, err, value, [](const std::string& text) { return !float_problem(text); });
+  }
+};
+
+// OFF and PLY through OpenMesh's readers, from a stream that throws on the first failed read:
+// their loops over declared counts then end where the file does, and a value that does not parse
+// is named (by the importer) instead of leaving the rest of the file unread or misread. The PLY
+// reader parses its header again from the stream; the OFF reader takes its options (binary,
+// normals, colours) from the keyword line, read by can_u_read.
+bool read_through_throwing_stream(const std::string& path, bool off, std::istream& stream,
+                                  FaceKeepingImporter& importer) {
+  OpenMesh::IO::Options options;
+  if (off && !OpenMesh::IO::OFFReader().can_u_read(path)) return false;
+  stream.imbue(std::locale(std::locale::classic(), new CheckedNumbers));
+  stream.exceptions(std::ios::failbit | std::ios::badbit);
+  bool read_ok = false;
+  try {
+    read_ok = off ? OpenMesh::IO::OFFReader().read(stream, importer, options)
+                  : OpenMesh::IO::PLYReader().read(stream, importer, options);
+  } catch (const std::ios_base::failure&) {
+    // The OFF reader reads the rest of the line after each face (its colour): at the end of a
+    // file without a final newline that read fails after every face was delivered.
+    const bool after_the_last_face = off && stream.eof() && importer.declared_faces &&
+                                     importer.faces_read == *importer.declared_faces;
+    if (!after_the_last_face) importer.read_failed();
+    read_ok = true;
+  }
+  // The readers also stop, without a failed read, where the end of the file comes right after a
+  // value (their loops test eof()).
+  importer.require_declared_counts();
+  return read_ok;
+}
+
+// The words of a list, quoted, the first four of them.
+std::string quoted_list(const std::vector<std::string>& words) {
+  std::string list;
+  for (std::size_t i = 0; i < words.size() && i < 4; ++i)
+    list += (list.empty() ? "'" : ", '") + words[i] + "'";
+  if (words.size() > 4) list += ", ... (" + std::to_string(words.size()) + " words)";
+  return list;
+}
 
 }  // namespace
 
@@ -1203,31 +1089,41 @@ LoadedScene load_mesh_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "file", "cannot be opened");
 
-  // Pre-checks: what OpenMesh's readers would hang on, over-allocate for, crash on, or silently
-  // read as something else (an unparsable coordinate, an index out of range) is named here, with
-  // its element and line.
+  // Pre-checks: what OpenMesh's readers would crash on or silently read as something else
+  // without a failed read (an unparsable OBJ coordinate, an OBJ index out of range, a PLY header
+  // shape) is named here, with its element and line.
   DeclaredCounts declared;
+  bool text = true;
   if (format == ".obj") declared = scan_obj(path, in);
   if (format == ".stl") declared = scan_stl(path, in);
-  if (format == ".off") declared = scan_off(path, in);
-  if (format == ".ply") declared = scan_ply(path, in);
+  if (format == ".off") text = !check_off_keyword_line(path, in);
+  if (format == ".ply") {
+    const PlyHeader header = check_ply_header(path, in);
+    text = !header.binary;
+    declared.skipped_words = header.skipped_words;
+  }
   in.close();
 
-  FaceKeepingImporter importer;
+  const bool through_stream = format == ".off" || format == ".ply";
+  std::ifstream stream;
+  if (through_stream) stream.open(path, std::ios::binary);
+  FaceKeepingImporter importer(path, through_stream ? &stream : nullptr, text);
   bool read_ok = false;
   {
     const OpenMeshQuiet quiet;
     OpenMesh::IO::Options options;
     try {
-      read_ok = OpenMesh::IO::IOManager().read(path, importer, options);
+      read_ok = through_stream
+                    ? read_through_throwing_stream(path, format == ".off", stream, importer)
+                    : OpenMesh::IO::IOManager().read(path, importer, options);
     } catch (const std::exception& e) {
       throw InputError(path, "file", std::string("OpenMesh failed: ") + e.what());
     }
   }
   if (importer.problem) throw InputError(path, importer.problem->first, importer.problem->second);
   if (!read_ok) throw InputError(path, "file", "OpenMesh cannot read it as a " + format + " file");
-  // Faces that repeat a corner: some readers drop them before the importer sees them (OBJ, STL),
-  // the others hand them over. The pre-checks count and name them with their lines either way.
+  // Faces that repeat a corner: the OBJ and STL readers drop them before the importer sees them,
+  // so their pre-checks count and name them; the others hand them over.
   const std::size_t repeated_vertex_faces =
       std::max(importer.repeated_vertex_faces, declared.repeated_vertex_faces);
   const std::optional<std::string> first_repeated_vertex = declared.first_repeated_vertex
@@ -1244,9 +1140,10 @@ LoadedScene load_mesh_file(const std::string& path) {
     }
     throw InputError(path, "faces", "no faces: empty, or not a valid " + format + " file");
   }
-  if (declared.vertices && importer.points.size() < *declared.vertices) {
+  const auto declared_vertices = through_stream ? importer.declared_vertices : declared.vertices;
+  if (declared_vertices && importer.points.size() < *declared_vertices) {
     throw InputError(path, "vertices",
-                     "the file declares " + std::to_string(*declared.vertices) +
+                     "the file declares " + std::to_string(*declared_vertices) +
                          " vertices, OpenMesh read " + std::to_string(importer.points.size()));
   }
 
@@ -1266,22 +1163,6 @@ LoadedScene load_mesh_file(const std::string& path) {
   if (!declared.skipped_words.empty()) {
     scene.warnings.push_back(path + ": header: words the reader does not know, skipped: " +
                              quoted_list(declared.skipped_words));
-  }
-
-  for (std::size_t vertex = 0; vertex < importer.points.size(); ++vertex) {
-    const auto& p = importer.points[vertex];
-    const std::string coordinates = "(" + std::to_string(p[0]) + ", " + std::to_string(p[1]) +
-                                    ", " + std::to_string(p[2]) + ")";
-    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
-      throw InputError(path, "vertex " + std::to_string(vertex),
-                       "non-finite coordinate " + coordinates);
-    }
-    // Binary PLY coordinates are not scanned: this names them (0-based, as OpenMesh counts).
-    if (std::max({std::fabs(p[0]), std::fabs(p[1]), std::fabs(p[2])}) > max_scene_coordinate) {
-      throw InputError(
-          path, "vertex " + std::to_string(vertex),
-          "coordinate beyond 1e30 (the largest coordinate a case accepts) " + coordinates);
-    }
   }
 
   Mesh loaded_mesh;

@@ -721,7 +721,7 @@ TEST(MeshFiles, OffCountsBeyondTheFileAreInputErrorsNotAllocations) {
                                     "0 0 1\n 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n");
   const std::string overflow_message = load_error(overflow);
   EXPECT_NE(overflow_message.find(overflow.string()), std::string::npos) << overflow_message;
-  EXPECT_NE(overflow_message.find("vertex count '5555"), std::string::npos) << overflow_message;
+  EXPECT_NE(overflow_message.find("header (line 2): '5555"), std::string::npos) << overflow_message;
 
   const fs::path huge =
       dir.write("huge.off", "OFF\n4294967295 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
@@ -743,9 +743,7 @@ TEST(MeshFiles, OffCountsBeyondTheFileAreInputErrorsNotAllocations) {
     corners.append(reinterpret_cast<const char*>(&v), sizeof v);
   corners += binary_u32(0xFFFFFFFFu) + binary_u32(0) + binary_u32(1) + binary_u32(2);
   const std::string corners_message = load_error(dir.write("corners.off", corners));
-  EXPECT_NE(corners_message.find("face 0"), std::string::npos) << corners_message;
-  EXPECT_NE(corners_message.find("4294967295 vertex indices"), std::string::npos)
-      << corners_message;
+  EXPECT_NE(corners_message.find("face 0: the file ends"), std::string::npos) << corners_message;
 
   // Still read: a binary OFF triangle.
   std::string triangle = "OFF BINARY\n" + binary_u32(3) + binary_u32(1) + binary_u32(0);
@@ -844,8 +842,7 @@ TEST(MeshFiles, PlyFaceListLongerThanTheFileIsAnInputError) {
   EXPECT_EQ(load_scene_file(dir.write("good.ply", good).string()).triangles.size(), 1u);
   const std::string bad = ply + binary_u32(0xFFFFFFFFu) + binary_u32(0) + binary_u32(1);
   const std::string message = load_error(dir.write("bad.ply", bad));
-  EXPECT_NE(message.find("face 0"), std::string::npos) << message;
-  EXPECT_NE(message.find("4294967295 vertex indices"), std::string::npos) << message;
+  EXPECT_NE(message.find("face 0: the file ends"), std::string::npos) << message;
 }
 
 // Found by the OBJ fuzz target (crash-b3956210...): a face corner without a vertex index
