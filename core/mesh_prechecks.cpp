@@ -405,7 +405,6 @@ class TokenReader {
   }
 
   // The line of the last token next() returned.
-  std::size_t line() const { return token_line_; }
   std::string at_line() const { return " (line " + std::to_string(token_line_) + ")"; }
 
  private:
@@ -437,9 +436,9 @@ std::uint32_t required_u32(const std::string& path, TokenReader& tokens, const s
   const std::string token = required_token(path, tokens, element, "the " + what);
   const auto value = parse_u32(token);
   if (!value) {
-    const std::string shown = token.size() > 24 ? token.substr(0, 24) + "..." : token;
-    throw InputError(path, element + tokens.at_line(),
-                     "the " + what + " '" + shown + "' is not a whole number from 0 to 4294967295");
+    throw InputError(
+        path, element + tokens.at_line(),
+        "the " + what + " " + quoted(token) + " is not a whole number from 0 to 4294967295");
   }
   return *value;
 }
