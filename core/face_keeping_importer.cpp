@@ -15,8 +15,15 @@ namespace {
 // The line (from 1) that a byte offset of the file is on; counted only for messages.
 std::size_t line_at(const std::string& path, std::uint64_t offset) {
   std::ifstream in(path, std::ios::binary);
+  std::vector<char> block(std::size_t{1} << 16);
   std::size_t line = 1;
-  for (char c; offset > 0 && in.get(c); --offset) line += c == '\n' ? 1 : 0;
+  while (offset > 0) {
+    in.read(block.data(),
+            static_cast<std::streamsize>(std::min<std::uint64_t>(offset, block.size())));
+    if (in.gcount() <= 0) break;
+    line += static_cast<std::size_t>(std::count(block.data(), block.data() + in.gcount(), '\n'));
+    offset -= static_cast<std::uint64_t>(in.gcount());
+  }
   return line;
 }
 

@@ -38,8 +38,14 @@ class CheckedNumbers final : public std::num_get<char> {
                  Accept accept) const {
     std::string text;
     for (; in != end && !std::isspace(static_cast<unsigned char>(*in)); ++in) text.push_back(*in);
-    std::istringstream read(text);
-    read.imbue(std::locale::classic());
+    // One stream per thread, reused: a new stream for each number costs more than reading it.
+    thread_local std::istringstream read = [] {
+      std::istringstream stream;
+      stream.imbue(std::locale::classic());
+      return stream;
+    }();
+    read.clear();
+    read.str(text);
     if (!(read >> value) || read.peek() != std::char_traits<char>::eof() || !accept(text))
       err |= std::ios_base::failbit;
     if (in == end) err |= std::ios_base::eofbit;
