@@ -1,5 +1,8 @@
 #include "shadowcts/geometry/exact_segment_triangle.h"
 
+#include "shadowcts/geometry/segment_box.h"
+
+#include <cmath>
 #include <random>
 
 #include <CGAL/Gmpq.h>
@@ -40,7 +43,7 @@ glm::dvec3 float_point(std::mt19937& rng) {
 }
 
 void expect_agreement(std::mt19937& rng, glm::dvec3 (*make)(std::mt19937&), int trials) {
-  int hits = 0, coplanar = 0;
+  int hits = 0, coplanar = 0, boxes_apart = 0;
   for (int n = 0; n < trials; ++n) {
     const glm::dvec3 a = make(rng), b = make(rng), c = make(rng), p = make(rng);
     glm::dvec3 q = make(rng);
@@ -51,6 +54,12 @@ void expect_agreement(std::mt19937& rng, glm::dvec3 (*make)(std::mt19937&), int 
     const bool got =
         directional ? ray_meets_triangle(p, q, a, b, c) : segment_meets_triangle(p, q, a, b, c);
     hits += expected;
+    // The box prefilter of the brute-force backends (segment_box.h) may only drop what misses:
+    // the points are floats, so the boxes are exact.
+    const bool boxes_meet = boxes_overlap(triangle_box(glm::vec3(a), glm::vec3(b), glm::vec3(c)),
+                                          segment_box(glm::vec3(p), glm::vec3(q), directional));
+    ASSERT_TRUE(boxes_meet || !expected) << "trial " << n << ": a meeting triangle's box dropped";
+    boxes_apart += boxes_meet ? 0 : 1;
     coplanar += orientation(a, b, c, p) == 0 &&
                 (directional ? orientation_towards(a, b, c, q) : orientation(a, b, c, q)) == 0;
     ASSERT_EQ(got, expected) << (directional ? "ray" : "segment") << " trial " << n << ": p ("
@@ -62,6 +71,7 @@ void expect_agreement(std::mt19937& rng, glm::dvec3 (*make)(std::mt19937&), int 
   // The generator must exercise both answers and the coplanar paths.
   EXPECT_GT(hits, trials / 50);
   EXPECT_LT(hits, trials - trials / 50);
+  EXPECT_GT(boxes_apart, trials / 50);
   if (make == grid_point) {
     EXPECT_GT(coplanar, trials / 200);
   }
@@ -75,6 +85,28 @@ TEST(ExactSegmentTriangle, AgreesWithCgalOnDegenerateGridConfigurations) {
 TEST(ExactSegmentTriangle, AgreesWithCgalOnRandomFloats) {
   std::mt19937 rng(11);
   expect_agreement(rng, float_point, 20000);
+}
+
+TEST(SegmentBox, ClosedAndUnboundedOnlyTowardsADirectionalLight) {
+  const FloatBox point = segment_box({1, -2, 3}, {-1, 5, 3}, false);
+  EXPECT_EQ(point.lo[0], -1.0f);
+  EXPECT_EQ(point.hi[0], 1.0f);
+  EXPECT_EQ(point.lo[1], -2.0f);
+  EXPECT_EQ(point.hi[1], 5.0f);
+  EXPECT_EQ(point.lo[2], 3.0f);
+  EXPECT_EQ(point.hi[2], 3.0f);
+  const FloatBox ray = segment_box({1, -2, 3}, {0.5f, -0.5f, 0.0f}, true);
+  EXPECT_EQ(ray.lo[0], 1.0f);
+  EXPECT_EQ(ray.hi[0], INFINITY);
+  EXPECT_EQ(ray.lo[1], -INFINITY);
+  EXPECT_EQ(ray.hi[1], -2.0f);
+  EXPECT_EQ(ray.lo[2], 3.0f);  // no z component: the ray stays in its plane
+  EXPECT_EQ(ray.hi[2], 3.0f);
+  // A triangle whose box touches the segment's at one corner overlaps (closed boxes); one a float
+  // step beyond does not.
+  EXPECT_TRUE(boxes_overlap(triangle_box({1, 5, 3}, {2, 6, 3}, {2, 5, 4}), point));
+  EXPECT_FALSE(
+      boxes_overlap(triangle_box({1, std::nextafter(5.0f, 6.0f), 3}, {2, 6, 3}, {2, 6, 4}), point));
 }
 
 TEST(ExactSegmentTriangle, SharedEdgeIsClosedOnBothSidesAndVerticesCount) {
