@@ -102,9 +102,8 @@ AlgorithmOutput assign_lights_clustered(const PreparedScene& scene,
     }
   });
 
-  // The reference's light BVH, laid out for the lanes.
-  const LightBvh bvh(c.ranged_lights);
-  const LightBvhLanes lanes(bvh, c.ranged_lights);
+  // The reference's light BVH, built in parallel and in lanes.
+  const LightBvhLanes lanes(c.ranged_lights);
   clock.lap(build_phase);
 
   // Per cluster: traversal and the exact sphere/box cull in lanes, then the back-face rule on the

@@ -13,6 +13,18 @@
 
 namespace shadowcts::simd {
 
+// The light BVH's build steps (light_bvh.h), each the reference's operations in lanes:
+// LightBvh's 63-bit Morton code of each light's centre over the centres' box (low, extent per
+// axis) into code[i];
+void morton_codes(const RangedLight* lights, std::size_t count, const double* low,
+                  const double* extent, std::uint64_t* code);
+// the boxes of nodes [first, first + count) of the first level around their 32 leaves' boxes
+// (each sphere's float box rounded outwards), from bvh.sphere;
+void leaf_node_boxes(const LightBvhLanes& bvh, std::size_t first, std::size_t count,
+                     BoxArrays& level);
+// the boxes of nodes [first, first + count) of a level above around their 32 children each.
+void node_boxes(const BoxArrays& children, std::size_t first, std::size_t count, BoxArrays& level);
+
 // Clustered: the depth-first traversal of LightBvh::traverse over the cluster box (32 children
 // against the box per node, in lanes), then for the leaves whose boxes overlap it the exact
 // sphere/box cull (the reference's double filter in lanes, undecided pairs exactly). Appends the
