@@ -19,33 +19,56 @@ std::size_t padded(std::size_t count) {
   return (count + LightBvh::branching - 1) / LightBvh::branching * LightBvh::branching;
 }
 
-// Stable LSD radix sort of `keys` by their upper 32 bits, 8 bits a pass over fixed blocks (a
-// pass whose digit is the same for every key is skipped).
-void sort_by_high_half(std::vector<std::uint64_t>& keys) {
+// Stable LSD radix sort of `keys` by their upper 32 bits in three passes (11, 11 and 10 bits)
+// over fixed blocks; the histograms of all passes come from one read, and a pass whose digit is
+// the same for every key is skipped.
+void sort_by_high_half(UninitializedVector<std::uint64_t>& keys) {
   const std::size_t n = keys.size();
   const std::size_t blocks = (n + block - 1) / block;
-  std::vector<std::uint64_t> other(n);
-  std::vector<std::array<std::uint32_t, 256>> offsets(blocks);
-  for (int shift = 32; shift < 64; shift += 8) {
-    tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
-      offsets[b].fill(0);
-      for (std::size_t i = b * block; i < std::min(n, (b + 1) * block); ++i)
-        ++offsets[b][(keys[i] >> shift) & 255];
-    });
+  constexpr int shifts[3] = {32, 43, 54};
+  constexpr std::size_t radix = 1 << 11;
+  std::vector<std::uint32_t> offsets(blocks * 3 * radix, 0);  // [block][pass][digit]
+  auto offset = [&](std::size_t b, int pass, std::uint64_t digit) -> std::uint32_t& {
+    return offsets[(b * 3 + std::size_t(pass)) * radix + digit];
+  };
+  tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
+    for (std::size_t i = b * block; i < std::min(n, (b + 1) * block); ++i)
+      for (int pass = 0; pass < 3; ++pass)
+        ++offset(b, pass, (keys[i] >> shifts[pass]) & (radix - 1));
+  });
+  UninitializedVector<std::uint64_t> other(n);
+  for (int pass = 0; pass < 3; ++pass) {
     std::uint32_t start = 0;
     bool constant = false;
-    for (std::size_t digit = 0; digit < 256; ++digit)
+    for (std::size_t digit = 0; digit < radix; ++digit)
       for (std::size_t b = 0; b < blocks; ++b) {
-        const std::uint32_t count = offsets[b][digit];
+        std::uint32_t& at = offset(b, pass, digit);
+        const std::uint32_t count = at;
         constant = constant || count == n;
-        offsets[b][digit] = start;
+        at = start;
         start += count;
       }
     if (constant) continue;
+    // The digits of this pass were counted on the keys' first order: recount per block on the
+    // current one.
+    if (pass > 0) {
+      tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
+        for (std::size_t digit = 0; digit < radix; ++digit) offset(b, pass, digit) = 0;
+        for (std::size_t i = b * block; i < std::min(n, (b + 1) * block); ++i)
+          ++offset(b, pass, (keys[i] >> shifts[pass]) & (radix - 1));
+      });
+      std::uint32_t restart = 0;
+      for (std::size_t digit = 0; digit < radix; ++digit)
+        for (std::size_t b = 0; b < blocks; ++b) {
+          std::uint32_t& at = offset(b, pass, digit);
+          const std::uint32_t count = at;
+          at = restart;
+          restart += count;
+        }
+    }
     tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
-      std::array<std::uint32_t, 256>& at = offsets[b];
       for (std::size_t i = b * block; i < std::min(n, (b + 1) * block); ++i)
-        other[at[(keys[i] >> shift) & 255]++] = keys[i];
+        other[offset(b, pass, (keys[i] >> shifts[pass]) & (radix - 1))++] = keys[i];
     });
     keys.swap(other);
   }
@@ -103,8 +126,8 @@ LightBvhLanes::LightBvhLanes(const std::vector<RangedLight>& lights) {
 
   // Morton codes in lanes; the sort key holds the code's upper 32 bits over the light index (so
   // equal upper halves stay in index order), the lower 31 bits are kept for the ties.
-  std::vector<std::uint64_t> keys(n);
-  std::vector<std::uint32_t> low_bits(n);
+  UninitializedVector<std::uint64_t> keys(n);
+  UninitializedVector<std::uint32_t> low_bits(n);
   tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
     const std::size_t first = b * block, count = std::min(n, first + block) - first;
     morton_codes(lights.data() + first, count, low, extent, keys.data() + first);
@@ -135,10 +158,15 @@ LightBvhLanes::LightBvhLanes(const std::vector<RangedLight>& lights) {
 
   // The leaves: order and spheres, gathered once here and read in order by every query.
   order.resize(n);
-  for (int k = 0; k < 4; ++k)
-    sphere[k].assign(padded(n), k < 3 ? std::numeric_limits<float>::quiet_NaN() : 0.0f);
+  for (int k = 0; k < 4; ++k) {
+    sphere[k].resize(padded(n));
+    std::fill(sphere[k].begin() + std::ptrdiff_t(n), sphere[k].end(),
+              k < 3 ? std::numeric_limits<float>::quiet_NaN() : 0.0f);
+  }
   tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
     for (std::size_t leaf = b * block; leaf < std::min(n, (b + 1) * block); ++leaf) {
+      // The lights are read in Morton order, far apart: ask for one a few leaves ahead.
+      if (leaf + 16 < n) __builtin_prefetch(&lights[std::uint32_t(keys[leaf + 16])]);
       const std::uint32_t index = std::uint32_t(keys[leaf]);
       const RangedLight& l = lights[index];
       order[leaf] = index;

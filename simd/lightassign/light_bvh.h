@@ -8,6 +8,9 @@
 // bit, and the same leaf box decisions (tests/simd/lightassign/ diff them on every Highway
 // target).
 #include <cstdint>
+#include <memory>
+#include <new>
+#include <utility>
 #include <vector>
 
 #include "reference/lightassign/light_bvh.h"
@@ -15,10 +18,34 @@
 
 namespace shadowcts::simd {
 
+// Leaves a value-constructed element unset: the build writes every element of its arrays, and at a
+// million lights zeroing them first costs a pass over tens of megabytes.
+template <class T>
+struct Uninitialized : std::allocator<T> {
+  using value_type = T;
+  template <class U>
+  struct rebind {
+    using other = Uninitialized<U>;
+  };
+  Uninitialized() = default;
+  template <class U>
+  Uninitialized(const Uninitialized<U>&) noexcept {}
+  template <class U>
+  void construct(U* p) noexcept {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+template <class T>
+using UninitializedVector = std::vector<T, Uninitialized<T>>;
+
 // Boxes as structure of arrays; entries past `count` up to a multiple of 32 are empty
 // (min = +inf, max = -inf), so a 32-wide load never reads past the end and never overlaps.
 struct BoxArrays {
-  std::vector<float> min[3], max[3];
+  UninitializedVector<float> min[3], max[3];
   std::size_t count = 0;
 
   // Sized for `count` boxes, the padding set to empty boxes, the rest unset.
@@ -30,11 +57,11 @@ struct LightBvhLanes {
 
   explicit LightBvhLanes(const std::vector<RangedLight>& lights);
 
-  std::vector<std::uint32_t> order;  // LightBvh::light_order: the light index of each leaf
+  UninitializedVector<std::uint32_t> order;  // LightBvh::light_order: the light index of each leaf
   // Each leaf's sphere (centre x, y, z and range, the light's floats), padded to a multiple of 32
   // with NaN centres (which overlap nothing): the leaf test loads them instead of gathering the
   // lights.
-  std::vector<float> sphere[4];
+  UninitializedVector<float> sphere[4];
   std::vector<BoxArrays> levels;  // as LightBvh::levels(): [0] over the leaves, last: the root
 };
 

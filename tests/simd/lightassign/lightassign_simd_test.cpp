@@ -246,7 +246,8 @@ std::string bvh_difference(const std::vector<RangedLight>& lights) {
   const LightBvh ref(lights);
   const simd::LightBvhLanes lanes(lights);
   std::ostringstream why;
-  if (lanes.order != ref.light_order()) {
+  if (!std::equal(lanes.order.begin(), lanes.order.end(), ref.light_order().begin(),
+                  ref.light_order().end())) {
     for (std::size_t i = 0; i < std::min(lanes.order.size(), ref.light_order().size()); ++i)
       if (lanes.order[i] != ref.light_order()[i]) {
         why << "leaf " << i << ": light " << ref.light_order()[i] << " vs " << lanes.order[i];
