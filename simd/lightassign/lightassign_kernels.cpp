@@ -362,6 +362,26 @@ ListWork CullTileCandidates(const std::vector<RangedLight>& lights, const ViewFr
   return w;
 }
 
+void ViewDepths(const ViewFrame& frame, const float* x, const float* y, const float* z,
+                std::size_t count, double* depth) {
+  const hn::ScalableTag<double> d;
+  const hn::Rebind<float, decltype(d)> df;
+  const std::size_t lanes = hn::Lanes(d);
+  const auto ox = hn::Set(d, frame.origin[0]), oy = hn::Set(d, frame.origin[1]),
+             oz = hn::Set(d, frame.origin[2]);
+  std::size_t i = 0;
+  for (; i + lanes <= count; i += lanes) {
+    const auto dx = hn::Sub(hn::PromoteTo(d, hn::LoadU(df, x + i)), ox);
+    const auto dy = hn::Sub(hn::PromoteTo(d, hn::LoadU(df, y + i)), oy);
+    const auto dz = hn::Sub(hn::PromoteTo(d, hn::LoadU(df, z + i)), oz);
+    hn::StoreU(dot3(dx, dy, dz, frame.forward), d, depth + i);
+  }
+  for (; i < count; ++i)
+    depth[i] = (((double(x[i]) - frame.origin[0]) * frame.forward[0] +
+                 (double(y[i]) - frame.origin[1]) * frame.forward[1]) +
+                (double(z[i]) - frame.origin[2]) * frame.forward[2]);
+}
+
 void SlicesOf(const ClusterGrid& grid, const double* depth, std::size_t count,
               std::uint32_t* slice) {
   const hn::ScalableTag<double> d;
@@ -411,6 +431,12 @@ HWY_EXPORT(LeafNodeBoxes);
 HWY_EXPORT(NodeBoxes);
 HWY_EXPORT(CullTileCandidates);
 HWY_EXPORT(SlicesOf);
+HWY_EXPORT(ViewDepths);
+
+void view_depths(const ViewFrame& frame, const float* x, const float* y, const float* z,
+                 std::size_t count, double* depth) {
+  HWY_DYNAMIC_DISPATCH(ViewDepths)(frame, x, y, z, count, depth);
+}
 
 void slices_of(const ClusterGrid& grid, const double* depth, std::size_t count,
                std::uint32_t* slice) {

@@ -59,6 +59,11 @@ ListWork cull_tile_candidates(const std::vector<RangedLight>& lights, const View
                               const TileVolume& tile, const std::uint32_t* candidates,
                               std::size_t count, std::vector<std::uint32_t>& list);
 
+// ViewFrustum::depth of the points (x[i], y[i], z[i]), i < count, into depth[i]: dot(p - eye,
+// forward) in double with glm's order of operations.
+void view_depths(const ViewFrame& frame, const float* x, const float* y, const float* z,
+                 std::size_t count, double* depth);
+
 // ClusterGrid::slice_of(depth[i]) for i < count into slice[i]: eq. 2 in lanes (Highway's
 // logarithm), the reference's own slice_of where the lanes' quotient lies within 1e-10 (relative)
 // of a slice boundary, far above the few ulps by which the two logarithms can differ.

@@ -6,69 +6,97 @@
 #include <glm/vec3.hpp>
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include "reference/lightassign/view_frustum.h"
 
 namespace shadowcts::simd {
 
-UniqueClusters find_unique_clusters(const std::vector<std::uint32_t>& pixel_key,
-                                    const std::vector<std::uint8_t>& clustered, std::uint32_t width,
-                                    std::uint32_t height, std::uint32_t tile_size) {
+std::vector<std::uint32_t> regular_rows(const RegularSamples& regular, std::uint32_t width,
+                                        std::uint32_t height) {
+  std::vector<std::uint32_t> start(std::size_t(height) + 1, std::uint32_t(regular.size()));
+  tbb::parallel_for(std::uint32_t(0), height, [&](std::uint32_t y) {
+    start[y] = std::uint32_t(
+        std::lower_bound(regular.index.begin(), regular.index.end(), std::uint64_t(y) * width) -
+        regular.index.begin());
+  });
+  return start;
+}
+
+UniqueClusters find_unique_clusters(const RegularSamples& regular,
+                                    const std::vector<std::uint32_t>& key, std::uint32_t width,
+                                    std::uint32_t height, std::uint32_t tile_size,
+                                    std::vector<std::uint32_t>& member_regular) {
   const std::uint32_t tiles_x = (width + tile_size - 1) / tile_size;
   const std::uint32_t tiles_y = (height + tile_size - 1) / tile_size;
   const std::uint32_t tile_count = tiles_x * tiles_y;
-  auto for_each_pixel = [&](std::uint32_t t, auto&& f) {
-    const std::uint32_t x0 = (t % tiles_x) * tile_size, y0 = (t / tiles_x) * tile_size;
-    const std::uint32_t x1 = std::min(x0 + tile_size, width), y1 = std::min(y0 + tile_size, height);
-    for (std::uint32_t y = y0; y < y1; ++y)
-      for (std::uint32_t x = x0; x < x1; ++x) {
-        const std::uint32_t s = y * width + x;
-        if (clustered[s]) f(s);
-      }
-  };
+  const std::size_t m = regular.size();
 
+  // Each pixel row's run of regular samples (a band's rows are consecutive), the tile column of
+  // every x (no division per sample), and each tile's count.
+  const std::vector<std::uint32_t> row_start = regular_rows(regular, width, height);
+  std::vector<std::uint32_t> column_of(width);
+  for (std::uint32_t x = 0; x < width; ++x) column_of[x] = x / tile_size;
+  auto band_rows = [&](std::uint32_t band, auto&& f) {
+    for (std::uint32_t y = band * tile_size; y < std::min(height, (band + 1) * tile_size); ++y)
+      for (std::uint32_t i = row_start[y]; i < row_start[y + 1]; ++i)
+        f(i, column_of[regular.index[i] - y * width]);
+  };
   std::vector<std::uint32_t> tile_offsets(std::size_t(tile_count) + 1, 0);
-  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, tile_count, 16), [&](const auto& r) {
-    for (std::uint32_t t = r.begin(); t != r.end(); ++t) {
-      std::uint32_t count = 0;
-      for_each_pixel(t, [&](std::uint32_t) { ++count; });
-      tile_offsets[t + 1] = count;
-    }
+  tbb::parallel_for(std::uint32_t(0), tiles_y, [&](std::uint32_t band) {
+    std::uint32_t* count = tile_offsets.data() + std::size_t(band) * tiles_x + 1;
+    band_rows(band, [&](std::uint32_t, std::uint32_t column) { ++count[column]; });
   });
   for (std::uint32_t t = 0; t < tile_count; ++t) tile_offsets[t + 1] += tile_offsets[t];
 
-  // Per tile: its (key, sample) pairs in sample order, sorted, and the count of distinct keys.
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> by_tile(tile_offsets.back());
+  // Per band: the samples bucketed by tile in pixel order, then each tile's counting sort by key
+  // into place, and its count of distinct keys.
+  // by_tile: regular indices, in the reference's by-tile (key, sample) order.
+  std::vector<std::uint32_t>& by_tile = member_regular;
+  by_tile.resize(m);
   std::vector<std::uint32_t> cluster_offsets(std::size_t(tile_count) + 1, 0);
-  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, tile_count, 16), [&](const auto& r) {
-    for (std::uint32_t t = r.begin(); t != r.end(); ++t) {
-      std::uint32_t e = tile_offsets[t];
-      std::uint32_t low = 0xFFFFFFFFu, high = 0;
-      for_each_pixel(t, [&](std::uint32_t s) {
-        by_tile[e++] = {pixel_key[s], s};
-        low = std::min(low, pixel_key[s]);
-        high = std::max(high, pixel_key[s]);
-      });
-      const auto first = by_tile.begin() + tile_offsets[t];
-      const auto last = by_tile.begin() + tile_offsets[t + 1];
-      // Sorted by (key, sample), a total order: the pairs are in sample order already, so a
-      // stable counting sort by key gives the reference's std::sort order. A tile's keys differ
-      // only in their slice and normal bits, usually a narrow range.
-      const std::size_t count = std::size_t(last - first);
-      if (count > 1 && std::uint64_t(high) - low < 4 * count + 64) {
-        std::vector<std::uint32_t> starts(std::size_t(high - low) + 2, 0);
-        for (auto it = first; it != last; ++it) ++starts[it->first - low + 1];
-        for (std::size_t k = 1; k < starts.size(); ++k) starts[k] += starts[k - 1];
-        std::vector<std::pair<std::uint32_t, std::uint32_t>> sorted(count);
-        for (auto it = first; it != last; ++it) sorted[starts[it->first - low]++] = *it;
-        std::copy(sorted.begin(), sorted.end(), first);
-      } else {
-        std::sort(first, last);
+  struct Scratch {
+    std::vector<std::uint32_t> bucketed, fill, starts;
+  };
+  tbb::enumerable_thread_specific<Scratch> scratch;
+  tbb::parallel_for(std::uint32_t(0), tiles_y, [&](std::uint32_t band) {
+    Scratch& local = scratch.local();
+    const std::uint32_t first_tile = band * tiles_x, base = tile_offsets[first_tile];
+    local.bucketed.resize(tile_offsets[first_tile + tiles_x] - base);
+    local.fill.assign(tile_offsets.begin() + first_tile,
+                      tile_offsets.begin() + first_tile + tiles_x);
+    band_rows(band, [&](std::uint32_t i, std::uint32_t column) {
+      local.bucketed[local.fill[column]++ - base] = i;
+    });
+    for (std::uint32_t t = first_tile; t < first_tile + tiles_x; ++t) {
+      const std::uint32_t* first = local.bucketed.data() + (tile_offsets[t] - base);
+      const std::uint32_t* last = local.bucketed.data() + (tile_offsets[t + 1] - base);
+      std::uint32_t* out = by_tile.data() + tile_offsets[t];
+      if (first == last) continue;
+      std::uint32_t low = key[*first], high = low;
+      for (const std::uint32_t* it = first; it != last; ++it) {
+        low = std::min(low, key[*it]);
+        high = std::max(high, key[*it]);
       }
-      std::uint32_t distinct = 0;
-      for (auto it = first; it != last; ++it)
-        distinct += it == first || it->first != (it - 1)->first;
+      // A tile's keys differ in their slice and normal bits only: usually a narrow range.
+      const std::size_t count = std::size_t(last - first);
+      if (std::uint64_t(high) - low < 4 * count + 64) {
+        local.starts.assign(std::size_t(high - low) + 1, 0);
+        for (const std::uint32_t* it = first; it != last; ++it) ++local.starts[key[*it] - low];
+        std::uint32_t start = 0;
+        for (std::uint32_t& s : local.starts) start += std::exchange(s, start);
+        for (const std::uint32_t* it = first; it != last; ++it)
+          out[local.starts[key[*it] - low]++] = *it;
+      } else {
+        std::copy(first, last, out);
+        // (key, index) pairs are unique: a total order.
+        std::sort(out, out + count, [&](std::uint32_t a, std::uint32_t b) {
+          return key[a] != key[b] ? key[a] < key[b] : a < b;
+        });
+      }
+      std::uint32_t distinct = 1;
+      for (std::size_t e = 1; e < count; ++e) distinct += key[out[e]] != key[out[e - 1]];
       cluster_offsets[t + 1] = distinct;
     }
   });
@@ -79,34 +107,43 @@ UniqueClusters find_unique_clusters(const std::vector<std::uint32_t>& pixel_key,
   const std::uint32_t clusters = cluster_offsets.back();
   out.keys.resize(clusters);
   out.tiles.resize(clusters);
-  out.member_offsets.assign(std::size_t(clusters) + 1, 0);
-  out.members.resize(by_tile.size());
-  out.cluster_of_sample.assign(pixel_key.size(), UniqueClusters::no_cluster);
-  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, tile_count, 16), [&](const auto& r) {
-    for (std::uint32_t t = r.begin(); t != r.end(); ++t) {
-      std::uint32_t cluster = cluster_offsets[t] - 1;
+  out.member_offsets.resize(std::size_t(clusters) + 1);
+  out.members.resize(m);
+  out.cluster_of_sample.resize(std::size_t(width) * height);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.cluster_of_sample.size(), 1 << 16),
+                    [&](const auto& r) {
+                      std::fill(out.cluster_of_sample.begin() + std::ptrdiff_t(r.begin()),
+                                out.cluster_of_sample.begin() + std::ptrdiff_t(r.end()),
+                                UniqueClusters::no_cluster);
+                    });
+  tbb::parallel_for(std::uint32_t(0), tiles_y, [&](std::uint32_t band) {
+    for (std::uint32_t t = band * tiles_x; t < (band + 1) * tiles_x; ++t) {
+      std::uint32_t cluster = cluster_offsets[t] - 1, previous = 0;
       for (std::uint32_t e = tile_offsets[t]; e < tile_offsets[t + 1]; ++e) {
-        if (e == tile_offsets[t] || by_tile[e].first != by_tile[e - 1].first) {
+        const std::uint32_t i = by_tile[e], k = key[i];
+        if (e == tile_offsets[t] || k != previous) {
           ++cluster;
-          out.keys[cluster] = by_tile[e].first;
+          out.keys[cluster] = k;
           out.tiles[cluster] = t;
           out.member_offsets[cluster] = e;
+          previous = k;
         }
-        out.members[e] = by_tile[e].second;
-        out.cluster_of_sample[by_tile[e].second] = cluster;
+        const std::uint32_t s = regular.index[i];
+        out.members[e] = s;
+        out.cluster_of_sample[s] = cluster;
       }
     }
   });
-  out.member_offsets[clusters] = std::uint32_t(by_tile.size());
+  out.member_offsets[clusters] = std::uint32_t(m);
   return out;
 }
 
-std::uint32_t grow_to_contain_all(Aabb& box, const ViewSamples& samples, const std::uint32_t* first,
-                                  const std::uint32_t* last) {
+std::uint32_t grow_to_contain_all(Aabb& box, const RegularSamples& regular,
+                                  const std::uint32_t* first, const std::uint32_t* last) {
   if (first == last) return 0;
-  glm::vec3 low = samples.samples[*first].position, high = low;
+  glm::vec3 low = regular.position(*first), high = low;
   for (const std::uint32_t* m = first + 1; m < last; ++m) {
-    const glm::vec3& p = samples.samples[*m].position;
+    const float p[3] = {regular.px[*m], regular.py[*m], regular.pz[*m]};
     for (int i = 0; i < 3; ++i) {
       low[i] = p[i] < low[i] ? p[i] : low[i];
       high[i] = p[i] > high[i] ? p[i] : high[i];
@@ -118,7 +155,7 @@ std::uint32_t grow_to_contain_all(Aabb& box, const ViewSamples& samples, const s
     return 0;
   std::uint32_t grown = 0;
   for (const std::uint32_t* m = first; m < last; ++m)
-    grown += grow_to_contain(box, samples.samples[*m].position);
+    grown += grow_to_contain(box, regular.position(*m));
   return grown;
 }
 
