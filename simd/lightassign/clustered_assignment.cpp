@@ -61,21 +61,25 @@ AlgorithmOutput assign_lights_clustered(const PreparedScene& scene,
   const std::vector<std::uint32_t> row_start = regular_rows(regular, width, samples.height);
   std::vector<std::uint32_t> column_of(width);
   for (std::uint32_t x = 0; x < width; ++x) column_of[x] = x / settings.tile_size;
+  // The fields take disjoint bits, so a key is its tile's key (pack with k = normal = 0) or'ed
+  // with the slice and normal fields packed alone.
+  const int slice_shift = grid.bits_normal();
   tbb::parallel_for(std::uint32_t(0), samples.height, [&](std::uint32_t y) {
     double depth[block];
     std::uint32_t slice[block];
-    ClusterCoordinates coordinates;
-    coordinates.j = y / settings.tile_size;
+    std::vector<std::uint32_t> tile_key(grid.tiles_x());
+    for (std::uint32_t i = 0; i < grid.tiles_x(); ++i)
+      tile_key[i] = grid.pack({.i = i, .j = y / settings.tile_size, .k = 0, .normal = 0});
     for (std::size_t first = row_start[y]; first < row_start[y + 1]; first += block) {
       const std::size_t count = std::min<std::size_t>(block, row_start[y + 1] - first);
       depths(first, count, depth);
       slices_of(grid, depth, count, slice);
       for (std::size_t i = first; i < first + count; ++i) {
-        coordinates.i = column_of[regular.index[i] - y * width];
-        coordinates.k = slice[i - first];
+        std::uint32_t k = tile_key[column_of[regular.index[i] - y * width]] | slice[i - first]
+                                                                                  << slice_shift;
         if (settings.normal_divisions > 0)
-          coordinates.normal = quantize_normal(regular.normal(i), settings.normal_divisions);
-        key[i] = grid.pack(coordinates);
+          k |= quantize_normal(regular.normal(i), settings.normal_divisions);
+        key[i] = k;
       }
     }
   });

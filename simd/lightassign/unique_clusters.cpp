@@ -109,13 +109,7 @@ UniqueClusters find_unique_clusters(const RegularSamples& regular,
   out.tiles.resize(clusters);
   out.member_offsets.resize(std::size_t(clusters) + 1);
   out.members.resize(m);
-  out.cluster_of_sample.resize(std::size_t(width) * height);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.cluster_of_sample.size(), 1 << 16),
-                    [&](const auto& r) {
-                      std::fill(out.cluster_of_sample.begin() + std::ptrdiff_t(r.begin()),
-                                out.cluster_of_sample.begin() + std::ptrdiff_t(r.end()),
-                                UniqueClusters::no_cluster);
-                    });
+  out.cluster_of_sample.assign(std::size_t(width) * height, UniqueClusters::no_cluster);
   tbb::parallel_for(std::uint32_t(0), tiles_y, [&](std::uint32_t band) {
     for (std::uint32_t t = band * tiles_x; t < (band + 1) * tiles_x; ++t) {
       std::uint32_t cluster = cluster_offsets[t] - 1, previous = 0;
