@@ -103,6 +103,56 @@ struct LeafTest {
   }
 };
 
+// The 32 leaves from `first` against `box`: per lane the leaf box test (on the sphere, see
+// LeafTest) and the exact filter's sure answers, then in leaf order the exact test where the filter
+// is unsure; the lights that meet the box are appended. The padding's NaN centres fail the box
+// test.
+HWY_INLINE void test_leaves(const LightBvhLanes& bvh, const LeafTest& leaf, const Aabb& box,
+                            std::size_t first, std::vector<std::uint32_t>& list, ListWork& w) {
+  const hn::ScalableTag<double> dd;
+  const hn::Rebind<float, decltype(dd)> df;
+  const std::size_t dlanes = hn::Lanes(dd);
+  const std::uint64_t dlane_mask = dlanes >= 64 ? ~0ull : (1ull << dlanes) - 1;
+  w.nodes_tested += std::min(first + node_width, bvh.order.size()) - first;
+  std::uint64_t overlapping = 0, inside = 0, outside = 0;
+  for (std::size_t i = 0; i < node_width; i += dlanes) {
+    const std::size_t at = first + i;
+    const auto r = hn::PromoteTo(dd, hn::LoadU(df, bvh.sphere[3].data() + at));
+    const auto cx = hn::PromoteTo(dd, hn::LoadU(df, bvh.sphere[0].data() + at));
+    const auto cy = hn::PromoteTo(dd, hn::LoadU(df, bvh.sphere[1].data() + at));
+    const auto cz = hn::PromoteTo(dd, hn::LoadU(df, bvh.sphere[2].data() + at));
+    const std::uint64_t hit = mask_bits(dd, leaf.overlaps(dd, cx, cy, cz, r));
+    if (hit == 0) continue;
+    overlapping |= hit << i;
+    std::uint64_t in_bits = 0, out_bits = 0;
+    sphere_box_filter(dd, cx, cy, cz, hn::Mul(r, r), box, in_bits, out_bits);  // r^2: exact
+    inside |= (in_bits & dlane_mask) << i;
+    outside |= (out_bits & dlane_mask) << i;
+  }
+  if (overlapping == 0) return;
+  w.light_tests += std::uint64_t(std::popcount(overlapping));
+  for (std::uint64_t bits = overlapping; bits != 0; bits &= bits - 1) {
+    const std::size_t i = std::size_t(std::countr_zero(bits)), leaf_index = first + i;
+    bool meets = (inside >> i) & 1u;
+    if (!meets && !((outside >> i) & 1u))
+      meets = geometry::sphere_meets_box_exact(
+          glm::vec3(bvh.sphere[0][leaf_index], bvh.sphere[1][leaf_index],
+                    bvh.sphere[2][leaf_index]),
+          bvh.sphere[3][leaf_index], box.min, box.max);
+    if (meets) list.push_back(bvh.order[leaf_index]);
+  }
+}
+
+// The brute force: every leaf, no node tested.
+ListWork TestEveryLight(const LightBvhLanes& bvh, const Aabb& box,
+                        std::vector<std::uint32_t>& list) {
+  ListWork w;
+  const LeafTest leaf(box);
+  for (std::size_t first = 0; first < bvh.order.size(); first += node_width)
+    test_leaves(bvh, leaf, box, first, list, w);
+  return w;
+}
+
 ListWork QueryLightBvh(const LightBvhLanes& bvh, const Aabb& box,
                        std::vector<std::uint32_t>& list) {
   ListWork w;
@@ -116,45 +166,12 @@ ListWork QueryLightBvh(const LightBvhLanes& bvh, const Aabb& box,
   Entry stack[64 * node_width];
   std::size_t size = 0;
   stack[size++] = {std::uint32_t(top), 0};
-  const hn::ScalableTag<double> dd;
-  const hn::Rebind<float, decltype(dd)> df;
-  const std::size_t dlanes = hn::Lanes(dd);
-  const std::uint64_t dlane_mask = dlanes >= 64 ? ~0ull : (1ull << dlanes) - 1;
   const LeafTest leaf(box);
   while (size > 0) {
     const Entry e = stack[--size];
     const std::size_t first = std::size_t(e.node) * node_width;
     if (e.level == 0) {
-      w.nodes_tested += std::min(first + node_width, bvh.order.size()) - first;
-      // Per lane: the leaf box test (on the sphere, see LeafTest) and the exact filter's sure
-      // answers; the padding's NaN centres fail the box test.
-      std::uint64_t overlapping = 0, inside = 0, outside = 0;
-      for (std::size_t i = 0; i < node_width; i += dlanes) {
-        const std::size_t at = first + i;
-        const auto r = hn::PromoteTo(dd, hn::LoadU(df, bvh.sphere[3].data() + at));
-        const auto cx = hn::PromoteTo(dd, hn::LoadU(df, bvh.sphere[0].data() + at));
-        const auto cy = hn::PromoteTo(dd, hn::LoadU(df, bvh.sphere[1].data() + at));
-        const auto cz = hn::PromoteTo(dd, hn::LoadU(df, bvh.sphere[2].data() + at));
-        const std::uint64_t hit = mask_bits(dd, leaf.overlaps(dd, cx, cy, cz, r));
-        if (hit == 0) continue;
-        overlapping |= hit << i;
-        std::uint64_t in_bits = 0, out_bits = 0;
-        sphere_box_filter(dd, cx, cy, cz, hn::Mul(r, r), box, in_bits, out_bits);  // r^2: exact
-        inside |= (in_bits & dlane_mask) << i;
-        outside |= (out_bits & dlane_mask) << i;
-      }
-      if (overlapping == 0) continue;
-      w.light_tests += std::uint64_t(std::popcount(overlapping));
-      for (std::uint64_t bits = overlapping; bits != 0; bits &= bits - 1) {
-        const std::size_t i = std::size_t(std::countr_zero(bits)), leaf_index = first + i;
-        bool meets = (inside >> i) & 1u;
-        if (!meets && !((outside >> i) & 1u))
-          meets = geometry::sphere_meets_box_exact(
-              glm::vec3(bvh.sphere[0][leaf_index], bvh.sphere[1][leaf_index],
-                        bvh.sphere[2][leaf_index]),
-              bvh.sphere[3][leaf_index], box.min, box.max);
-        if (meets) list.push_back(bvh.order[leaf_index]);
-      }
+      test_leaves(bvh, leaf, box, first, list, w);
       continue;
     }
     const BoxArrays& children = bvh.levels[e.level - 1];
@@ -428,6 +445,7 @@ HWY_AFTER_NAMESPACE();
 namespace shadowcts::simd {
 
 HWY_EXPORT(QueryLightBvh);
+HWY_EXPORT(TestEveryLight);
 HWY_EXPORT(MortonCodes);
 HWY_EXPORT(LeafNodeBoxes);
 HWY_EXPORT(NodeBoxes);
@@ -457,6 +475,11 @@ void leaf_node_boxes(const LightBvhLanes& bvh, std::size_t first, std::size_t co
 
 void node_boxes(const BoxArrays& children, std::size_t first, std::size_t count, BoxArrays& level) {
   HWY_DYNAMIC_DISPATCH(NodeBoxes)(children, first, count, level);
+}
+
+ListWork test_every_light(const LightBvhLanes& bvh, const Aabb& box,
+                          std::vector<std::uint32_t>& list) {
+  return HWY_DYNAMIC_DISPATCH(TestEveryLight)(bvh, box, list);
 }
 
 ListWork query_light_bvh(const LightBvhLanes& bvh, const Aabb& box,

@@ -33,6 +33,12 @@ void node_boxes(const BoxArrays& children, std::size_t first, std::size_t count,
 ListWork query_light_bvh(const LightBvhLanes& bvh, const Aabb& box,
                          std::vector<std::uint32_t>& list);
 
+// The brute force of the baseline (bench/lightassign_simd_bench.cpp): every light against
+// the box by the leaf tests of query_light_bvh, no node tested; the same list in the same (Morton)
+// order. nodes_tested counts the lights, light_tests those whose leaf box overlaps.
+ListWork test_every_light(const LightBvhLanes& bvh, const Aabb& box,
+                          std::vector<std::uint32_t>& list);
+
 // The camera frame of ViewFrustum (the same glm operations on the same inputs give the same
 // doubles): to_view(p) = (dot(p - origin, right), dot(p - origin, up), dot(p - origin, forward)).
 struct ViewFrame {
