@@ -38,9 +38,9 @@ AlgorithmOutput assign_lights_tiled(const PreparedScene& scene, std::uint32_t ti
       depth[regular.index[i]] = frustum.depth(glm::dvec3(regular.position(i)));
   });
   std::vector<std::uint32_t> member_regular;
-  const UniqueClusters tiles =
-      find_unique_clusters(regular, std::vector<std::uint32_t>(regular.size(), 0), samples.width,
-                           samples.height, tile_size, member_regular);
+  const std::vector<std::uint32_t> no_key(regular.size(), 0);
+  const UniqueClusters tiles = find_unique_clusters(regular, no_key.data(), samples.width,
+                                                    samples.height, tile_size, member_regular);
   const std::size_t lists = tiles.keys.size();
 
   // Per tile: the min/max depth sub-frustum, the declared box, and what its plane test reads.

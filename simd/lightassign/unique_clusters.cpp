@@ -24,9 +24,9 @@ std::vector<std::uint32_t> regular_rows(const RegularSamples& regular, std::uint
   return start;
 }
 
-UniqueClusters find_unique_clusters(const RegularSamples& regular,
-                                    const std::vector<std::uint32_t>& key, std::uint32_t width,
-                                    std::uint32_t height, std::uint32_t tile_size,
+UniqueClusters find_unique_clusters(const RegularSamples& regular, const std::uint32_t* key,
+                                    std::uint32_t width, std::uint32_t height,
+                                    std::uint32_t tile_size,
                                     std::vector<std::uint32_t>& member_regular) {
   const std::uint32_t tiles_x = (width + tile_size - 1) / tile_size;
   const std::uint32_t tiles_y = (height + tile_size - 1) / tile_size;

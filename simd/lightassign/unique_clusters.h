@@ -23,9 +23,9 @@ std::vector<std::uint32_t> regular_rows(const RegularSamples& regular, std::uint
 // key[i]: the cluster key of regular sample i; view_samples: width x height, the size of
 // cluster_of_sample. member_regular receives the regular index of every member (the order of
 // members), for reading the members' positions and normals as arrays.
-UniqueClusters find_unique_clusters(const RegularSamples& regular,
-                                    const std::vector<std::uint32_t>& key, std::uint32_t width,
-                                    std::uint32_t height, std::uint32_t tile_size,
+UniqueClusters find_unique_clusters(const RegularSamples& regular, const std::uint32_t* key,
+                                    std::uint32_t width, std::uint32_t height,
+                                    std::uint32_t tile_size,
                                     std::vector<std::uint32_t>& member_regular);
 
 // grow_to_contain (reference/lightassign/view_frustum.h) of `box` by the positions of regular

@@ -178,6 +178,15 @@ TEST(SimdLightAssign, IdenticalWithANearFarRatioOf1e7) {
   expect_identical(c, generate_view_samples(c), "near/far 1e-7");
 }
 
+// Samples past the far plane (the far plane moved in after they were cast): the slices reach the
+// deepest sample, more of them than the far plane needs.
+TEST(SimdLightAssign, IdenticalWithSamplesPastTheFarPlane) {
+  Case c = small_city();
+  const ViewSamples samples = generate_view_samples(c);
+  c.camera.far_plane *= 0.25f;
+  expect_identical(c, samples, "samples past the far plane");
+}
+
 // Lights whose spheres touch cluster boxes within rounding: the exact fallback decides them.
 TEST(SimdLightAssign, IdenticalWithLightsTangentToTheBoxes) {
   Case c = small_city();
