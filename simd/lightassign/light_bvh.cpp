@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <utility>
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
@@ -19,59 +21,100 @@ std::size_t padded(std::size_t count) {
   return (count + LightBvh::branching - 1) / LightBvh::branching * LightBvh::branching;
 }
 
-// Stable LSD radix sort of `keys` by their upper 32 bits in three passes (11, 11 and 10 bits)
-// over fixed blocks; the histograms of all passes come from one read, and a pass whose digit is
-// the same for every key is skipped.
-void sort_by_high_half(UninitializedVector<std::uint64_t>& keys) {
+// The leaves in Morton order: the light indices of `keys` (the code's upper 32 bits over the
+// light index, in index order) sorted by (code, index) into `order`, the lights' spheres laid out
+// in that order. One parallel pass
+// moves each key and its light's sphere, read in index order, into a bucket by the top 8 bits
+// (few buckets: few write streams); each bucket is then ordered in cache: its keys by the other 24
+// bits of the upper half (three 8-bit LSD passes over (bits, position), or std::sort when small),
+// runs of equal upper halves
+// by the lower 31 bits of the code (low_bits) and the index. No light is read out of order.
+void morton_order(const std::vector<RangedLight>& lights,
+                  const UninitializedVector<std::uint64_t>& keys,
+                  const UninitializedVector<std::uint32_t>& low_bits,
+                  UninitializedVector<std::uint32_t>& order, UninitializedVector<float>* sphere) {
   const std::size_t n = keys.size();
   const std::size_t blocks = (n + block - 1) / block;
-  constexpr int shifts[3] = {32, 43, 54};
-  constexpr std::size_t radix = 1 << 11;
-  std::vector<std::uint32_t> offsets(blocks * 3 * radix, 0);  // [block][pass][digit]
-  auto offset = [&](std::size_t b, int pass, std::uint64_t digit) -> std::uint32_t& {
-    return offsets[(b * 3 + std::size_t(pass)) * radix + digit];
-  };
+  constexpr int top_shift = 56;
+  constexpr std::size_t buckets = 1 << 8;
+  std::vector<std::uint32_t> offsets(blocks * buckets, 0);  // [block][bucket]
   tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
+    std::uint32_t* count = offsets.data() + b * buckets;
     for (std::size_t i = b * block; i < std::min(n, (b + 1) * block); ++i)
-      for (int pass = 0; pass < 3; ++pass)
-        ++offset(b, pass, (keys[i] >> shifts[pass]) & (radix - 1));
+      ++count[keys[i] >> top_shift];
   });
-  UninitializedVector<std::uint64_t> other(n);
-  for (int pass = 0; pass < 3; ++pass) {
-    std::uint32_t start = 0;
-    bool constant = false;
-    for (std::size_t digit = 0; digit < radix; ++digit)
-      for (std::size_t b = 0; b < blocks; ++b) {
-        std::uint32_t& at = offset(b, pass, digit);
-        const std::uint32_t count = at;
-        constant = constant || count == n;
-        at = start;
-        start += count;
-      }
-    if (constant) continue;
-    // The digits of this pass were counted on the keys' first order: recount per block on the
-    // current one.
-    if (pass > 0) {
-      tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
-        for (std::size_t digit = 0; digit < radix; ++digit) offset(b, pass, digit) = 0;
-        for (std::size_t i = b * block; i < std::min(n, (b + 1) * block); ++i)
-          ++offset(b, pass, (keys[i] >> shifts[pass]) & (radix - 1));
-      });
-      std::uint32_t restart = 0;
-      for (std::size_t digit = 0; digit < radix; ++digit)
-        for (std::size_t b = 0; b < blocks; ++b) {
-          std::uint32_t& at = offset(b, pass, digit);
-          const std::uint32_t count = at;
-          at = restart;
-          restart += count;
-        }
-    }
-    tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
-      for (std::size_t i = b * block; i < std::min(n, (b + 1) * block); ++i)
-        other[offset(b, pass, (keys[i] >> shifts[pass]) & (radix - 1))++] = keys[i];
-    });
-    keys.swap(other);
+  std::vector<std::uint32_t> bucket_start(buckets + 1, 0);
+  std::uint32_t start = 0;
+  for (std::size_t bucket = 0; bucket < buckets; ++bucket) {
+    bucket_start[bucket] = start;
+    for (std::size_t b = 0; b < blocks; ++b)
+      start += std::exchange(offsets[b * buckets + bucket], start);
   }
+  bucket_start[buckets] = start;
+  struct Sphere {
+    float x, y, z, range;
+  };
+  UninitializedVector<std::uint64_t> bucketed(n);
+  UninitializedVector<Sphere> bucketed_sphere(n);
+  tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
+    std::uint32_t* at = offsets.data() + b * buckets;
+    for (std::size_t i = b * block; i < std::min(n, (b + 1) * block); ++i) {
+      const std::uint32_t position = at[keys[i] >> top_shift]++;
+      bucketed[position] = keys[i];
+      const RangedLight& l = lights[i];
+      bucketed_sphere[position] = {l.centre.x, l.centre.y, l.centre.z, l.range};
+    }
+  });
+  tbb::enumerable_thread_specific<std::vector<std::uint64_t>> scratch;
+  tbb::parallel_for(std::size_t(0), buckets, [&](std::size_t bucket) {
+    const std::size_t first = bucket_start[bucket], count = bucket_start[bucket + 1] - first;
+    if (count == 0) return;
+    // (the upper half's other 24 bits, position in the bucket): sorted, a stable order.
+    std::vector<std::uint64_t>& local = scratch.local();
+    local.resize(2 * count);
+    std::uint64_t* from = local.data();
+    std::uint64_t* to = local.data() + count;
+    for (std::size_t p = 0; p < count; ++p)
+      from[p] = (bucketed[first + p] >> 32 & 0xFFFFFF) << 32 | p;
+    if (count <= 128) {
+      std::sort(from, from + count);
+    } else {
+      std::uint32_t histogram[256];
+      for (const auto& [shift, mask] :
+           {std::pair(32, 255u), std::pair(40, 255u), std::pair(48, 255u)}) {
+        std::fill(histogram, histogram + 256, 0u);
+        for (std::size_t i = 0; i < count; ++i) ++histogram[(from[i] >> shift) & mask];
+        std::uint32_t position = 0;
+        for (std::uint32_t& h : histogram) position += std::exchange(h, position);
+        for (std::size_t i = 0; i < count; ++i)
+          to[histogram[(from[i] >> shift) & mask]++] = from[i];
+        std::swap(from, to);
+      }
+    }
+    // Equal upper halves: by the code's lower bits, then the index.
+    const auto key_at = [&](std::uint64_t entry) {
+      return bucketed[first + (entry & 0xFFFFFFFFu)];
+    };
+    for (std::size_t i = 0; i < count;) {
+      std::size_t end = i + 1;
+      while (end < count && from[end] >> 32 == from[i] >> 32) ++end;
+      if (end - i > 1)
+        std::sort(from + i, from + end, [&](std::uint64_t x, std::uint64_t y) {
+          const std::uint64_t kx = key_at(x), ky = key_at(y);
+          const std::uint32_t lx = low_bits[kx & 0xFFFFFFFFu], ly = low_bits[ky & 0xFFFFFFFFu];
+          return lx != ly ? lx < ly : kx < ky;
+        });
+      i = end;
+    }
+    for (std::size_t r = 0; r < count; ++r) {
+      const std::size_t p = first + (from[r] & 0xFFFFFFFFu), leaf = first + r;
+      order[leaf] = std::uint32_t(bucketed[p]);
+      sphere[0][leaf] = bucketed_sphere[p].x;
+      sphere[1][leaf] = bucketed_sphere[p].y;
+      sphere[2][leaf] = bucketed_sphere[p].z;
+      sphere[3][leaf] = bucketed_sphere[p].range;
+    }
+  });
 }
 
 }  // namespace
@@ -136,46 +179,14 @@ LightBvhLanes::LightBvhLanes(const std::vector<RangedLight>& lights) {
       keys[i] = (keys[i] >> 31) << 32 | i;
     }
   });
-  sort_by_high_half(keys);
-  // Runs of equal upper halves in (code, index) order; each block sorts the runs starting in it.
-  tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
-    const auto high = [&](std::size_t i) { return keys[i] >> 32; };
-    std::size_t i = b * block;
-    while (i > 0 && i < n && high(i) == high(i - 1)) ++i;
-    while (i < std::min(n, (b + 1) * block)) {
-      std::size_t end = i + 1;
-      while (end < n && high(end) == high(i)) ++end;
-      if (end - i > 1)
-        std::sort(keys.begin() + std::ptrdiff_t(i), keys.begin() + std::ptrdiff_t(end),
-                  [&](std::uint64_t x, std::uint64_t y) {
-                    const std::uint32_t lx = low_bits[x & 0xFFFFFFFFu],
-                                        ly = low_bits[y & 0xFFFFFFFFu];
-                    return lx != ly ? lx < ly : x < y;
-                  });
-      i = end;
-    }
-  });
-
-  // The leaves: order and spheres, gathered once here and read in order by every query.
+  // The leaves: order and spheres, in Morton order, read in order by every query.
   order.resize(n);
   for (int k = 0; k < 4; ++k) {
     sphere[k].resize(padded(n));
     std::fill(sphere[k].begin() + std::ptrdiff_t(n), sphere[k].end(),
               k < 3 ? std::numeric_limits<float>::quiet_NaN() : 0.0f);
   }
-  tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
-    for (std::size_t leaf = b * block; leaf < std::min(n, (b + 1) * block); ++leaf) {
-      // The lights are read in Morton order, far apart: ask for one a few leaves ahead.
-      if (leaf + 16 < n) __builtin_prefetch(&lights[std::uint32_t(keys[leaf + 16])]);
-      const std::uint32_t index = std::uint32_t(keys[leaf]);
-      const RangedLight& l = lights[index];
-      order[leaf] = index;
-      sphere[0][leaf] = l.centre.x;
-      sphere[1][leaf] = l.centre.y;
-      sphere[2][leaf] = l.centre.z;
-      sphere[3][leaf] = l.range;
-    }
-  });
+  morton_order(lights, keys, low_bits, order, sphere);
 
   // Levels of 32 consecutive children each, until one root.
   do {

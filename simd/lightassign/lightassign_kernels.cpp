@@ -209,9 +209,12 @@ void MortonCodes(const RangedLight* lights, std::size_t count, const double* low
   HWY_ALIGN std::uint64_t out[max_lanes];
   for (std::size_t start = 0; start < count; start += lanes) {
     const std::size_t n = std::min(lanes, count - start);
-    for (std::size_t i = 0; i < lanes; ++i)
-      for (int k = 0; k < 3; ++k)
-        centre[k][i] = double(lights[start + std::min(i, n - 1)].centre[k]);
+    for (std::size_t i = 0; i < lanes; ++i) {
+      const RangedLight& light = lights[start + (i < n ? i : n - 1)];
+      centre[0][i] = double(light.centre.x);
+      centre[1][i] = double(light.centre.y);
+      centre[2][i] = double(light.centre.z);
+    }
     auto result = hn::Zero(du);
     for (int k = 0; k < 3; ++k) {
       const auto t =
