@@ -17,6 +17,7 @@
 
 #include "reference/lightassign/cluster_key.h"
 #include "reference/lightassign/lightassign_algorithm.h"
+#include "reference/lightassign/unique_clusters.h"
 #include "shadowcts/fixtures.h"
 #include "shadowcts/geometry/sphere_box.h"
 #include "shadowcts/prepared_scene.h"
@@ -24,6 +25,7 @@
 #include "simd/lightassign/light_bvh.h"
 #include "simd/lightassign/lightassign_algorithm.h"
 #include "simd/lightassign/lightassign_kernels.h"
+#include "simd/lightassign/unique_clusters.h"
 
 namespace shadowcts {
 namespace {
@@ -397,6 +399,60 @@ TEST(SimdLightAssign, QueriesAreTheReferenceTraversalOnEveryHighwayTarget) {
       }
       hwy::SetSupportedTargetsForTest(0);
     }
+  }
+}
+
+// The unique clusters band by band against the reference's find_unique_clusters on the same
+// keys: partial tiles at the image's edges, pixels without a sample, tiles with one key, with a
+// few, and with more keys than a counting sort over their range would take (std::sort).
+TEST(SimdLightAssign, UniqueClustersAreTheReferences) {
+  std::mt19937_64 random(9);
+  for (const auto& [width, height] :
+       {std::pair(100u, 70u), std::pair(64u, 64u), std::pair(33u, 95u)}) {
+    RegularSamples regular;
+    std::vector<std::uint32_t> key,
+        sample_tile(std::size_t(width) * height, UniqueClusters::no_cluster),
+        sample_key(sample_tile.size(), 0);
+    const std::uint32_t tiles_x = (width + 31) / 32;
+    for (std::uint32_t s = 0; s < width * height; ++s) {
+      if (random() % 7 == 0) continue;  // sky
+      const std::uint32_t x = s % width, y = s / width, tile = (y / 32) * tiles_x + x / 32;
+      std::uint32_t k;
+      switch (tile % 4) {
+        case 0:
+          k = 5;
+          break;
+        case 1:
+          k = std::uint32_t(random() % 3) << 8 | tile << 20;
+          break;
+        case 2:
+          k = std::uint32_t(random() % 40) * 997 + (tile << 24);
+          break;
+        default:
+          k = std::uint32_t(random());
+          break;
+      }
+      regular.index.push_back(s);
+      key.push_back(k);
+      sample_tile[s] = tile;
+      sample_key[s] = k;
+    }
+    regular.px.assign(regular.index.size(), 0.0f);
+    regular.py = regular.pz = regular.px;
+    const UniqueClusters want =
+        find_unique_clusters(sample_tile, sample_key, tiles_x * ((height + 31) / 32));
+    std::vector<std::uint32_t> member_regular;
+    const UniqueClusters got =
+        simd::find_unique_clusters(regular, key.data(), width, height, 32, member_regular);
+    SCOPED_TRACE(std::to_string(width) + " x " + std::to_string(height));
+    EXPECT_EQ(got.keys, want.keys);
+    EXPECT_EQ(got.tiles, want.tiles);
+    EXPECT_EQ(got.member_offsets, want.member_offsets);
+    EXPECT_EQ(got.members, want.members);
+    EXPECT_EQ(got.cluster_of_sample, want.cluster_of_sample);
+    ASSERT_EQ(member_regular.size(), got.members.size());
+    for (std::size_t e = 0; e < member_regular.size(); ++e)
+      ASSERT_EQ(regular.index[member_regular[e]], got.members[e]) << e;
   }
 }
 
