@@ -80,9 +80,9 @@ AlgorithmOutput assign_lights_clustered(const PreparedScene& scene,
       key[i] = k;
     }
   });
-  std::vector<std::uint32_t> member_regular;
+  UninitializedVector<std::uint32_t> member_regular;  // read instead of clusters.members
   UniqueClusters clusters = find_unique_clusters(regular, key.data(), width, samples.height,
-                                                 settings.tile_size, member_regular);
+                                                 settings.tile_size, member_regular, false);
   const std::size_t lists = clusters.keys.size();
 
   // Bounds and cones per cluster (Sections 3.2, 4.2), as the reference's, from the members'

@@ -8,39 +8,13 @@
 // bit, and the same leaf box decisions (tests/simd/lightassign/ diff them on every Highway
 // target).
 #include <cstdint>
-#include <memory>
-#include <new>
-#include <utility>
 #include <vector>
 
 #include "reference/lightassign/light_bvh.h"
 #include "shadowcts/case.h"
+#include "simd/lightassign/uninitialized_vector.h"
 
 namespace shadowcts::simd {
-
-// Leaves a value-constructed element unset: the build writes every element of its arrays, and at a
-// million lights zeroing them first costs a pass over tens of megabytes.
-template <class T>
-struct Uninitialized : std::allocator<T> {
-  using value_type = T;
-  template <class U>
-  struct rebind {
-    using other = Uninitialized<U>;
-  };
-  Uninitialized() = default;
-  template <class U>
-  Uninitialized(const Uninitialized<U>&) noexcept {}
-  template <class U>
-  void construct(U* p) noexcept {
-    ::new (static_cast<void*>(p)) U;
-  }
-  template <class U, class... Args>
-  void construct(U* p, Args&&... args) {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-  }
-};
-template <class T>
-using UninitializedVector = std::vector<T, Uninitialized<T>>;
 
 // Boxes as structure of arrays; entries past `count` up to a multiple of 32 are empty
 // (min = +inf, max = -inf), so a 32-wide load never reads past the end and never overlaps.

@@ -37,7 +37,7 @@ AlgorithmOutput assign_lights_tiled(const PreparedScene& scene, std::uint32_t ti
     for (std::size_t i = r.begin(); i != r.end(); ++i)
       depth[regular.index[i]] = frustum.depth(glm::dvec3(regular.position(i)));
   });
-  std::vector<std::uint32_t> member_regular;
+  UninitializedVector<std::uint32_t> member_regular;
   const std::vector<std::uint32_t> no_key(regular.size(), 0);
   const UniqueClusters tiles = find_unique_clusters(regular, no_key.data(), samples.width,
                                                     samples.height, tile_size, member_regular);

@@ -27,7 +27,8 @@ std::vector<std::uint32_t> regular_rows(const RegularSamples& regular, std::uint
 UniqueClusters find_unique_clusters(const RegularSamples& regular, const std::uint32_t* key,
                                     std::uint32_t width, std::uint32_t height,
                                     std::uint32_t tile_size,
-                                    std::vector<std::uint32_t>& member_regular) {
+                                    UninitializedVector<std::uint32_t>& member_regular,
+                                    bool with_members) {
   const std::uint32_t tiles_x = (width + tile_size - 1) / tile_size;
   const std::uint32_t tiles_y = (height + tile_size - 1) / tile_size;
   const std::uint32_t tile_count = tiles_x * tiles_y;
@@ -53,7 +54,7 @@ UniqueClusters find_unique_clusters(const RegularSamples& regular, const std::ui
   // Per band: the samples bucketed by tile in pixel order, then each tile's counting sort by key
   // into place, and its count of distinct keys.
   // by_tile: regular indices, in the reference's by-tile (key, sample) order.
-  std::vector<std::uint32_t>& by_tile = member_regular;
+  UninitializedVector<std::uint32_t>& by_tile = member_regular;
   by_tile.resize(m);
   std::vector<std::uint32_t> cluster_offsets(std::size_t(tile_count) + 1, 0);
   struct Scratch {
@@ -108,7 +109,7 @@ UniqueClusters find_unique_clusters(const RegularSamples& regular, const std::ui
   out.keys.resize(clusters);
   out.tiles.resize(clusters);
   out.member_offsets.resize(std::size_t(clusters) + 1);
-  out.members.resize(m);
+  if (with_members) out.members.resize(m);
   out.cluster_of_sample.assign(std::size_t(width) * height, UniqueClusters::no_cluster);
   tbb::parallel_for(std::uint32_t(0), tiles_y, [&](std::uint32_t band) {
     for (std::uint32_t t = band * tiles_x; t < (band + 1) * tiles_x; ++t) {
@@ -123,7 +124,7 @@ UniqueClusters find_unique_clusters(const RegularSamples& regular, const std::ui
           previous = k;
         }
         const std::uint32_t s = regular.index[i];
-        out.members[e] = s;
+        if (with_members) out.members[e] = s;
         out.cluster_of_sample[s] = cluster;
       }
     }

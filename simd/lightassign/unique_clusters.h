@@ -12,6 +12,7 @@
 #include "shadowcts/algorithm.h"
 #include "shadowcts/prepared_scene.h"
 #include "shadowcts/view_samples.h"
+#include "simd/lightassign/uninitialized_vector.h"
 
 namespace shadowcts::simd {
 
@@ -22,11 +23,13 @@ std::vector<std::uint32_t> regular_rows(const RegularSamples& regular, std::uint
 
 // key[i]: the cluster key of regular sample i; view_samples: width x height, the size of
 // cluster_of_sample. member_regular receives the regular index of every member (the order of
-// members), for reading the members' positions and normals as arrays.
+// members), for reading the members' positions and normals as arrays; `members` (the view sample
+// indices) is filled only when with_members.
 UniqueClusters find_unique_clusters(const RegularSamples& regular, const std::uint32_t* key,
                                     std::uint32_t width, std::uint32_t height,
                                     std::uint32_t tile_size,
-                                    std::vector<std::uint32_t>& member_regular);
+                                    UninitializedVector<std::uint32_t>& member_regular,
+                                    bool with_members = true);
 
 // grow_to_contain (reference/lightassign/view_frustum.h) of `box` by the positions of regular
 // samples first..last in order, returning how many grew it; members whose box lies inside `box`

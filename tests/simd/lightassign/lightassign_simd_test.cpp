@@ -441,7 +441,7 @@ TEST(SimdLightAssign, UniqueClustersAreTheReferences) {
     regular.py = regular.pz = regular.px;
     const UniqueClusters want =
         find_unique_clusters(sample_tile, sample_key, tiles_x * ((height + 31) / 32));
-    std::vector<std::uint32_t> member_regular;
+    simd::UninitializedVector<std::uint32_t> member_regular;
     const UniqueClusters got =
         simd::find_unique_clusters(regular, key.data(), width, height, 32, member_regular);
     SCOPED_TRACE(std::to_string(width) + " x " + std::to_string(height));
