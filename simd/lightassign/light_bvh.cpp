@@ -21,28 +21,24 @@ std::size_t padded(std::size_t count) {
   return (count + LightBvh::branching - 1) / LightBvh::branching * LightBvh::branching;
 }
 
+constexpr int top_shift = 56;  // the buckets of morton_order: the keys' top 8 bits
+constexpr std::size_t buckets = 1 << 8;
+
 // The leaves in Morton order: the light indices of `keys` (the code's upper 32 bits over the
 // light index, in index order) sorted by (code, index) into `order`, the lights' spheres laid out
-// in that order. One parallel pass
-// moves each key and its light's sphere, read in index order, into a bucket by the top 8 bits
-// (few buckets: few write streams); each bucket is then ordered in cache: its keys by the other 24
-// bits of the upper half (three 8-bit LSD passes over (bits, position), or std::sort when small),
-// runs of equal upper halves
-// by the lower 31 bits of the code (low_bits) and the index. No light is read out of order.
+// in that order. One parallel pass moves each key and its light's sphere, read in index order,
+// into a bucket by the top 8 bits (few buckets: few write streams; `offsets` holds each block's
+// count per bucket); each bucket is then ordered in cache: its keys by the other 24 bits of the
+// upper half (three 8-bit LSD passes over (bits, position), or std::sort when small), runs of
+// equal upper halves by the lower 31 bits of the code (low_bits) and the index. No light is read
+// out of order.
 void morton_order(const std::vector<RangedLight>& lights,
                   const UninitializedVector<std::uint64_t>& keys,
                   const UninitializedVector<std::uint32_t>& low_bits,
-                  UninitializedVector<std::uint32_t>& order, UninitializedVector<float>* sphere) {
+                  std::vector<std::uint32_t>& offsets, UninitializedVector<std::uint32_t>& order,
+                  UninitializedVector<float>* sphere) {
   const std::size_t n = keys.size();
   const std::size_t blocks = (n + block - 1) / block;
-  constexpr int top_shift = 56;
-  constexpr std::size_t buckets = 1 << 8;
-  std::vector<std::uint32_t> offsets(blocks * buckets, 0);  // [block][bucket]
-  tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
-    std::uint32_t* count = offsets.data() + b * buckets;
-    for (std::size_t i = b * block; i < std::min(n, (b + 1) * block); ++i)
-      ++count[keys[i] >> top_shift];
-  });
   std::vector<std::uint32_t> bucket_start(buckets + 1, 0);
   std::uint32_t start = 0;
   for (std::size_t bucket = 0; bucket < buckets; ++bucket) {
@@ -171,12 +167,15 @@ LightBvhLanes::LightBvhLanes(const std::vector<RangedLight>& lights) {
   // equal upper halves stay in index order), the lower 31 bits are kept for the ties.
   UninitializedVector<std::uint64_t> keys(n);
   UninitializedVector<std::uint32_t> low_bits(n);
+  std::vector<std::uint32_t> offsets(blocks * buckets, 0);  // [block][bucket]: the key counts
   tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
     const std::size_t first = b * block, count = std::min(n, first + block) - first;
     morton_codes(lights.data() + first, count, low, extent, keys.data() + first);
+    std::uint32_t* in_bucket = offsets.data() + b * buckets;
     for (std::size_t i = first; i < first + count; ++i) {
       low_bits[i] = std::uint32_t(keys[i] & 0x7FFFFFFFu);
       keys[i] = (keys[i] >> 31) << 32 | i;
+      ++in_bucket[keys[i] >> top_shift];
     }
   });
   // The leaves: order and spheres, in Morton order, read in order by every query.
@@ -186,7 +185,7 @@ LightBvhLanes::LightBvhLanes(const std::vector<RangedLight>& lights) {
     std::fill(sphere[k].begin() + std::ptrdiff_t(n), sphere[k].end(),
               k < 3 ? std::numeric_limits<float>::quiet_NaN() : 0.0f);
   }
-  morton_order(lights, keys, low_bits, order, sphere);
+  morton_order(lights, keys, low_bits, offsets, order, sphere);
 
   // Levels of 32 consecutive children each, until one root.
   do {
