@@ -51,14 +51,15 @@ UniqueClusters find_unique_clusters(const RegularSamples& regular, const std::ui
   });
   for (std::uint32_t t = 0; t < tile_count; ++t) tile_offsets[t + 1] += tile_offsets[t];
 
-  // Per band: the samples bucketed by tile in pixel order, then each tile's counting sort by key
+  // Per band: the samples bucketed by tile in pixel order, then each tile's stable sort by key
   // into place, and its count of distinct keys.
   // by_tile: regular indices, in the reference's by-tile (key, sample) order.
   UninitializedVector<std::uint32_t>& by_tile = member_regular;
   by_tile.resize(m);
   std::vector<std::uint32_t> cluster_offsets(std::size_t(tile_count) + 1, 0);
   struct Scratch {
-    std::vector<std::uint32_t> bucketed, fill, starts;
+    std::vector<std::uint32_t> bucketed, fill;
+    std::vector<std::uint8_t> slot;
   };
   tbb::enumerable_thread_specific<Scratch> scratch;
   tbb::parallel_for(std::uint32_t(0), tiles_y, [&](std::uint32_t band) {
@@ -75,29 +76,49 @@ UniqueClusters find_unique_clusters(const RegularSamples& regular, const std::ui
       const std::uint32_t* last = local.bucketed.data() + (tile_offsets[t + 1] - base);
       std::uint32_t* out = by_tile.data() + tile_offsets[t];
       if (first == last) continue;
-      std::uint32_t low = key[*first], high = low;
-      for (const std::uint32_t* it = first; it != last; ++it) {
-        low = std::min(low, key[*it]);
-        high = std::max(high, key[*it]);
-      }
-      // A tile's keys differ in their slice and normal bits only: usually a narrow range.
       const std::size_t count = std::size_t(last - first);
-      if (std::uint64_t(high) - low < 4 * count + 64) {
-        local.starts.assign(std::size_t(high - low) + 1, 0);
-        for (const std::uint32_t* it = first; it != last; ++it) ++local.starts[key[*it] - low];
-        std::uint32_t start = 0;
-        for (std::uint32_t& s : local.starts) start += std::exchange(s, start);
-        for (const std::uint32_t* it = first; it != last; ++it)
-          out[local.starts[key[*it] - low]++] = *it;
+      // A tile holds few distinct keys (its slices and normal cells): each sample finds its key's
+      // slot in a short list, most often the previous sample's; the slots in key order give each
+      // key's first position, and the samples go there in pixel order (stable).
+      constexpr std::uint32_t max_distinct = 64;
+      std::uint32_t distinct_key[max_distinct], members[max_distinct], distinct = 0, slot = 0;
+      local.slot.resize(count);
+      std::size_t j = 0;
+      for (; j < count; ++j) {
+        const std::uint32_t k = key[first[j]];
+        if (j == 0 || k != distinct_key[slot]) {
+          slot = 0;
+          while (slot < distinct && distinct_key[slot] != k) ++slot;
+          if (slot == distinct) {
+            if (distinct == max_distinct) break;
+            distinct_key[distinct] = k;
+            members[distinct++] = 0;
+          }
+        }
+        local.slot[j] = std::uint8_t(slot);
+        ++members[slot];
+      }
+      if (j == count) {
+        std::uint32_t rank[max_distinct], start[max_distinct];
+        for (std::uint32_t d = 0; d < distinct; ++d) rank[d] = d;
+        std::sort(rank, rank + distinct, [&](std::uint32_t x, std::uint32_t y) {
+          return distinct_key[x] < distinct_key[y];
+        });
+        std::uint32_t position = 0;
+        for (std::uint32_t d = 0; d < distinct; ++d) {
+          start[rank[d]] = position;
+          position += members[rank[d]];
+        }
+        for (std::size_t e = 0; e < count; ++e) out[start[local.slot[e]]++] = first[e];
       } else {
         std::copy(first, last, out);
         // (key, index) pairs are unique: a total order.
-        std::sort(out, out + count, [&](std::uint32_t a, std::uint32_t b) {
-          return key[a] != key[b] ? key[a] < key[b] : a < b;
+        std::sort(out, out + count, [&](std::uint32_t x, std::uint32_t y) {
+          return key[x] != key[y] ? key[x] < key[y] : x < y;
         });
+        distinct = 1;
+        for (std::size_t e = 1; e < count; ++e) distinct += key[out[e]] != key[out[e - 1]];
       }
-      std::uint32_t distinct = 1;
-      for (std::size_t e = 1; e < count; ++e) distinct += key[out[e]] != key[out[e - 1]];
       cluster_offsets[t + 1] = distinct;
     }
   });
