@@ -1,14 +1,12 @@
 #include "simd/lightassign/clustered_assignment.h"
 
 #include <algorithm>
-#include <optional>
 #include <stdexcept>
 #include <vector>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
-#include <tbb/task_group.h>
 
 #include "reference/lightassign/cluster_key.h"
 #include "reference/lightassign/light_bvh.h"
@@ -62,12 +60,6 @@ AlgorithmOutput assign_lights_clustered(const PreparedScene& scene,
   const ClusterGrid grid(c.camera, settings.tile_size, settings.normal_divisions, deepest);
   if (auto why = grid.overflow_reason()) throw std::invalid_argument("lightassign: " + *why);
   if (grid.slices() != to_far.slices()) find_slices(grid);
-
-  // The reference's light BVH, built in parallel and in lanes, alongside the clusters (they share
-  // nothing; each fills the other's serial stretches).
-  std::optional<LightBvhLanes> lanes;
-  tbb::task_group light_bvh;
-  light_bvh.run([&] { lanes.emplace(c.ranged_lights); });
 
   // Cluster keys (Section 3.1) per regular sample, row by row (a row's samples are consecutive).
   // The fields take disjoint bits, so a key is its tile's key (pack with k = normal = 0) or'ed
@@ -127,14 +119,17 @@ AlgorithmOutput assign_lights_clustered(const PreparedScene& scene,
     }
   });
 
-  light_bvh.wait();
+  // The reference's light BVH, built in parallel and in lanes. (Built beside the clusters in a
+  // task group it was slower: its arrays then come from a worker thread's malloc arena, fresh
+  // pages on every call.)
+  const LightBvhLanes lanes(c.ranged_lights);
   clock.lap(build_phase);
 
   // Per cluster: traversal and the exact sphere/box cull in lanes, then the back-face rule on the
   // lights that met the box (in order, as the reference applies it after the box test).
   const ListWork work = build_light_lists(lists, out, [&](std::size_t k, auto& list) {
     const std::size_t before = list.size();
-    ListWork w = query_light_bvh(*lanes, out.bounds[k], list);
+    ListWork w = query_light_bvh(lanes, out.bounds[k], list);
     if (use_cones) {
       std::size_t kept = before;
       for (std::size_t e = before; e < list.size(); ++e) {
