@@ -6,7 +6,6 @@
 #include <glm/vec3.hpp>
 
 #include <tbb/blocked_range.h>
-#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include "reference/lightassign/view_frustum.h"
@@ -57,23 +56,21 @@ UniqueClusters find_unique_clusters(const RegularSamples& regular, const std::ui
   UninitializedVector<std::uint32_t>& by_tile = member_regular;
   by_tile.resize(m);
   std::vector<std::uint32_t> cluster_offsets(std::size_t(tile_count) + 1, 0);
-  struct Scratch {
-    std::vector<std::uint32_t> bucketed, fill;
-    std::vector<std::uint8_t> slot;
-  };
-  tbb::enumerable_thread_specific<Scratch> scratch;
+  // Scratch in one piece from the calling thread (a band uses its own stretch): buffers made by
+  // the workers would come from their malloc arenas, fresh pages on every call.
+  UninitializedVector<std::uint32_t> bucketed_all(m);
+  UninitializedVector<std::uint8_t> slot_all(m);
   tbb::parallel_for(std::uint32_t(0), tiles_y, [&](std::uint32_t band) {
-    Scratch& local = scratch.local();
     const std::uint32_t first_tile = band * tiles_x, base = tile_offsets[first_tile];
-    local.bucketed.resize(tile_offsets[first_tile + tiles_x] - base);
-    local.fill.assign(tile_offsets.begin() + first_tile,
-                      tile_offsets.begin() + first_tile + tiles_x);
-    band_rows(band, [&](std::uint32_t i, std::uint32_t column) {
-      local.bucketed[local.fill[column]++ - base] = i;
-    });
+    std::uint32_t* const bucketed = bucketed_all.data() + base;
+    std::uint8_t* const slot_of = slot_all.data() + base;
+    std::vector<std::uint32_t> fill(tile_offsets.begin() + first_tile,
+                                    tile_offsets.begin() + first_tile + tiles_x);
+    band_rows(band,
+              [&](std::uint32_t i, std::uint32_t column) { bucketed[fill[column]++ - base] = i; });
     for (std::uint32_t t = first_tile; t < first_tile + tiles_x; ++t) {
-      const std::uint32_t* first = local.bucketed.data() + (tile_offsets[t] - base);
-      const std::uint32_t* last = local.bucketed.data() + (tile_offsets[t + 1] - base);
+      const std::uint32_t* first = bucketed + (tile_offsets[t] - base);
+      const std::uint32_t* last = bucketed + (tile_offsets[t + 1] - base);
       std::uint32_t* out = by_tile.data() + tile_offsets[t];
       if (first == last) continue;
       const std::size_t count = std::size_t(last - first);
@@ -82,7 +79,7 @@ UniqueClusters find_unique_clusters(const RegularSamples& regular, const std::ui
       // key's first position, and the samples go there in pixel order (stable).
       constexpr std::uint32_t max_distinct = 64;
       std::uint32_t distinct_key[max_distinct], members[max_distinct], distinct = 0, slot = 0;
-      local.slot.resize(count);
+      std::uint8_t* const slot_in = slot_of + (tile_offsets[t] - base);
       std::size_t j = 0;
       for (; j < count; ++j) {
         const std::uint32_t k = key[first[j]];
@@ -95,7 +92,7 @@ UniqueClusters find_unique_clusters(const RegularSamples& regular, const std::ui
             members[distinct++] = 0;
           }
         }
-        local.slot[j] = std::uint8_t(slot);
+        slot_in[j] = std::uint8_t(slot);
         ++members[slot];
       }
       if (j == count) {
@@ -109,7 +106,7 @@ UniqueClusters find_unique_clusters(const RegularSamples& regular, const std::ui
           start[rank[d]] = position;
           position += members[rank[d]];
         }
-        for (std::size_t e = 0; e < count; ++e) out[start[local.slot[e]]++] = first[e];
+        for (std::size_t e = 0; e < count; ++e) out[start[slot_in[e]]++] = first[e];
       } else {
         std::copy(first, last, out);
         // (key, index) pairs are unique: a total order.
