@@ -2,16 +2,20 @@
 // A std::vector whose resize leaves new elements unset, for the simd lightassign's large arrays
 // that are written in full right after (zeroing them first would be a wasted, serial pass over
 // memory: a resize's value-initialization runs on one thread, the writes that follow in parallel).
-#include <memory>
+// Its memory comes from oneTBB's scalable allocator, which keeps freed large blocks for the next
+// call instead of handing them back to the system: a call then writes pages it has used before
+// rather than fresh ones the kernel must zero (the first call of a process still pays for them).
 #include <new>
 #include <utility>
 #include <vector>
+
+#include <tbb/scalable_allocator.h>
 
 namespace shadowcts::simd {
 
 // An allocator that leaves a value-constructed element unset (other constructions as usual).
 template <class T>
-struct Uninitialized : std::allocator<T> {
+struct Uninitialized : tbb::scalable_allocator<T> {
   using value_type = T;
   template <class U>
   struct rebind {
