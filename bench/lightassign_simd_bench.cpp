@@ -3,6 +3,7 @@
 // iteration's output is checked to be the reference's (lists, bounds, counters): a port that
 // differs is an error, not a time.
 //   build/bench/lightassign_simd_bench [--benchmark_filter=clustered/many_lights/1048576]
+//   build/bench/lightassign_simd_bench --benchmark_filter='/clustered/|brute'  (issue 22's ratios)
 // On a shared machine, `taskset -c 0` (one oneTBB thread) makes the CPU column the whole work.
 #include <benchmark/benchmark.h>
 
@@ -11,10 +12,13 @@
 #include <memory>
 #include <string>
 
+#include "reference/lightassign/light_list_builder.h"
 #include "reference/lightassign/lightassign_algorithm.h"
 #include "shadowcts/fixtures.h"
 #include "shadowcts/prepared_scene.h"
+#include "simd/lightassign/light_bvh.h"
 #include "simd/lightassign/lightassign_algorithm.h"
+#include "simd/lightassign/lightassign_kernels.h"
 #include "simd/simd_target.h"
 
 namespace shadowcts {
@@ -82,10 +86,39 @@ void BM_LightAssign(benchmark::State& state, const std::string& generator,
   if (simd) state.SetLabel(simd::dispatched_target_name());
 }
 
+// The brute-force baseline of issue 22 ("every light against every cluster", Paper II's tiled
+// brute force): the clustered variant's clusters and boxes (from the reference's output, not
+// timed), every light tested against every box by the simd leaf test and exact cull, lists built
+// as the clustered variants build theirs (oneTBB over the clusters). Timed: the assignment alone
+// (the light arrays in Morton order are built before the loop), so the ratio to a whole simd
+// clustered run understates the gap. Its lists must be the clustered lists, in the same order.
+void BM_Brute(benchmark::State& state, const std::string& generator) {
+  static const std::unique_ptr<Algorithm> reference = make_lightassign();
+  FullHdCase& f = full_hd_case(generator, std::uint64_t(state.range(0)));
+  auto known = f.reference.find("clustered");
+  if (known == f.reference.end())
+    known = f.reference.emplace("clustered", reference->run(*f.scene, "clustered")).first;
+  const LightLists& clustered = known->second.light_lists;
+  const simd::LightBvhLanes lights(f.c.ranged_lights);
+  LightLists out;
+  for (auto _ : state) {
+    out = LightLists{};
+    build_light_lists(clustered.bounds.size(), out, [&](std::size_t k, auto& list) {
+      return simd::test_every_light(lights, clustered.bounds[k], list);
+    });
+  }
+  if (out.offsets != clustered.offsets || out.lights != clustered.lights)
+    state.SkipWithError("not the clustered lists");
+  state.counters["lights"] = double(f.c.ranged_lights.size());
+  state.counters["unique_clusters"] = double(clustered.bounds.size());
+  state.counters["pairs"] = double(f.c.ranged_lights.size()) * double(clustered.bounds.size());
+  state.SetLabel(simd::dispatched_target_name());
+}
+
 // Reference before simd for every (generator, lights, variant): each case is built once.
 void register_all() {
   for (const std::string generator : {"many_lights", "depth_gaps"})
-    for (const std::int64_t lights : {32, 1024, 32768, 1048576})
+    for (const std::int64_t lights : {32, 1024, 32768, 1048576}) {
       for (const std::string variant : {"tiled", "clustered", "clustered+eb", "clustered+en"})
         for (const bool simd : {false, true}) {
           const std::string name =
@@ -96,6 +129,12 @@ void register_all() {
               ->UseRealTime()
               ->MinTime(0.5);
         }
+      benchmark::RegisterBenchmark(("brute/" + generator).c_str(), BM_Brute, generator)
+          ->Arg(lights)
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime()
+          ->MinTime(0.5);
+    }
 }
 
 }  // namespace

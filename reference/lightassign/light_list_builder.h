@@ -73,14 +73,9 @@ ListWork build_light_lists(std::size_t list_count, LightLists& out, Fill&& fill)
 // lists (unique clusters, tiles or samples), cluster key bits, lights tested against list
 // volumes, lights dropped by the back-face rule, samples that fell outside their list's implicit
 // bounds by rounding and grew them.
-inline Counters light_assignment_counters(const LightLists& lists, const ViewSamples& samples,
+inline Counters light_assignment_counters(const LightLists& lists, std::uint64_t lighting,
                                           const ListWork& work, std::uint64_t key_bits,
                                           std::uint64_t bounds_grown) {
-  std::uint64_t lighting = 0;
-  for (std::size_t s = 0; s < samples.samples.size(); ++s) {
-    const std::uint32_t list = lists.list_of_sample[s];
-    if (list != LightLists::no_list) lighting += lists.offsets[list + 1] - lists.offsets[list];
-  }
   return {{"list_lengths_total", lists.lights.size()},
           {"lighting_computations", lighting},
           {"bvh_nodes_tested", work.nodes_tested},
@@ -89,6 +84,18 @@ inline Counters light_assignment_counters(const LightLists& lists, const ViewSam
           {"light_tests", work.light_tests},
           {"backface_culled", work.backface_culled},
           {"bounds_grown_samples", bounds_grown}};
+}
+
+// The same, the lighting computations summed over the samples.
+inline Counters light_assignment_counters(const LightLists& lists, const ViewSamples& samples,
+                                          const ListWork& work, std::uint64_t key_bits,
+                                          std::uint64_t bounds_grown) {
+  std::uint64_t lighting = 0;
+  for (std::size_t s = 0; s < samples.samples.size(); ++s) {
+    const std::uint32_t list = lists.list_of_sample[s];
+    if (list != LightLists::no_list) lighting += lists.offsets[list + 1] - lists.offsets[list];
+  }
+  return light_assignment_counters(lists, lighting, work, key_bits, bounds_grown);
 }
 
 }  // namespace shadowcts

@@ -13,6 +13,18 @@
 
 namespace shadowcts::simd {
 
+// The light BVH's build steps (light_bvh.h), each the reference's operations in lanes:
+// LightBvh's 63-bit Morton code of each light's centre over the centres' box (low, extent per
+// axis) into code[i];
+void morton_codes(const RangedLight* lights, std::size_t count, const double* low,
+                  const double* extent, std::uint64_t* code);
+// the boxes of nodes [first, first + count) of the first level around their 32 leaves' boxes
+// (each sphere's float box rounded outwards), from bvh.sphere;
+void leaf_node_boxes(const LightBvhLanes& bvh, std::size_t first, std::size_t count,
+                     BoxArrays& level);
+// the boxes of nodes [first, first + count) of a level above around their 32 children each.
+void node_boxes(const BoxArrays& children, std::size_t first, std::size_t count, BoxArrays& level);
+
 // Clustered: the depth-first traversal of LightBvh::traverse over the cluster box (32 children
 // against the box per node, in lanes), then for the leaves whose boxes overlap it the exact
 // sphere/box cull (the reference's double filter in lanes, undecided pairs exactly). Appends the
@@ -20,6 +32,12 @@ namespace shadowcts::simd {
 // reference does.
 ListWork query_light_bvh(const LightBvhLanes& bvh, const Aabb& box,
                          std::vector<std::uint32_t>& list);
+
+// The brute force of the baseline (bench/lightassign_simd_bench.cpp): every light against
+// the box by the leaf tests of query_light_bvh, no node tested; the same list in the same (Morton)
+// order. nodes_tested counts the lights, light_tests those whose leaf box overlaps.
+ListWork test_every_light(const LightBvhLanes& bvh, const Aabb& box,
+                          std::vector<std::uint32_t>& list);
 
 // The camera frame of ViewFrustum (the same glm operations on the same inputs give the same
 // doubles): to_view(p) = (dot(p - origin, right), dot(p - origin, up), dot(p - origin, forward)).
@@ -46,6 +64,11 @@ struct TileVolume {
 ListWork cull_tile_candidates(const std::vector<RangedLight>& lights, const ViewFrame& frame,
                               const TileVolume& tile, const std::uint32_t* candidates,
                               std::size_t count, std::vector<std::uint32_t>& list);
+
+// ViewFrustum::depth of the points (x[i], y[i], z[i]), i < count, into depth[i]: dot(p - eye,
+// forward) in double with glm's order of operations.
+void view_depths(const ViewFrame& frame, const float* x, const float* y, const float* z,
+                 std::size_t count, double* depth);
 
 // ClusterGrid::slice_of(depth[i]) for i < count into slice[i]: eq. 2 in lanes (Highway's
 // logarithm), the reference's own slice_of where the lanes' quotient lies within 1e-10 (relative)

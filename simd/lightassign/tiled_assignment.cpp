@@ -32,18 +32,15 @@ AlgorithmOutput assign_lights_tiled(const PreparedScene& scene, std::uint32_t ti
   const std::size_t n = samples.samples.size();
 
   // One cluster per tile with regular samples (a constant key), the view depth per sample.
-  std::vector<std::uint32_t> pixel_key(n, 0);
-  std::vector<std::uint8_t> clustered(n, 0);
   std::vector<double> depth(n, 0.0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, regular.size(), 4096), [&](const auto& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      const std::uint32_t s = regular.index[i];
-      clustered[s] = 1;
-      depth[s] = frustum.depth(glm::dvec3(regular.position(i)));
-    }
+    for (std::size_t i = r.begin(); i != r.end(); ++i)
+      depth[regular.index[i]] = frustum.depth(glm::dvec3(regular.position(i)));
   });
-  const UniqueClusters tiles =
-      find_unique_clusters(pixel_key, clustered, samples.width, samples.height, tile_size);
+  UninitializedVector<std::uint32_t> member_regular;
+  const std::vector<std::uint32_t> no_key(regular.size(), 0);
+  const UniqueClusters tiles = find_unique_clusters(regular, no_key.data(), samples.width,
+                                                    samples.height, tile_size, member_regular);
   const std::size_t lists = tiles.keys.size();
 
   // Per tile: the min/max depth sub-frustum, the declared box, and what its plane test reads.
@@ -69,9 +66,9 @@ AlgorithmOutput assign_lights_tiled(const PreparedScene& scene, std::uint32_t ti
         f.far_depth = std::max(f.far_depth, depth[tiles.members[m]]);
       }
       out.bounds[t] = frustum.bounding_box(f);
-      grown[t] = grow_to_contain_all(out.bounds[t], samples,
-                                     tiles.members.data() + tiles.member_offsets[t],
-                                     tiles.members.data() + tiles.member_offsets[t + 1]);
+      grown[t] = grow_to_contain_all(out.bounds[t], regular,
+                                     member_regular.data() + tiles.member_offsets[t],
+                                     member_regular.data() + tiles.member_offsets[t + 1]);
       // ViewFrustum::sphere_may_meet's planes: along - slope * depth >= 0 with along = x, -x,
       // -y, y.
       TileVolume& v = volumes[t];

@@ -17,12 +17,15 @@
 
 #include "reference/lightassign/cluster_key.h"
 #include "reference/lightassign/lightassign_algorithm.h"
+#include "reference/lightassign/unique_clusters.h"
 #include "shadowcts/fixtures.h"
 #include "shadowcts/geometry/sphere_box.h"
 #include "shadowcts/prepared_scene.h"
 #include "shadowcts/view_samples.h"
+#include "simd/lightassign/light_bvh.h"
 #include "simd/lightassign/lightassign_algorithm.h"
 #include "simd/lightassign/lightassign_kernels.h"
+#include "simd/lightassign/unique_clusters.h"
 
 namespace shadowcts {
 namespace {
@@ -177,6 +180,15 @@ TEST(SimdLightAssign, IdenticalWithANearFarRatioOf1e7) {
   expect_identical(c, generate_view_samples(c), "near/far 1e-7");
 }
 
+// Samples past the far plane (the far plane moved in after they were cast): the slices reach the
+// deepest sample, more of them than the far plane needs.
+TEST(SimdLightAssign, IdenticalWithSamplesPastTheFarPlane) {
+  Case c = small_city();
+  const ViewSamples samples = generate_view_samples(c);
+  c.camera.far_plane *= 0.25f;
+  expect_identical(c, samples, "samples past the far plane");
+}
+
 // Lights whose spheres touch cluster boxes within rounding: the exact fallback decides them.
 TEST(SimdLightAssign, IdenticalWithLightsTangentToTheBoxes) {
   Case c = small_city();
@@ -236,6 +248,211 @@ TEST(SimdLightAssign, SlicesInLanesAreTheReferenceSlices) {
     simd::slices_of(grid, depth.data(), depth.size(), slices.data());
     for (std::size_t i = 0; i < depth.size(); ++i)
       ASSERT_EQ(slices[i], grid.slice_of(depth[i])) << "depth " << depth[i] << " near " << near;
+  }
+}
+
+// Empty when the lanes' BVH is the reference's (order, leaf boxes, node boxes bit for bit), else
+// the first difference.
+std::string bvh_difference(const std::vector<RangedLight>& lights) {
+  const LightBvh ref(lights);
+  const simd::LightBvhLanes lanes(lights);
+  std::ostringstream why;
+  if (!std::equal(lanes.order.begin(), lanes.order.end(), ref.light_order().begin(),
+                  ref.light_order().end())) {
+    for (std::size_t i = 0; i < std::min(lanes.order.size(), ref.light_order().size()); ++i)
+      if (lanes.order[i] != ref.light_order()[i]) {
+        why << "leaf " << i << ": light " << ref.light_order()[i] << " vs " << lanes.order[i];
+        return why.str();
+      }
+    return "leaf counts differ";
+  }
+  auto box_difference = [&](const Aabb& a, const simd::BoxArrays& b, std::size_t i) {
+    for (int k = 0; k < 3; ++k)
+      if (!same_float(a.min[k], b.min[k][i]) || !same_float(a.max[k], b.max[k][i])) return true;
+    return false;
+  };
+  for (std::size_t i = 0; i < lanes.order.size(); ++i) {
+    const RangedLight& l = lights[lanes.order[i]];
+    for (int k = 0; k < 3; ++k)
+      if (!same_float(lanes.sphere[k][i], l.centre[k]))
+        return "leaf " + std::to_string(i) + ": centre differs";
+    if (!same_float(lanes.sphere[3][i], l.range))
+      return "leaf " + std::to_string(i) + ": range differs";
+  }
+  if (lanes.levels.size() != ref.levels().size()) return "level counts differ";
+  for (std::size_t level = 0; level < lanes.levels.size(); ++level) {
+    if (lanes.levels[level].count != ref.levels()[level].size())
+      return "level " + std::to_string(level) + ": node counts differ";
+    for (std::size_t i = 0; i < lanes.levels[level].count; ++i)
+      if (box_difference(ref.levels()[level][i], lanes.levels[level], i)) {
+        why << "level " << level << " node " << i << ": box differs";
+        return why.str();
+      }
+  }
+  return {};
+}
+
+// Light sets for the BVH: a fixture's, and random ones with shared centres (equal Morton codes,
+// ordered by index), centres within a few ulps of each other (codes equal in their upper half),
+// tiny ranges and huge ones (rounding at every magnitude), negative and mixed coordinates. No
+// subnormal floats: Embree leaves flush-to-zero on in the oneTBB workers it ran on, so the
+// reference's own leaf boxes at those magnitudes depend on the thread that computes them.
+std::vector<std::vector<RangedLight>> bvh_light_sets() {
+  std::vector<std::vector<RangedLight>> sets;
+  sets.push_back(make_fixture("many_lights.20k").ranged_lights);
+  std::mt19937_64 random(3);
+  std::uniform_real_distribution<float> coordinate(-50.0f, 50.0f), unit(0.0f, 1.0f);
+  for (const std::size_t n : {1, 2, 31, 32, 33, 1023, 1025, 40000}) {
+    std::vector<RangedLight> lights(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      RangedLight& l = lights[i];
+      switch (i % 5) {
+        case 0:
+          l.centre = {coordinate(random), coordinate(random), coordinate(random)};
+          break;
+        case 1:  // a centre shared with an earlier light
+          l.centre = lights[random() % i].centre;
+          break;
+        case 2: {  // a few ulps from an earlier centre
+          l.centre = lights[random() % i].centre;
+          for (int k = 0; k < 3; ++k)
+            for (int step = int(random() % 4); step > 0; --step)
+              l.centre[k] = std::nextafter(l.centre[k], 1e30f);
+          break;
+        }
+        case 3:
+          l.centre = {1e-30f * coordinate(random), -3e5f * unit(random), coordinate(random)};
+          break;
+        default:
+          l.centre = {coordinate(random), 2.0f, -coordinate(random)};
+      }
+      const float ranges[] = {1e-30f, 1e-7f, 0.3f * unit(random) + 1e-3f, 7.0f, 1e6f};
+      l.range = ranges[random() % 5];
+    }
+    sets.push_back(std::move(lights));
+  }
+  return sets;
+}
+
+TEST(SimdLightAssign, LightBvhIsTheReferencesOnEveryHighwayTarget) {
+  const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
+  for (const std::vector<RangedLight>& lights : bvh_light_sets()) {
+    SCOPED_TRACE(std::to_string(lights.size()) + " lights");
+    for (const std::int64_t target : targets) {
+      SCOPED_TRACE(hwy::TargetName(target));
+      hwy::SetSupportedTargetsForTest(target);
+      const std::string difference = bvh_difference(lights);
+      hwy::SetSupportedTargetsForTest(0);
+      EXPECT_EQ(difference, "");
+    }
+  }
+}
+
+// The traversal in lanes against LightBvh::traverse with the exact sphere/box cull: boxes that
+// touch a leaf box on a face (equal floats), stop one float short of it, hold it or are a point,
+// where the leaf test on the sphere must give the leaf box's answer.
+TEST(SimdLightAssign, QueriesAreTheReferenceTraversalOnEveryHighwayTarget) {
+  const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
+  std::mt19937_64 random(5);
+  for (const std::vector<RangedLight>& lights : bvh_light_sets()) {
+    if (lights.size() > 2000) continue;
+    const LightBvh ref(lights);
+    std::vector<Aabb> boxes;
+    for (std::size_t leaf = 0; leaf < lights.size(); leaf += 3) {
+      const Aabb& b = ref.leaf_box(std::uint32_t(leaf));
+      const int k = int(random() % 3);
+      Aabb touch = b;
+      touch.min[k] = b.max[k];
+      touch.max[k] = b.max[k] + 1.0f;
+      boxes.push_back(touch);
+      touch.min[k] = std::nextafter(b.max[k], 1e30f);
+      boxes.push_back(touch);
+      touch = b;
+      touch.max[k] = b.min[k];
+      touch.min[k] = b.min[k] - 1.0f;
+      boxes.push_back(touch);
+      touch.max[k] = std::nextafter(b.min[k], -1e30f);
+      boxes.push_back(touch);
+      boxes.push_back(b);
+      Aabb point;
+      point.min = point.max = lights[ref.light_order()[leaf]].centre;
+      boxes.push_back(point);
+    }
+    for (const std::int64_t target : targets) {
+      SCOPED_TRACE(hwy::TargetName(target));
+      hwy::SetSupportedTargetsForTest(target);
+      const simd::LightBvhLanes lanes(lights);
+      for (std::size_t q = 0; q < boxes.size(); ++q) {
+        const Aabb& box = boxes[q];
+        std::vector<std::uint32_t> expected, got;
+        ListWork want;
+        want.nodes_tested = ref.traverse(box, [&](std::uint32_t index) {
+          ++want.light_tests;
+          if (geometry::sphere_meets_box(lights[index].centre, lights[index].range, box.min,
+                                         box.max))
+            expected.push_back(index);
+        });
+        const ListWork work = simd::query_light_bvh(lanes, box, got);
+        ASSERT_EQ(got, expected) << lights.size() << " lights, box " << q;
+        ASSERT_EQ(work.nodes_tested, want.nodes_tested) << lights.size() << " lights, box " << q;
+        ASSERT_EQ(work.light_tests, want.light_tests) << lights.size() << " lights, box " << q;
+      }
+      hwy::SetSupportedTargetsForTest(0);
+    }
+  }
+}
+
+// The unique clusters band by band against the reference's find_unique_clusters on the same
+// keys: partial tiles at the image's edges, pixels without a sample, tiles with one key, with a
+// few, and with more keys than a counting sort over their range would take (std::sort).
+TEST(SimdLightAssign, UniqueClustersAreTheReferences) {
+  std::mt19937_64 random(9);
+  for (const auto& [width, height] :
+       {std::pair(100u, 70u), std::pair(64u, 64u), std::pair(33u, 95u)}) {
+    RegularSamples regular;
+    std::vector<std::uint32_t> key,
+        sample_tile(std::size_t(width) * height, UniqueClusters::no_cluster),
+        sample_key(sample_tile.size(), 0);
+    const std::uint32_t tiles_x = (width + 31) / 32;
+    for (std::uint32_t s = 0; s < width * height; ++s) {
+      if (random() % 7 == 0) continue;  // sky
+      const std::uint32_t x = s % width, y = s / width, tile = (y / 32) * tiles_x + x / 32;
+      std::uint32_t k;
+      switch (tile % 4) {
+        case 0:
+          k = 5;
+          break;
+        case 1:
+          k = std::uint32_t(random() % 3) << 8 | tile << 20;
+          break;
+        case 2:
+          k = std::uint32_t(random() % 40) * 997 + (tile << 24);
+          break;
+        default:
+          k = std::uint32_t(random());
+          break;
+      }
+      regular.index.push_back(s);
+      key.push_back(k);
+      sample_tile[s] = tile;
+      sample_key[s] = k;
+    }
+    regular.px.assign(regular.index.size(), 0.0f);
+    regular.py = regular.pz = regular.px;
+    const UniqueClusters want =
+        find_unique_clusters(sample_tile, sample_key, tiles_x * ((height + 31) / 32));
+    simd::UninitializedVector<std::uint32_t> member_regular;
+    const UniqueClusters got =
+        simd::find_unique_clusters(regular, key.data(), width, height, 32, member_regular);
+    SCOPED_TRACE(std::to_string(width) + " x " + std::to_string(height));
+    EXPECT_EQ(got.keys, want.keys);
+    EXPECT_EQ(got.tiles, want.tiles);
+    EXPECT_EQ(got.member_offsets, want.member_offsets);
+    EXPECT_EQ(got.members, want.members);
+    EXPECT_EQ(got.cluster_of_sample, want.cluster_of_sample);
+    ASSERT_EQ(member_regular.size(), got.members.size());
+    for (std::size_t e = 0; e < member_regular.size(); ++e)
+      ASSERT_EQ(regular.index[member_regular[e]], got.members[e]) << e;
   }
 }
 
