@@ -121,8 +121,8 @@ int main(int argc, char** argv) {
               "in [2^-24, 2^-4]"));
   auto* repeat_option = run->add_option("--repeat", repeats,
                                         "Timed repeats per algorithm after one warm-up run "
-                                        "(default 2, 1 for emulated backends; median and "
-                                        "min-max reported)")
+                                        "(default 2; emulated backends by default run once, "
+                                        "without a warm-up; median and min-max reported)")
                             ->check(CLI::Range(1, 1000));
   auto* threads_option =
       run->add_option("--threads", threads, "Worker threads (default: all cores)")

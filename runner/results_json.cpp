@@ -87,8 +87,8 @@ void write_results_json(const std::filesystem::path& path, const std::vector<Cas
   root["timing"] =
       "one untimed warm-up run per record, then time_ms.runs timed repeats; median, min and max "
       "over them; time_ms.phases: the same for the phases the algorithm times inside each run; "
-      "an emulated backend (cuda-emu) gets one timed repeat unless --repeat is given: its time "
-      "measures the CUDA-subset emulator, not a GPU";
+      "an emulated backend (cuda-emu) runs once unless --repeat is given, without a warm-up: "
+      "that run is judged and timed, and its time measures the CUDA-subset emulator, not a GPU";
   root["cases"] = ordered_json::array();
   for (const CaseSummary& c : cases) root["cases"].push_back(case_json(c));
   root["results"] = ordered_json::array();

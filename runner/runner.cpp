@@ -730,10 +730,11 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
       const std::string algorithm_step =
           step + meta.id + ":" + p.variant + " [" + meta.backend + "]";
       progress.show(algorithm_step);
-      // An emulated backend's time is the emulator's, not a GPU's: one timed repeat (which still
-      // checks that the output is reproduced) unless --repeat asks for more.
-      const std::uint32_t repeats = meta.emulated && !options.repeats ? 1 : c.parameters.repeats;
-      const std::uint32_t runs = 1 + repeats;
+      // An emulated backend's time is the emulator's, not a GPU's, and there is no GPU to warm:
+      // unless --repeat asks for timed repeats, it runs once, and that run is judged and timed.
+      const bool run_once = meta.emulated && !options.repeats;
+      const std::uint32_t repeats = run_once ? 1 : c.parameters.repeats;
+      const std::uint32_t runs = repeats + (run_once ? 0 : 1);
       const auto run_step = [&](std::uint32_t run) {
         return algorithm_step + ", run " + std::to_string(run) + " of " + std::to_string(runs);
       };
@@ -742,20 +743,25 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
       try {
         const std::vector<std::string> declared = p.algorithm->timed_phases(p.variant);
         for (const std::string& name : declared) record.phases.push_back({name, {}, 0});
-        // An untimed warm-up run gives the output that is judged; the timed repeats after it
-        // must reproduce it exactly. Phases are timed inside run(), so within each repeat.
-        if (runs > 1) progress.show_run(run_step(1));
-        const AlgorithmOutput first = p.algorithm->run(scene, p.variant);
-        check_phases(declared, first);
+        // Otherwise an untimed warm-up run gives the output that is judged, and the timed
+        // repeats after it must reproduce it exactly. Phases are timed inside run().
+        std::optional<AlgorithmOutput> first;
+        if (!run_once) {
+          if (runs > 1) progress.show_run(run_step(1));
+          first = p.algorithm->run(scene, p.variant);
+          check_phases(declared, *first);
+        }
         for (std::uint32_t r = 0; r < repeats; ++r) {
-          progress.show_run(run_step(r + 2));
+          if (runs > 1) progress.show_run(run_step(runs - repeats + r + 1));
           const auto start = Clock::now();
-          const AlgorithmOutput again = p.algorithm->run(scene, p.variant);
+          AlgorithmOutput again = p.algorithm->run(scene, p.variant);
           record.run_ms.push_back(elapsed_ms(start));
           check_phases(declared, again);
           for (std::size_t k = 0; k < declared.size(); ++k)
             record.phases[k].run_ms.push_back(again.phase_ms[k].second);
-          if (record.verdict != Verdict::fail && !same_results(again, first)) {
+          if (!first) {
+            first = std::move(again);
+          } else if (record.verdict != Verdict::fail && !same_results(again, *first)) {
             record.verdict = Verdict::fail;
             record.reason = "nondeterministic: timed repeat " + std::to_string(r + 1) +
                             " differs from the warm-up run";
@@ -763,10 +769,10 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
         }
         record.median_ms = median(record.run_ms);
         for (PhaseRuns& phase : record.phases) phase.median_ms = median(phase.run_ms);
-        record.counters = first.counters;
-        evaluations.at(record.output)->judge(first, record);
+        record.counters = first->counters;
+        evaluations.at(record.output)->judge(*first, record);
         if (images.enabled)
-          for (const auto& [name, per_sample] : first.per_sample_counters)
+          for (const auto& [name, per_sample] : first->per_sample_counters)
             record.images.push_back(
                 write_counter_heat_map(out_dir, record, samples, name, per_sample));
       } catch (const OutputError&) {

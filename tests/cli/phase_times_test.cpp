@@ -2,6 +2,7 @@
 // within the time of the whole call; the others report none; an output that reports other phases
 // than its algorithm declares is a Crash. No assertion here is about speed.
 #include <algorithm>
+#include <atomic>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -184,8 +185,9 @@ TEST(RunnerPhases, OtherPhasesThanDeclaredAreACrash) {
       << undeclared["reason"];
 }
 
-// An emulated backend's time is the emulator's: one timed repeat by default (the output is still
-// reproduced once), as many as --repeat asks for; other backends keep the case's repeats.
+// An emulated backend's time is the emulator's: by default it runs once, without a warm-up, and
+// that run is timed; --repeat gives it a warm-up and that many timed repeats; other backends keep
+// the case's repeats after their warm-up.
 TEST(RunnerTiming, EmulatedBackendsAreTimedOnceUnlessRepeatIsGiven) {
   const auto timed_runs = [](const std::string& name, std::optional<std::uint32_t> repeats) {
     RunOptions o;
@@ -212,6 +214,44 @@ TEST(RunnerTiming, EmulatedBackendsAreTimedOnceUnlessRepeatIsGiven) {
   EXPECT_EQ(asked.at("reference"), 3u);
   EXPECT_TRUE(builtin_registry().find("psv", "cuda-emu")->info().emulated);
   EXPECT_FALSE(builtin_registry().find("psv", "reference")->info().emulated);
+}
+
+// Counts its runs; declares itself emulated.
+class CountingEmulated : public PhaseReporter {
+ public:
+  explicit CountingEmulated(std::atomic<int>& calls) : PhaseReporter({}, {}), calls_(calls) {
+    info_.emulated = true;
+  }
+  const AlgorithmInfo& info() const override { return info_; }
+  AlgorithmOutput run(const PreparedScene& scene, const std::string& variant) const override {
+    ++calls_;
+    return PhaseReporter::run(scene, variant);
+  }
+
+ private:
+  AlgorithmInfo info_ = PhaseReporter::info();
+  std::atomic<int>& calls_;
+};
+
+// No GPU to warm and no GPU time to measure: one call by default; --repeat N gives the warm-up
+// and N timed repeats (which must reproduce it), as for every other backend.
+TEST(RunnerTiming, EmulatedBackendsRunOnceWithoutAWarmUpUnlessRepeatIsGiven) {
+  for (const std::optional<std::uint32_t> repeats :
+       {std::optional<std::uint32_t>(), std::optional<std::uint32_t>(2)}) {
+    std::atomic<int> calls{0};
+    Registry registry;
+    registry.add(std::make_unique<CountingEmulated>(calls));
+    RunOptions o;
+    o.fixtures = {"ground_blockers.2k"};
+    o.out_dir = fresh_dir(repeats ? "emulated_repeat" : "emulated_once").string();
+    o.repeats = repeats;
+    std::ostringstream log, err;
+    run_suite(o, registry, log, err);
+    const json results = read_json(fs::path(o.out_dir) / "results.json");
+    ASSERT_EQ(results["results"].size(), 1u);
+    EXPECT_EQ(calls.load(), repeats ? 3 : 1);
+    EXPECT_EQ(runs_of(results["results"][0]["time_ms"]).size(), repeats ? 2u : 1u);
+  }
 }
 
 TEST(PhaseClock, LapsAddUpPerPhaseInDeclaredOrder) {
