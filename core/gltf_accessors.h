@@ -11,7 +11,6 @@
 #include <vector>
 
 #include "shadowcts/errors.h"
-#include "shadowcts/scene_file.h"
 
 namespace shadowcts {
 
@@ -24,8 +23,7 @@ class ModelReader {
   // Elements of an accessor without a bufferView (2^24: 192 MiB of float positions).
   static constexpr std::size_t max_elements_without_view = std::size_t{1} << 24;
 
-  ModelReader(const std::string& path, const tinygltf::Model& model, LoadedScene& scene)
-      : path_(path), model_(model), scene_(scene) {}
+  ModelReader(const std::string& path, const tinygltf::Model& model) : path_(path), model_(model) {}
 
   // Reads the accessor as `components` values per element of component type `component_type`,
   // converted to uint32 (indices) or float (positions). `user` names the referencing element.
@@ -264,7 +262,6 @@ class ModelReader {
 
   const std::string& path_;
   const tinygltf::Model& model_;
-  LoadedScene& scene_;
 };
 
 }  // namespace shadowcts

@@ -35,7 +35,7 @@ bool all_finite(const glm::dmat4& m) {
 class SceneBuilder {
  public:
   SceneBuilder(const std::string& path, const tinygltf::Model& model, LoadedScene& scene)
-      : path_(path), model_(model), scene_(scene), reader_(path, model, scene) {}
+      : path_(path), model_(model), scene_(scene), reader_(path, model) {}
 
   void add_root(int node_index) { visit_tree(node_index); }
 
