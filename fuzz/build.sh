@@ -6,6 +6,7 @@
 # The project's libraries are built here too, with the same compiler and sanitizer flags (a
 # separate CMake build folder with -DSHADOWCTS_FUZZ=ON), so the fuzzers see instrumented code.
 #   SHADOWCTS_JOBS  parallel build jobs (default: number of cores)
+#   SHADOWCTS_FUZZ_WERROR  ON: warnings are errors (fuzz/run_ci.sh sets it; default OFF)
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 
@@ -26,6 +27,8 @@ launcher=()
 export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$root}"
 export CCACHE_NOHASHDIR="${CCACHE_NOHASHDIR:-1}"
 command -v ccache >/dev/null && launcher=(-DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+# Warnings are errors where CI asks for it (fuzz/run_ci.sh, Debian's clang 14), not by default:
+# OSS-Fuzz's newer clang brings warnings of its own, which must not break its builds.
 # RelWithDebInfo with empty per-type flags: the optimization level comes from $CFLAGS (as
 # OSS-Fuzz wants), and NDEBUG stays undefined so assertions fire under the fuzzer.
 cmake -S "${root}" -B "${build}" \
@@ -34,7 +37,7 @@ cmake -S "${root}" -B "${build}" \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_FLAGS_RELWITHDEBINFO= \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO= \
   -DSHADOWCTS_FUZZ=ON -DSHADOWCTS_FUZZING_ENGINE="${LIB_FUZZING_ENGINE}" \
-  -DSHADOWCTS_CUDA=OFF -DSHADOWCTS_WERROR=OFF "${launcher[@]}"
+  -DSHADOWCTS_CUDA=OFF -DSHADOWCTS_WERROR="${SHADOWCTS_FUZZ_WERROR:-OFF}" "${launcher[@]}"
 cmake --build "${build}" --target shadowcts_fuzz -j "${jobs}"
 
 mkdir -p "${OUT}"

@@ -52,7 +52,9 @@ targets=(${SHADOWCTS_FUZZ_TARGETS:-fuzz_gltf_loader fuzz_obj_loader fuzz_off_loa
   fuzz_differential})
 
 start=$(date +%s)
-if [ "${SHADOWCTS_FUZZ_NO_BUILD:-0}" != 1 ]; then OUT="${out}" "${root}/fuzz/build.sh"; fi
+if [ "${SHADOWCTS_FUZZ_NO_BUILD:-0}" != 1 ]; then
+  SHADOWCTS_FUZZ_WERROR=ON OUT="${out}" "${root}/fuzz/build.sh"
+fi
 built=$(date +%s)
 
 rm -rf "${findings}"
