@@ -17,12 +17,12 @@ ClusterKeys assign_cluster_keys(const ref::ClusterKeyLayout& layout, const ref::
   keys.key.assign(index.size(), ref::no_key);
   const std::uint64_t slice_limit = std::uint64_t(1) << layout.depth_bits;
   // slice_of_depth(z) is the k with slice_start(k) <= z < slice_start(k + 1) (slice_start grows
-  // with k): the starts of the slices below the limit, computed once, replace its logarithm and
-  // powers per sample, with the very values it compares against (up to 2^16 slices; layouts with
-  // more keep the per-sample search).
-  const bool table = layout.depth_bits <= 16;
-  std::vector<double> start(table ? std::size_t(slice_limit) + 1 : 0);
-  for (std::size_t k = 0; k < start.size(); ++k) start[k] = layout.slice_start(std::uint32_t(k));
+  // with k): the layout's table of the starts (make_cluster_key_layout's, up to 2^16 slices)
+  // replaces its logarithm and powers per sample, with the very values it compares against;
+  // layouts without one keep the per-sample search.
+  static const std::vector<double> no_table;
+  const std::vector<double>& start = layout.tables ? layout.tables->slice_start : no_table;
+  const bool table = !start.empty();
   // interleave() places each bit of x, y and the slice independently: a key is the OR of the
   // three coordinates' own parts, tabled.
   std::vector<std::uint32_t> x_part(table ? layout.tiles_x : 0), y_part(table ? layout.tiles_y : 0),
