@@ -39,22 +39,36 @@ struct CasterBvh::BuildItem {
 };
 
 CasterBvh::CasterBvh(const Case& c) {
-  std::vector<std::uint8_t> casts(c.triangles.size(), 0);
-  tbb::parallel_for(std::size_t(0), c.triangles.size(),
-                    [&](std::size_t i) { casts[i] = oracle_casts_shadow(c, i) ? 1 : 0; });
-  std::vector<BuildItem> items;
-  for (std::size_t i = 0; i < c.triangles.size(); ++i) {
-    if (!casts[i]) continue;
-    const Triangle& t = c.triangles[i];
-    BuildItem item;
-    for (int k = 0; k < 3; ++k) {
-      item.lo[k] = std::min({t.v0[k], t.v1[k], t.v2[k]});
-      item.hi[k] = std::max({t.v0[k], t.v1[k], t.v2[k]});
-      item.centroid[k] = 0.5f * item.lo[k] + 0.5f * item.hi[k];
+  // The casting triangles' items in index order, compacted in pieces fixed by the input alone.
+  const std::size_t n = c.triangles.size();
+  constexpr std::size_t piece = std::size_t(1) << 14;
+  const std::size_t pieces = (n + piece - 1) / piece;
+  std::vector<std::uint8_t> casts(n, 0);
+  std::vector<std::size_t> first_item(pieces + 1, 0);
+  tbb::parallel_for(std::size_t(0), pieces, [&](std::size_t p) {
+    std::size_t count = 0;
+    for (std::size_t i = p * piece; i < std::min(n, (p + 1) * piece); ++i) {
+      casts[i] = oracle_casts_shadow(c, i) ? 1 : 0;
+      count += casts[i];
     }
-    item.triangle = std::uint32_t(i);
-    items.push_back(item);
-  }
+    first_item[p + 1] = count;
+  });
+  for (std::size_t p = 0; p < pieces; ++p) first_item[p + 1] += first_item[p];
+  std::vector<BuildItem> items(first_item[pieces]);
+  tbb::parallel_for(std::size_t(0), pieces, [&](std::size_t p) {
+    std::size_t next = first_item[p];
+    for (std::size_t i = p * piece; i < std::min(n, (p + 1) * piece); ++i) {
+      if (!casts[i]) continue;
+      const Triangle& t = c.triangles[i];
+      BuildItem& item = items[next++];
+      for (int k = 0; k < 3; ++k) {
+        item.lo[k] = std::min({t.v0[k], t.v1[k], t.v2[k]});
+        item.hi[k] = std::max({t.v0[k], t.v1[k], t.v2[k]});
+        item.centroid[k] = 0.5f * item.lo[k] + 0.5f * item.hi[k];
+      }
+      item.triangle = std::uint32_t(i);
+    }
+  });
   if (items.empty()) return;
   nodes_.resize(node_count(items.size()));
   triangles_.resize(items.size());
