@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <set>
 #include <tuple>
 
+#include <hwy/contrib/sort/vqsort.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
+#include <tbb/parallel_invoke.h>
 
 namespace shadowcts {
 namespace {
@@ -60,53 +62,106 @@ CasterClosure::CasterClosure(const Case& c, const CasterBvh& casters,
   const std::vector<std::uint32_t>& ids = casters.triangles();
   if (ids.empty() || n > (std::size_t(1) << 30)) return;  // too many: everything stays open
 
-  // Every (caster, vertex) use, as caster * 4 + k, grouped by the vertex position: sorted by the
-  // position's coordinates as integer keys (x, y, z, then the use), so that neither the sort nor
-  // the grouping reads the triangles.
-  struct Use {
-    std::uint64_t xy;  // ordered_bits(x) << 32 | ordered_bits(y)
-    std::uint32_t z;   // ordered_bits(z)
-    std::uint32_t use;
+  // Every (caster, vertex) use, as caster * 4 + k, grouped by the vertex position. Each use is a
+  // 128-bit key: its position's 96 bits (the coordinates' order-preserving bits) rearranged, then
+  // the use. Equal positions have equal first 96 bits, so sorting the keys puts them next to each
+  // other in use order; the first 63 bits interleave the top 21 bits of the three coordinates (a
+  // Morton order), so that groups near each other in space get near numbers and near places in
+  // `keys`, which keeps the searches below in the cache. Neither the sort nor the grouping reads
+  // the triangles. Keys are unique, so the sorted order does not depend on how it is reached.
+  const std::size_t use_count = 3 * ids.size();
+  const auto spread = [](std::uint64_t v) {  // bit i of a 21-bit v to bit 3 i
+    v &= 0x1fffffu;
+    v = (v | v << 32) & 0x001f00000000ffffULL;
+    v = (v | v << 16) & 0x001f0000ff0000ffULL;
+    v = (v | v << 8) & 0x100f00f00f00f00fULL;
+    v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
+    return (v | v << 2) & 0x1249249249249249ULL;
   };
-  const auto use_position = [&](const Use& x) -> const glm::vec3& {
-    return corner(c.triangles[x.use / 4], int(x.use % 4));
-  };
-  std::vector<Use> uses(3 * ids.size());
+  std::unique_ptr<hwy::uint128_t[]> keys(new hwy::uint128_t[use_count]);
   tbb::parallel_for(std::size_t(0), ids.size(), [&](std::size_t i) {
     for (std::uint32_t k = 0; k < 3; ++k) {
-      const glm::vec3& x = corner(c.triangles[ids[i]], int(k));
-      uses[3 * i + k] = {std::uint64_t(ordered_bits(x.x)) << 32 | ordered_bits(x.y),
-                         ordered_bits(x.z), ids[i] * 4 + k};
+      const glm::vec3& p = corner(c.triangles[ids[i]], int(k));
+      const std::uint64_t x = ordered_bits(p.x), y = ordered_bits(p.y), z = ordered_bits(p.z);
+      hwy::uint128_t& key = keys[3 * i + k];
+      key.hi =
+          (spread(x >> 11) << 3 | spread(y >> 11) << 2 | spread(z >> 11) << 1) | (x >> 10 & 1u);
+      key.lo = ((x & 0x3ffu) << 22 | (y & 0x7ffu) << 11 | (z & 0x7ffu)) << 32 | (ids[i] * 4 + k);
     }
   });
-  tbb::parallel_sort(uses.begin(), uses.end(), [](const Use& x, const Use& y) {
-    if (x.xy != y.xy) return x.xy < y.xy;
-    if (x.z != y.z) return x.z < y.z;
-    return x.use < y.use;
-  });
-  std::vector<std::size_t> group_begin;  // uses[group_begin[g] ...] have the position of group g
-  for (std::size_t i = 0; i < uses.size(); ++i) {
-    if (i == 0 || uses[i - 1].xy != uses[i].xy || uses[i - 1].z != uses[i].z) {
-      group_begin.push_back(i);
-      positions_.push_back(use_position(uses[i]));
-    }
-    vertex_group_[3 * std::size_t(uses[i].use / 4) + uses[i].use % 4] =
-        std::uint32_t(group_begin.size() - 1);
+  {  // two halves sorted at once, then merged in two parts at once
+    const std::size_t half = use_count / 2;
+    hwy::uint128_t* const first = keys.get();
+    hwy::uint128_t* const second = first + half;
+    hwy::uint128_t* const end = first + use_count;
+    tbb::parallel_invoke([&] { hwy::Sorter()(first, half, hwy::SortAscending()); },
+                         [&] { hwy::Sorter()(second, use_count - half, hwy::SortAscending()); });
+    const auto before = [](const hwy::uint128_t& u, const hwy::uint128_t& v) {
+      return u.hi != v.hi ? u.hi < v.hi : u.lo < v.lo;
+    };
+    // The keys of both halves below the first half's median go first.
+    hwy::uint128_t* const first_split = first + half / 2;
+    hwy::uint128_t* const second_split =
+        half == 0 ? second : std::lower_bound(second, end, *first_split, before);
+    std::unique_ptr<hwy::uint128_t[]> merged(new hwy::uint128_t[use_count]);
+    hwy::uint128_t* const out = merged.get();
+    tbb::parallel_invoke([&] { std::merge(first, first_split, second, second_split, out, before); },
+                         [&] {
+                           std::merge(first_split, second, second_split, end,
+                                      out + (first_split - first) + (second_split - second),
+                                      before);
+                         });
+    keys = std::move(merged);
   }
-  const std::size_t groups = group_begin.size();
-  group_begin.push_back(uses.size());
+  const auto use_at = [&](std::size_t i) { return std::uint32_t(keys[i].lo); };
+  const auto same_position = [&](std::size_t i, std::size_t j) {
+    return keys[i].hi == keys[j].hi && keys[i].lo >> 32 == keys[j].lo >> 32;
+  };
+  // Groups numbered in key order, counted in pieces fixed by the input alone.
+  constexpr std::size_t piece = std::size_t(1) << 16;
+  const std::size_t pieces = (use_count + piece - 1) / piece;
+  std::vector<std::uint32_t> piece_groups(pieces + 1, 0);  // groups starting before each piece
+  tbb::parallel_for(std::size_t(0), pieces, [&](std::size_t p) {
+    std::uint32_t starts = 0;
+    for (std::size_t i = p * piece; i < std::min(use_count, (p + 1) * piece); ++i)
+      starts += i == 0 || !same_position(i - 1, i);
+    piece_groups[p + 1] = starts;
+  });
+  for (std::size_t p = 0; p < pieces; ++p) piece_groups[p + 1] += piece_groups[p];
+  const std::size_t groups = piece_groups[pieces];
+  // uses at keys[group_begin[g] ...] have the position of group g
+  std::vector<std::size_t> group_begin(groups + 1, use_count);
+  positions_.resize(groups);
+  tbb::parallel_for(std::size_t(0), pieces, [&](std::size_t p) {
+    std::uint32_t g = piece_groups[p];  // groups started so far: the number of the next one
+    for (std::size_t i = p * piece; i < std::min(use_count, (p + 1) * piece); ++i) {
+      const std::uint32_t use = use_at(i);
+      if (i == 0 || !same_position(i - 1, i)) {
+        group_begin[g] = i;
+        positions_[g++] = corner(c.triangles[use / 4], int(use % 4));
+      }
+      vertex_group_[3 * std::size_t(use / 4) + use % 4] = g - 1;
+    }
+  });
   junction_begin_.assign(groups + 1, 0);  // no junctions known yet
   const auto group_of = [&](std::uint32_t t, int k) {
     return vertex_group_[3 * std::size_t(t) + std::size_t(k)];
   };
 
-  // Casters seen edge-on (the light in their plane, or d parallel to it) cover nothing.
-  std::vector<std::uint8_t> edge_on(n, 0);
+  // Each caster's side: light_plane_side(v0, v1, v2). The side of the third vertex against the
+  // plane through an edge and the light is the same for every edge (the orientation of (L, a, b,
+  // x), or det(b - a, d, x - a), is unchanged by a cyclic shift of a, b, x), and the side of a
+  // caster's third vertex against an edge it shares with another caster is that caster's side,
+  // negated when it runs along the edge the other way: one exact test per caster instead of one
+  // per edge and candidate partner. Casters seen edge-on (0: the light in their plane, or d
+  // parallel to it) cover nothing.
+  std::vector<std::int8_t> side_of(n, 0);
   tbb::parallel_for(std::size_t(0), ids.size(), [&](std::size_t i) {
     const Triangle& t = c.triangles[ids[i]];
-    edge_on[ids[i]] =
-        predicate.light_plane_side(glm::dvec3(t.v0), glm::dvec3(t.v1), glm::dvec3(t.v2)) == 0;
+    side_of[ids[i]] = std::int8_t(
+        predicate.light_plane_side(glm::dvec3(t.v0), glm::dvec3(t.v1), glm::dvec3(t.v2)));
   });
+  const auto edge_on = [&](std::uint32_t t) { return side_of[t] == 0; };
 
   // The closing partner of the piece between groups `from` and `to` of edge k of caster t (on
   // its line): a caster through one end of the piece with an edge on the line that reaches the
@@ -122,30 +177,37 @@ CasterClosure::CasterClosure(const Case& c, const CasterBvh& casters,
     for (const auto& [at, target] : {std::pair{from, to}, std::pair{to, from}}) {
       const glm::vec3& q = positions_[target];
       const bool increasing = q[axis] > positions_[at][axis];
-      const auto consider = [&](std::uint32_t other, const glm::vec3& x, const glm::vec3& third) {
+      // `forward`: the other caster runs from its vertex at `at` to x (else from x to it).
+      const auto consider = [&](std::uint32_t other, const glm::vec3& x, const glm::vec3& third,
+                                bool forward) {
         if (other == t || partner == several_partners) return;
         if (increasing ? x[axis] < q[axis] : x[axis] > q[axis]) return;  // does not reach q
-        if (x != a && x != b && !collinear(a, b, x)) return;
-        if (predicate.light_plane_side(glm::dvec3(a), glm::dvec3(b), glm::dvec3(third)) != -side)
-          return;
+        int third_side = 0;
+        if (x == q) {  // the edge from a to b, or from b to a
+          third_side = forward == (at == from) ? side_of[other] : -side_of[other];
+        } else {
+          if (x != a && x != b && !collinear(a, b, x)) return;
+          third_side = predicate.light_plane_side(glm::dvec3(a), glm::dvec3(b), glm::dvec3(third));
+        }
+        if (third_side != -side) return;
         if (partner == no_partner)
           partner = other;
         else if (partner != other)
           partner = several_partners;
       };
       for (std::size_t i = group_begin[at]; i < group_begin[at + 1]; ++i) {
-        const std::uint32_t other = uses[i].use / 4;
-        const int kv = int(uses[i].use % 4);
+        const std::uint32_t other = use_at(i) / 4;
+        const int kv = int(use_at(i) % 4);
         const Triangle& o = c.triangles[other];
-        consider(other, corner(o, (kv + 1) % 3), corner(o, (kv + 2) % 3));
-        consider(other, corner(o, (kv + 2) % 3), corner(o, (kv + 1) % 3));
+        consider(other, corner(o, (kv + 1) % 3), corner(o, (kv + 2) % 3), true);
+        consider(other, corner(o, (kv + 2) % 3), corner(o, (kv + 1) % 3), false);
       }
       for (std::uint32_t i = junction_begin_[at]; i < junction_begin_[at + 1]; ++i) {
         const Junction& j = junctions_[i];
         const Triangle& o = c.triangles[j.triangle];
         const glm::vec3& third = corner(o, (j.edge + 2) % 3);
-        consider(j.triangle, corner(o, j.edge), third);
-        consider(j.triangle, corner(o, (j.edge + 1) % 3), third);
+        consider(j.triangle, corner(o, j.edge), third, false);
+        consider(j.triangle, corner(o, (j.edge + 1) % 3), third, true);
       }
       if (partner != no_partner) break;
     }
@@ -153,19 +215,13 @@ CasterClosure::CasterClosure(const Case& c, const CasterBvh& casters,
   };
 
   // Every edge as a whole first: most are closed by an edge with the same end points.
-  std::vector<std::int8_t> side_of_third(3 * n, 0);  // the third vertex's side of each edge
   tbb::parallel_for(std::size_t(0), ids.size(), [&](std::size_t i) {
     const std::uint32_t t = ids[i];
-    const Triangle& tri = c.triangles[t];
-    for (int k = 0; k < 3; ++k) {
-      const int side = predicate.light_plane_side(glm::dvec3(corner(tri, k)),
-                                                  glm::dvec3(corner(tri, (k + 1) % 3)),
-                                                  glm::dvec3(corner(tri, (k + 2) % 3)));
-      side_of_third[3 * std::size_t(t) + std::size_t(k)] = std::int8_t(side);
-      if (side == 0) continue;  // no plane through the edge and the light, or seen edge-on
+    const int side = side_of[t];
+    if (side == 0) return;  // no plane through an edge and the light, or seen edge-on
+    for (int k = 0; k < 3; ++k)
       edge_partner_[3 * std::size_t(t) + std::size_t(k)] =
           closing_partner(t, k, side, group_of(t, k), group_of(t, (k + 1) % 3));
-    }
   });
 
   // T-junctions: caster vertices strictly inside another caster's edge. Found along collinear
@@ -195,10 +251,10 @@ CasterClosure::CasterClosure(const Case& c, const CasterBvh& casters,
     const glm::vec3& a = corner(tri, k);
     const glm::vec3& b = corner(tri, (k + 1) % 3);
     for (std::size_t i = group_begin[g]; i < group_begin[g + 1]; ++i) {
-      const std::uint32_t other = uses[i].use / 4;
+      const std::uint32_t other = use_at(i) / 4;
       if (other == t) continue;
       EdgeEnd ends[2];
-      edges_at(other, int(uses[i].use % 4), ends);
+      edges_at(other, int(use_at(i) % 4), ends);
       for (const EdgeEnd& e : ends) {
         const glm::vec3& y = corner(c.triangles[other], e.other);
         if (y == a || y == b || !strictly_inside(a, b, y) || !collinear(a, b, y)) continue;
@@ -213,7 +269,7 @@ CasterClosure::CasterClosure(const Case& c, const CasterBvh& casters,
     const std::uint32_t t = ids[i];
     for (int k = 0; k < 3; ++k) {
       const std::size_t edge = 3 * std::size_t(t) + std::size_t(k);
-      if (side_of_third[edge] == 0 || edge_partner_[edge] != no_partner) continue;
+      if (side_of[t] == 0 || edge_partner_[edge] != no_partner) continue;
       junctions_from(group_of(t, k), t, k, found[i]);
       junctions_from(group_of(t, (k + 1) % 3), t, k, found[i]);
     }
@@ -265,7 +321,7 @@ CasterClosure::CasterClosure(const Case& c, const CasterBvh& casters,
   tbb::parallel_for(std::size_t(0), splits.size(), [&](std::size_t i) {
     const std::uint32_t t = splits[i]->first / 3;
     const int k = int(splits[i]->first % 3);
-    const int side = side_of_third[splits[i]->first];
+    const int side = side_of[t];
     SplitEdge& s = splits[i]->second;
     if (side == 0) return;
     const std::uint32_t from = group_of(t, k), to = group_of(t, (k + 1) % 3);
@@ -312,9 +368,9 @@ CasterClosure::CasterClosure(const Case& c, const CasterBvh& casters,
       return predicate.light_plane_side(dv(v), dv(w), dv(x)) == -side;
     };
     for (std::size_t i = group_begin[g]; i < group_begin[g + 1]; ++i) {
-      const std::uint32_t other = uses[i].use / 4;
+      const std::uint32_t other = use_at(i) / 4;
       if (other == self) continue;
-      const int kv = int(uses[i].use % 4);
+      const int kv = int(use_at(i) % 4);
       const Triangle& o = c.triangles[other];
       const glm::vec3 &x1 = corner(o, (kv + 1) % 3), &x2 = corner(o, (kv + 2) % 3);
       if ((along(x1) && opposite(x2)) || (along(x2) && opposite(x1))) return true;
@@ -340,9 +396,9 @@ CasterClosure::CasterClosure(const Case& c, const CasterBvh& casters,
       return ray_crossed(g, t, w, third);
     };
     for (std::size_t i = group_begin[g]; i < group_begin[g + 1]; ++i) {
-      const std::uint32_t t = uses[i].use / 4;
-      const int k = int(uses[i].use % 4);
-      if (edge_on[t]) continue;
+      const std::uint32_t t = use_at(i) / 4;
+      const int k = int(use_at(i) % 4);
+      if (edge_on(t)) continue;
       any = true;
       const Triangle& tri = c.triangles[t];
       const glm::vec3 &next = corner(tri, (k + 1) % 3), &previous = corner(tri, (k + 2) % 3);
@@ -350,7 +406,7 @@ CasterClosure::CasterClosure(const Case& c, const CasterBvh& casters,
     }
     for (std::uint32_t i = junction_begin_[g]; i < junction_begin_[g + 1]; ++i) {
       const Junction& j = junctions_[i];
-      if (edge_on[j.triangle]) continue;
+      if (edge_on(j.triangle)) continue;
       any = true;
       const Triangle& tri = c.triangles[j.triangle];
       const glm::vec3& third = corner(tri, (j.edge + 2) % 3);

@@ -205,6 +205,72 @@ TEST(CasterClosure, ClosedFanSharedEdgesAndTheReceiver) {
   }
 }
 
+// The closure tells the sides of a shared edge from each caster's own orientation: neighbours
+// wound either way round the shared edge, and an apex written as -0 in some of them (the same
+// point), close the fan's edges; a fold (both third vertices on one side) leaves its edge open.
+TEST(CasterClosure, SharedEdgesCloseWhateverTheWindingAndTheSignOfZero) {
+  const glm::vec3 apex{0, 3, 0}, negative_zero_apex{-0.0f, 3, -0.0f};
+  const glm::vec3 rim[4] = {{-1, 2, -1}, {1, 2, -1}, {1, 2, 1}, {-1, 2, 1}};
+  for (const ShadowLight& light :
+       {testing::point_light({0.25f, 8, 0.5f}), testing::directional_light({0, 1, 0})})
+    for (const bool flip : {false, true})
+      for (const bool negative_zero : {false, true}) {
+        SCOPED_TRACE(::testing::Message() << "flip " << flip << ", -0 " << negative_zero);
+        auto h = testing::make_hand_built_case(light);
+        for (int i = 0; i < 4; ++i) {
+          const glm::vec3& a = negative_zero && i % 2 == 1 ? negative_zero_apex : apex;
+          if (flip && i % 2 == 1)
+            h.add_triangle(a, rim[(i + 1) % 4], rim[i]);  // 1 ... 4, edges 0 and 2 at the apex
+          else
+            h.add_triangle(a, rim[i], rim[(i + 1) % 4]);
+        }
+        const auto fan_closed = [&](const CasterClosure& closure, bool apex_closed) {
+          for (std::uint32_t t = 1; t <= 4; ++t)
+            for (const int k : {0, 2}) {
+              const Exposed e = exposed(closure, t, k, no_receiver);
+              EXPECT_TRUE(e.pieces.empty()) << "triangle " << t << " edge " << k;
+              if (!apex_closed) continue;
+              for (const glm::vec3& x : e.points) EXPECT_NE(x, apex) << "triangle " << t;
+            }
+        };
+        {
+          const CasterBvh bvh(h.c);
+          const ExactShadowPredicate predicate(hard_shadow_light(h.c), h.c.scale());
+          fan_closed(CasterClosure(h.c, bvh, predicate), true);
+        }
+        // The fold: a fifth caster on the edge from the apex to rim[1], its third vertex on the
+        // same side as triangle 1's (rim[0]). The fan's edges stay closed; the apex is now open
+        // (nothing crosses the fold's edge to (-1, 2, -0.5)).
+        const std::uint32_t fold = h.add_triangle(apex, {-1, 2, -0.5f}, rim[1]);
+        const CasterBvh bvh(h.c);
+        const ExactShadowPredicate predicate(hard_shadow_light(h.c), h.c.scale());
+        const CasterClosure closure(h.c, bvh, predicate);
+        fan_closed(closure, false);
+        // The fold's edge from rim[1] to the apex is closed by triangle 2 (the other side), not by
+        // triangle 1 (its own side); its edge from the apex to (-1, 2, -0.5) is open.
+        EXPECT_TRUE(exposed(closure, fold, 2, no_receiver).pieces.empty());
+        EXPECT_EQ(exposed(closure, fold, 0, no_receiver).pieces.size(), 1u);
+        // Without triangle 2 as a partner (a sample on it), triangle 1 and the fold, on one side,
+        // leave that edge open.
+        EXPECT_EQ(exposed(closure, fold, 2, 2).pieces.size(), 1u);
+      }
+  // A lone fold, searched from both ends of the shared edge: open on both casters.
+  for (const ShadowLight& light :
+       {testing::point_light({0.25f, 8, 0.5f}), testing::directional_light({0, 1, 0})})
+    for (const bool flip : {false, true}) {
+      auto h = testing::make_hand_built_case(light);
+      const std::uint32_t first = h.add_triangle(apex, rim[0], rim[1]);  // edge 2: rim[1], apex
+      const std::uint32_t fold = flip ? h.add_triangle(apex, rim[1], {-1, 2, -0.5f})   // edge 0
+                                      : h.add_triangle(apex, {-1, 2, -0.5f}, rim[1]);  // edge 2
+      const CasterBvh bvh(h.c);
+      const ExactShadowPredicate predicate(hard_shadow_light(h.c), h.c.scale());
+      const CasterClosure closure(h.c, bvh, predicate);
+      EXPECT_EQ(exposed(closure, first, 2, no_receiver).pieces.size(), 1u) << "flip " << flip;
+      EXPECT_EQ(exposed(closure, fold, flip ? 0 : 2, no_receiver).pieces.size(), 1u)
+          << "flip " << flip;
+    }
+}
+
 // The same fan with triangle 1 split at the midpoint m of its edge from rim[1] to the apex: the
 // neighbour's edge from the apex to rim[1] gets a T-junction at m and stays closed in two pieces.
 TEST(CasterClosure, TJunctionsCutEdgesIntoPieces) {
