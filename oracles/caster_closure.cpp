@@ -167,27 +167,32 @@ CasterClosure::CasterClosure(const Case& c, const CasterBvh& casters,
   // its line): a caster through one end of the piece with an edge on the line that reaches the
   // other end, its third vertex on the other side. Its edge either has that end as a vertex or
   // passes through it (a junction).
+  // Casters are read through their vertex groups (12 bytes each, positions_ in Morton order),
+  // not their triangles, which keeps this search in the cache.
   const auto closing_partner = [&](std::uint32_t t, int k, int side, std::uint32_t from,
                                    std::uint32_t to) {
-    const Triangle& tri = c.triangles[t];
-    const glm::vec3& a = corner(tri, k);
-    const glm::vec3& b = corner(tri, (k + 1) % 3);
+    const std::uint32_t group_a = group_of(t, k), group_b = group_of(t, (k + 1) % 3);
+    const glm::vec3& a = positions_[group_a];
+    const glm::vec3& b = positions_[group_b];
     const int axis = line_axis(a, b);
     std::uint32_t partner = no_partner;
     for (const auto& [at, target] : {std::pair{from, to}, std::pair{to, from}}) {
       const glm::vec3& q = positions_[target];
       const bool increasing = q[axis] > positions_[at][axis];
-      // `forward`: the other caster runs from its vertex at `at` to x (else from x to it).
-      const auto consider = [&](std::uint32_t other, const glm::vec3& x, const glm::vec3& third,
-                                bool forward) {
+      // The other caster's edge from its point at `at` to the vertex of group x, its third vertex
+      // of group `third`; `forward`: it runs from `at` to x in the caster's order.
+      const auto consider = [&](std::uint32_t other, std::uint32_t x_group,
+                                std::uint32_t third_group, bool forward) {
         if (other == t || partner == several_partners) return;
-        if (increasing ? x[axis] < q[axis] : x[axis] > q[axis]) return;  // does not reach q
         int third_side = 0;
-        if (x == q) {  // the edge from a to b, or from b to a
+        if (x_group == target) {  // the edge from a to b, or from b to a
           third_side = forward == (at == from) ? side_of[other] : -side_of[other];
         } else {
-          if (x != a && x != b && !collinear(a, b, x)) return;
-          third_side = predicate.light_plane_side(glm::dvec3(a), glm::dvec3(b), glm::dvec3(third));
+          const glm::vec3& x = positions_[x_group];
+          if (increasing ? x[axis] < q[axis] : x[axis] > q[axis]) return;  // does not reach q
+          if (x_group != group_a && x_group != group_b && !collinear(a, b, x)) return;
+          third_side = predicate.light_plane_side(glm::dvec3(a), glm::dvec3(b),
+                                                  glm::dvec3(positions_[third_group]));
         }
         if (third_side != -side) return;
         if (partner == no_partner)
@@ -198,16 +203,16 @@ CasterClosure::CasterClosure(const Case& c, const CasterBvh& casters,
       for (std::size_t i = group_begin[at]; i < group_begin[at + 1]; ++i) {
         const std::uint32_t other = use_at(i) / 4;
         const int kv = int(use_at(i) % 4);
-        const Triangle& o = c.triangles[other];
-        consider(other, corner(o, (kv + 1) % 3), corner(o, (kv + 2) % 3), true);
-        consider(other, corner(o, (kv + 2) % 3), corner(o, (kv + 1) % 3), false);
+        const std::uint32_t next = group_of(other, (kv + 1) % 3);
+        const std::uint32_t previous = group_of(other, (kv + 2) % 3);
+        consider(other, next, previous, true);
+        consider(other, previous, next, false);
       }
       for (std::uint32_t i = junction_begin_[at]; i < junction_begin_[at + 1]; ++i) {
         const Junction& j = junctions_[i];
-        const Triangle& o = c.triangles[j.triangle];
-        const glm::vec3& third = corner(o, (j.edge + 2) % 3);
-        consider(j.triangle, corner(o, j.edge), third, false);
-        consider(j.triangle, corner(o, (j.edge + 1) % 3), third, true);
+        const std::uint32_t third = group_of(j.triangle, (j.edge + 2) % 3);
+        consider(j.triangle, group_of(j.triangle, j.edge), third, false);
+        consider(j.triangle, group_of(j.triangle, (j.edge + 1) % 3), third, true);
       }
       if (partner != no_partner) break;
     }
