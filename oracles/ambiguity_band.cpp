@@ -180,7 +180,8 @@ std::size_t ExactBandClassifier::first_changing_length(const Query& q,
 
 ExactBandClassifier::Query ExactBandClassifier::start(const ViewSample& sample,
                                                       std::vector<BandCandidate>& candidates,
-                                                      bool with_exponent) const {
+                                                      bool with_exponent,
+                                                      const Query* same_receiver) const {
   Query q;
   // Candidates within the largest cube this call decides.
   q.inflation = with_exponent ? largest_move_ : class_length_;
@@ -189,7 +190,9 @@ ExactBandClassifier::Query ExactBandClassifier::start(const ViewSample& sample,
   q.candidates = &candidates;
   q.segment = make_shadow_segment(q.position, light_, scale_);
   if (sample.receiver != no_receiver)
-    q.plane = predicate_.receiver_plane(case_.triangles[sample.receiver]);
+    q.plane = same_receiver != nullptr && same_receiver->receiver == sample.receiver
+                  ? same_receiver->plane
+                  : predicate_.receiver_plane(case_.triangles[sample.receiver]);
   candidates.clear();
   return q;
 }
@@ -201,11 +204,13 @@ bool ExactBandClassifier::consider(Query& q, std::uint32_t triangle,
                                    bool stop_at_first_blocker) const {
   if (triangle == q.receiver) return false;
   const Triangle& t = case_.triangles[triangle];
+  // The plane test first: it is cheaper than the separation, and it rejects the receiver's
+  // neighbours (no point on the light's side), which touch the query and so need every axis.
+  const PlaneReach reach = predicate_.reach(q.plane, t);
+  if (reach == PlaneReach::none) return false;  // shadows no point of this sample's cubes
   const double separation = separation_inflation(q.segment, glm::dvec3(t.v0), glm::dvec3(t.v1),
                                                  glm::dvec3(t.v2), q.inflation);
   if (separation > q.inflation) return false;
-  const PlaneReach reach = predicate_.reach(q.plane, t);
-  if (reach == PlaneReach::none) return false;  // shadows no point of this sample's cubes
   const BandCandidate candidate{separation, triangle, reach};
   q.candidates->push_back(candidate);
   if (separation == 0.0 && q.first_blocker.triangle == no_triangle &&
@@ -241,7 +246,7 @@ void ExactBandClassifier::classify_packet(const ViewSample* const* samples, int 
   Query q[lanes];
   ShadowSegment segments[lanes];
   for (int l = 0; l < count; ++l) {
-    q[l] = start(*samples[l], candidates[l], false);
+    q[l] = start(*samples[l], candidates[l], false, l > 0 ? &q[l - 1] : nullptr);
     segments[l] = q[l].segment;
   }
   casters_.visit_packet(segments, count, class_length_, [&](int lane, std::uint32_t triangle) {

@@ -81,8 +81,10 @@ class ExactBandClassifier {
 
  private:
   struct Query;
-  Query start(const ViewSample& sample, std::vector<BandCandidate>& candidates,
-              bool with_exponent) const;
+  // A query for the sample; its receiver's plane copied from `same_receiver` when that query's
+  // receiver is the sample's (neighbours in a packet often share one).
+  Query start(const ViewSample& sample, std::vector<BandCandidate>& candidates, bool with_exponent,
+              const Query* same_receiver = nullptr) const;
   bool consider(Query& q, std::uint32_t triangle, bool stop_at_first_blocker) const;
   void gather(Query& q, bool stop_at_first_blocker) const;
   std::optional<SampleTruth> settled(Query& q, bool with_exponent) const;
