@@ -164,7 +164,11 @@ int side_of(const ReceiverPlane& plane, const Point& x) {
 }
 
 int side_of_vertex(const ReceiverPlane& plane, const glm::vec3& v) {
-  return side_of(plane, Epick::Point_3(v.x, v.y, v.z));
+  // A vertex the caster shares with the receiver lies in its plane: the receiver's neighbours
+  // would otherwise send every such exact zero through CGAL's filters to exact arithmetic.
+  const glm::dvec3 x(v);
+  if (x == plane.a || x == plane.b || x == plane.c) return 0;
+  return side_of(plane, Epick::Point_3(x.x, x.y, x.z));
 }
 
 using Interval = CGAL::Interval_nt<>;  // rounding-safe interval arithmetic
