@@ -31,6 +31,7 @@
 #include "gpu/bruteforce/hard_shadow_bruteforce_kernel.h"
 #include "gpu/device_array.cuh"
 #include "gpu/emulator/kernel.h"
+#include "gpu/kernel_progress.cuh"
 #include "shadowcts/geometry/edge_proximity.h"
 #include "shadowcts/geometry/receiver_half_space.h"
 #include "shadowcts/geometry/segment_box.h"
@@ -82,7 +83,9 @@ __global__ void SHADOWCTS_BRUTEFORCE_LAUNCH_BOUNDS bruteforce_hard_shadow(
     const glm::vec3* sample_positions, const std::uint32_t* sample_receivers,
     const BruteforceReceiver* sample_receiver_triangles, std::uint32_t sample_count,
     const BruteforceCaster* casters, std::uint32_t caster_count, bool directional_light,
-    glm::vec3 light, std::uint8_t* sample_states, unsigned long long* pair_tests) {
+    glm::vec3 light, std::uint8_t* sample_states, unsigned long long* pair_tests,
+    unsigned long long* blocks_started) {
+  count_started_block(blocks_started);
   SHADOWCTS_SHARED(TileCaster[casters_per_tile], tile);
   const std::uint32_t sample = blockIdx.x * blockDim.x + threadIdx.x;
   const bool has_sample = sample < sample_count;
@@ -194,12 +197,12 @@ inline BruteforceShadowResult run(BruteforceShadowInput input) {
 
   const auto block_count =
       static_cast<unsigned>((sample_count + threads_per_block - 1) / threads_per_block);
+  KernelProgress progress;
   SHADOWCTS_LAUNCH(bruteforce_hard_shadow, block_count, threads_per_block, 0)
   (positions.data(), receivers.data(), receiver_triangles.data(),
    static_cast<std::uint32_t>(sample_count), casters.data(), caster_count, input.directional_light,
-   input.light, states.data(), pair_tests.data());
-  check(cudaGetLastError(), "bruteforce_hard_shadow launch");
-  check(cudaDeviceSynchronize(), "bruteforce_hard_shadow");
+   input.light, states.data(), pair_tests.data(), progress.counter());
+  progress.wait("bruteforce_hard_shadow", block_count);
 
   states.download(result.shadowed.data());
   unsigned long long total_tests = 0;

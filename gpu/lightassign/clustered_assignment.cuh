@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "gpu/emulator/kernel.h"
+#include "gpu/kernel_progress.cuh"
 #include "gpu/lightassign/device_buffer.cuh"
 #include "gpu/lightassign/light_bvh.cuh"
 #include "gpu/lightassign/lightassign_kernels.h"
@@ -81,7 +82,8 @@ __global__ void cluster_lights(std::uint32_t clusters, const LightAssignBox* bou
                                const NormalCone* cones, bool use_cones, BvhView bvh,
                                const LightAssignSphere* spheres, unsigned long long* count,
                                WorkCounters* work, const unsigned long long* offset,
-                               std::uint32_t* lights) {
+                               std::uint32_t* lights, unsigned long long* blocks_started) {
+  count_started_block(blocks_started);
   const std::uint32_t warp = (blockIdx.x * blockDim.x + threadIdx.x) / warpSize;
   const unsigned lane = threadIdx.x % warpSize;
   if (warp >= clusters) return;  // whole warps: the block is a multiple of 32

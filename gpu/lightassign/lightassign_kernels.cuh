@@ -163,20 +163,23 @@ inline LightAssignKernelResult run(LightAssignKernelInput in) {
     const bool use_cones = in.explicit_normal_cones || in.normal_divisions > 0;
     DeviceArray<WorkCounters> work(1);
     work.fill_bytes(0);
+    KernelProgress progress;
     if (lists > 0) {
-      SHADOWCTS_LAUNCH(cluster_lights, warp_blocks(lists), threads_per_block, 0)
+      const unsigned blocks = warp_blocks(lists);
+      SHADOWCTS_LAUNCH(cluster_lights, blocks, threads_per_block, 0)
       (lists, bounds.data(), cones.data(), use_cones, bvh.view(), spheres.data(), counts.data(),
-       work.data(), nullptr, nullptr);
-      Launches::finish("cluster_lights (count)");
+       work.data(), nullptr, nullptr, progress.counter());
+      progress.wait("cluster_lights (count)", blocks);
     }
     const unsigned long long total = scan_counts(counts, lists);
     offsets = list_offsets(counts, lists);
     out_lights.resize(total);
     if (lists > 0 && total > 0) {
-      SHADOWCTS_LAUNCH(cluster_lights, warp_blocks(lists), threads_per_block, 0)
+      const unsigned blocks = warp_blocks(lists);
+      SHADOWCTS_LAUNCH(cluster_lights, blocks, threads_per_block, 0)
       (lists, bounds.data(), cones.data(), use_cones, bvh.view(), spheres.data(), nullptr, nullptr,
-       counts.data(), out_lights.data());
-      Launches::finish("cluster_lights (write)");
+       counts.data(), out_lights.data(), progress.counter());
+      progress.wait("cluster_lights (write)", blocks);
     }
     const WorkCounters w = work.at(0);
     result.nodes_tested = w.nodes_tested;

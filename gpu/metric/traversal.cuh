@@ -27,6 +27,7 @@
 
 #include "gpu/device_array.cuh"
 #include "gpu/emulator/kernel.h"
+#include "gpu/kernel_progress.cuh"
 #include "gpu/metric/traversal.h"
 #include "shadowcts/geometry/caster_blocks_sample.h"
 #include "shadowcts/geometry/receiver_half_space.h"
@@ -242,7 +243,9 @@ __global__ void SHADOWCTS_METRIC_LAUNCH_BOUNDS metric_traversal(
     const MetricTriangle* triangles, MetricFrame frame, const glm::vec3* sample_positions,
     const std::uint32_t* sample_receivers, const MetricReceiver* sample_receiver_triangles,
     std::uint32_t sample_count, std::uint32_t stack_limit, std::uint8_t* sample_states,
-    std::uint32_t* sample_counters, unsigned long long* totals) {
+    std::uint32_t* sample_counters, unsigned long long* totals,
+    unsigned long long* blocks_started) {
+  count_started_block(blocks_started);
   const std::uint32_t sample = blockIdx.x * blockDim.x + threadIdx.x;
   WalkCounters counters;
   if (sample < sample_count) {
@@ -300,12 +303,12 @@ inline gpu_metric::MetricResult run(gpu_metric::MetricInput input) {
 
   const auto block_count =
       static_cast<unsigned>((sample_count + threads_per_block - 1) / threads_per_block);
+  KernelProgress progress;
   SHADOWCTS_LAUNCH(metric_traversal, block_count, threads_per_block, 0)
   (nodes.data(), node_count, clusters.data(), triangles.data(), input.frame, positions.data(),
    receivers.data(), receiver_triangles.data(), static_cast<std::uint32_t>(sample_count),
-   stack_limit, states.data(), sample_counters.data(), totals.data());
-  check(cudaGetLastError(), "metric_traversal launch");
-  check(cudaDeviceSynchronize(), "metric_traversal");
+   stack_limit, states.data(), sample_counters.data(), totals.data(), progress.counter());
+  progress.wait("metric_traversal", block_count);
 
   states.download(result.state.data());
   std::vector<std::uint32_t> per_sample(3 * sample_count);

@@ -16,6 +16,7 @@
 
 #include "gpu/device_array.cuh"
 #include "gpu/emulator/kernel.h"
+#include "gpu/kernel_progress.cuh"
 #include "gpu/psv/psv_kernels.h"
 #include "gpu/psv/query_context.cuh"
 #include "gpu/psv/query_hybrid.cuh"
@@ -46,7 +47,8 @@ __global__ void SHADOWCTS_PSV_LAUNCH_BOUNDS
 psv_query(QueryContext context, PsvDeviceQuery query, std::uint32_t stack_capacity,
           const glm::vec3* sample_positions, const std::uint32_t* sample_receivers,
           std::uint32_t sample_count, std::uint8_t* shadowed, std::uint32_t* nodes_visited,
-          unsigned long long* totals, unsigned int* maxima) {
+          unsigned long long* totals, unsigned int* maxima, unsigned long long* blocks_started) {
+  count_started_block(blocks_started);
   const std::uint32_t sample = blockIdx.x * blockDim.x + threadIdx.x;
   if (sample >= sample_count) return;
   QueryWork work;
@@ -132,12 +134,12 @@ inline PsvQueryResult run(PsvQueryInput input) {
 
   const auto block_count =
       static_cast<unsigned>((sample_count + threads_per_block - 1) / threads_per_block);
+  KernelProgress progress;
   SHADOWCTS_LAUNCH(psv_query, block_count, threads_per_block, 0)
   (context, input.query, input.stack_capacity, positions.data(), receivers.data(),
    static_cast<std::uint32_t>(sample_count), states.data(), visited.data(), totals.data(),
-   maxima.data());
-  check(cudaGetLastError(), "psv_query launch");
-  check(cudaDeviceSynchronize(), "psv_query");
+   maxima.data(), progress.counter());
+  progress.wait("psv_query", block_count);
 
   states.download(result.shadowed.data());
   visited.download(result.nodes_visited.data());

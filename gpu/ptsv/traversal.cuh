@@ -33,6 +33,7 @@
 #include <thrust/sort.h>
 
 #include "gpu/emulator/kernel.h"
+#include "gpu/kernel_progress.cuh"
 #include "gpu/ptsv/device_memory.cuh"
 #include "gpu/ptsv/hierarchy.cuh"
 #include "gpu/ptsv/node_test.cuh"
@@ -75,7 +76,9 @@ __global__ void test_children(const std::uint32_t* job_node, const std::uint32_t
                               std::uint32_t jobs, int level, const std::uint32_t* live,
                               const std::uint32_t* child_mask, const std::uint32_t* first_child,
                               const std::uint32_t* child_index, const NodeBox* child_box,
-                              TraversalParams params, JobVerdicts out) {
+                              TraversalParams params, JobVerdicts out,
+                              unsigned long long* blocks_started) {
+  count_started_block(blocks_started);
   const std::uint32_t warp = (blockIdx.x * blockDim.x + threadIdx.x) / 32;
   const std::uint32_t lane = threadIdx.x % 32;
   const std::uint32_t first = warp * jobs_per_warp;
@@ -175,7 +178,8 @@ struct SampleData {
 __global__ void test_samples(const std::uint32_t* job_node, const std::uint32_t* job_volume,
                              std::uint32_t jobs, const std::uint32_t* leaf_index,
                              TraversalParams params, SampleData data, std::uint32_t* shadow_bits,
-                             std::uint32_t* sample_tests) {
+                             std::uint32_t* sample_tests, unsigned long long* blocks_started) {
+  count_started_block(blocks_started);
   const std::uint32_t warp = (blockIdx.x * blockDim.x + threadIdx.x) / 32;
   const std::uint32_t lane = threadIdx.x % 32;
   const std::uint32_t first = warp * jobs_per_warp;
@@ -242,6 +246,7 @@ inline void traverse(DeviceHierarchy& h, std::vector<DeviceArray<std::uint32_t>>
   if (volume_count != 0)
     thrust::sequence(thrust::device, job_volume.data(), job_volume.data() + volume_count);
   std::uint32_t jobs = volume_count;
+  KernelProgress progress;
   for (int l = 0; l <= leaves && jobs != 0; ++l) {
     DeviceLevel& level = h.levels[std::size_t(l)];
     counters.nodes_visited += jobs;
@@ -251,10 +256,11 @@ inline void traverse(DeviceHierarchy& h, std::vector<DeviceArray<std::uint32_t>>
     }
     if (l == leaves) {
       DeviceArray<std::uint32_t> tests(jobs);
-      SHADOWCTS_LAUNCH(test_samples, launches.blocks(warp_threads(jobs)), threads_per_block, 0)
+      const unsigned blocks = launches.blocks(warp_threads(jobs));
+      SHADOWCTS_LAUNCH(test_samples, blocks, threads_per_block, 0)
       (job_node.data(), job_volume.data(), jobs, level.index.data(), params, data, shadow_bits,
-       tests.data());
-      after_launch("test_samples");
+       tests.data(), progress.counter());
+      progress.wait("test_samples", blocks);
       counters.sample_tests += sum(tests, jobs);
       break;
     }
@@ -262,11 +268,12 @@ inline void traverse(DeviceHierarchy& h, std::vector<DeviceArray<std::uint32_t>>
     DeviceArray<std::uint32_t> start(jobs), accept(jobs), refine(jobs), reject(jobs), cull(jobs);
     const JobVerdicts verdicts{start.data(), accept.data(), refine.data(), reject.data(),
                                cull.data()};
-    SHADOWCTS_LAUNCH(test_children, launches.blocks(warp_threads(jobs)), threads_per_block, 0)
+    const unsigned blocks = launches.blocks(warp_threads(jobs));
+    SHADOWCTS_LAUNCH(test_children, blocks, threads_per_block, 0)
     (job_node.data(), job_volume.data(), jobs, l, live[std::size_t(l)].data(),
      level.child_mask.data(), level.first_child.data(), below.index.data(), below.box.data(),
-     params, verdicts);
-    after_launch("test_children");
+     params, verdicts, progress.counter());
+    progress.wait("test_children", blocks);
     DeviceArray<std::uint32_t> prior(jobs);
     thrust::exclusive_scan_by_key(
         thrust::device, job_node.data(), job_node.data() + jobs, accept.data(), prior.data(), 0u,

@@ -23,6 +23,7 @@
 
 #include "gpu/device_array.cuh"
 #include "gpu/emulator/kernel.h"
+#include "gpu/kernel_progress.cuh"
 #include "gpu/softtile/disk_bitmask.cuh"
 #include "gpu/softtile/fragment_occlusion.cuh"
 #include "gpu/softtile/shadow_cone.cuh"
@@ -59,6 +60,7 @@ struct KernelParams {
   std::uint32_t* candidate_list;
   std::uint32_t triangle_count;
   std::uint32_t* masks;
+  unsigned long long* blocks_started;  // the launch's progress (gpu/kernel_progress.cuh)
 };
 
 __device__ inline int bit_count64(std::uint64_t x) {
@@ -226,6 +228,7 @@ __device__ inline FragmentSetup fragment_setup(const KernelParams& p, const Soft
 #endif
 
 __global__ void SHADOWCTS_SOFTTILE_LAUNCH_BOUNDS softtile_tiles(KernelParams p) {
+  count_started_block(p.blocks_started);
   SHADOWCTS_SHARED(std::uint32_t[max_batch_capacity], list);  // the tile's candidates
   SHADOWCTS_SHARED(SofttileTriangle[threads_per_block], staged);
   SHADOWCTS_SHARED(SofttileBound, shared_bound);
@@ -397,9 +400,10 @@ inline SofttileKernelResult run(SofttileKernelInput input) {
   p.triangle_count = static_cast<std::uint32_t>(triangle_count);
   DeviceArray<std::uint32_t> lists(input.record_candidates ? tiles * triangle_count : 0);
   p.candidate_list = input.record_candidates ? lists.data() : nullptr;
+  KernelProgress progress;
+  p.blocks_started = progress.counter();
   SHADOWCTS_LAUNCH(softtile_tiles, static_cast<unsigned>(tiles), threads_per_block, 0)(p);
-  check(cudaGetLastError(), "softtile_tiles launch");
-  check(cudaDeviceSynchronize(), "softtile_tiles");
+  progress.wait("softtile_tiles", tiles);
   result.visible_fraction = visible.download();
   result.tests = tests.download();
   result.rasterized = rasterized.download();
