@@ -217,8 +217,10 @@ SimdMetricRun run_metric(const PreparedScene& scene, const SimdMetricOptions& op
 
   start = std::chrono::steady_clock::now();
   cpu_start = process_cpu_seconds();
-  const SampleTiles tiles =
-      sample_tiles(scene.samples, scene.view_samples.width, options.packet <= 8 ? 8 : 16);
+  const SampleTiles tiles = sample_tiles(scene.samples, scene.view_samples.width,
+                                         options.packet <= 8    ? 8
+                                         : options.packet <= 16 ? 16
+                                                                : 64);
   PacketTraversal traversal;
   traversal.scene = &traversal_scene;
   traversal.nodes = &nodes;

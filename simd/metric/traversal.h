@@ -1,9 +1,9 @@
 #pragma once
 // Packet traversal of the ternary metric tree (Deves et al. 2018, section 5.4) for the simd
-// `metric`: the samples of a 4 x 4 (or 4 x 2) pixel tile walk the tree together, one Highway lane
-// per sample for the node tests, one stack of (node, lane mask) entries. A lane's entries are
-// pushed and popped in the order its own depth-first walk would push and pop them, so every
-// per-sample counter is the reference's (reference/metric/traversal.h).
+// `metric`: the samples of an 8 x 8 (or 4 x 4, 4 x 2) pixel tile walk the tree together, one
+// Highway lane per sample for the node tests, one stack of (node, lane mask) entries. A lane's
+// entries are pushed and popped in the order its own depth-first walk would push and pop them, so
+// every per-sample counter is the reference's (reference/metric/traversal.h).
 //
 // Exactness: the node tests decide in lanes only where the decision is certain. A node is first
 // tested in float (16 lanes per AVX-512 vector: cones and arcs of a point light, disks and 2D
@@ -163,9 +163,16 @@ struct PacketNodes {
 
 PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene);
 
-// The regular samples grouped into image tiles of `packet` samples (4 pixels wide).
+// The width in pixels of the image tiles of `packet` (8, 16 or 64) samples: 8 x 8 tiles for 64,
+// 4 wide for the smaller packets.
+constexpr std::uint32_t tile_width_of(std::uint32_t packet) {
+  return packet >= 64 ? 8 : 4;
+}
+
+// The regular samples grouped into image tiles of `packet` samples (tile_width_of(packet) pixels
+// wide).
 struct SampleTiles {
-  std::uint32_t packet = 16;
+  std::uint32_t packet = 64;
   std::vector<std::uint32_t> begin{0};  // tile k holds samples[begin[k] .. begin[k + 1])
   std::vector<std::uint32_t> samples;   // indices into RegularSamples
   std::size_t size() const { return begin.size() - 1; }
