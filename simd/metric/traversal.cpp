@@ -555,11 +555,9 @@ std::uint64_t triangles_to_decide(const TriangleGroup* groups, std::uint32_t cou
       const VF bound =
           hn::MulAdd(extent[q], hn::MulAdd(product_scale, extent[p], scaled_lateral[p]),
                      hn::MulAdd(extent[p], scaled_lateral[q], absolute));
-      // Certain implies nonzero: the bound is at least 2^-60.
-      const auto certain = hn::Gt(hn::Abs(edge), bound);
-      const auto below = hn::Lt(edge, zero);
-      negative = hn::Or(negative, hn::And(certain, below));
-      positive = hn::Or(positive, hn::AndNot(below, certain));
+      // Certainly negative or positive: beyond the bound (at least 2^-60) on either side.
+      negative = hn::Or(negative, hn::Lt(edge, hn::Neg(bound)));
+      positive = hn::Or(positive, hn::Gt(edge, bound));
     }
     const auto skip = hn::And(in_range, hn::And(negative, positive));
     decide |= std::uint64_t(float_lane_bits(df, hn::Not(skip))) << j;
