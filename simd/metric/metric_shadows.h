@@ -16,7 +16,7 @@ struct SimdMetricOptions {
   // for the most lanes at once: its per-visit work (the node's loads, branches and stack entry)
   // is shared by the most samples.
   std::uint32_t packet = 64;
-  double decision_window = 0x1p-40;  // PacketTraversal::decision_window
+  double decision_window = 0x1p-40;  // PacketNodes::decision_window
 };
 
 // The variants the port implements: "capsules", "spheres" and "capsules16" (and the reference's

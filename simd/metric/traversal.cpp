@@ -31,6 +31,12 @@ inline float float_above(double x) {
   const float f = float(x);
   return double(f) < x ? std::nextafter(f, INFINITY) : f;
 }
+// The window of the float cone tests: at least 2^-16 (see evaluate_in_float), wider where a test
+// widens the double one, so that the lanes it hands back still reach the double path. The planar
+// tests' window is this times S.
+inline float cone_window(double decision_window) {
+  return float(std::max(0x1p-16, 2.0 * decision_window));
+}
 }  // namespace shadowcts::simd::metric
 #endif
 
@@ -139,8 +145,8 @@ NodeDecisions evaluate_node(const PacketTraversal& traversal, const PacketNode& 
   const std::size_t N = std::min(hn::Lanes(d), max_lanes);
   const LaneMask chunk = (LaneMask(1) << N) - 1;
   const LightFrame& frame = traversal.scene->frame;
-  const double window =
-      frame.directional ? traversal.decision_window * frame.scale : traversal.decision_window;
+  const double window = frame.directional ? traversal.nodes->decision_window * frame.scale
+                                          : traversal.nodes->decision_window;
   const V lo = hn::Set(d, -window), hi = hn::Set(d, window);
   bool needed[thresholds];
   needed[inside] = true;
@@ -445,7 +451,7 @@ NodeDecisions evaluate_in_float(const FastNode& n, const Packet<P>& pk, LaneMask
 // least 2^-16 S, beyond which the double f is beyond the double path's window on the same side.
 template <bool capsule, std::size_t P>
 NodeDecisions evaluate_planar_in_float(const FastNode& n, const Packet<P>& pk, LaneMask lanes,
-                                       float window, LaneMask& unsure) {
+                                       LaneMask& unsure) {
   const hn::ScalableTag<float> d;
   using V = hn::Vec<decltype(d)>;
   const std::size_t N = std::min(hn::Lanes(d), max_float_lanes);
@@ -476,16 +482,15 @@ NodeDecisions evaluate_planar_in_float(const FastNode& n, const Packet<P>& pk, L
         }
       }
       // |e| - (T + r) < -W iff T + r - W > 0 and |e|^2 < (T + r - W)^2; > W iff T + r + W < 0
-      // or |e|^2 > (T + r + W)^2: per node constants against |e|^2, no root (the longest latency
-      // of a walk step). The squares' relative roundings (a few 2^-24, of values below 8 S) stay
-      // far inside the error bound above; S >= 2^-30 keeps the squares of any bound that matters
-      // normal.
+      // or |e|^2 > (T + r + W)^2: the node's squared limits (FastNode::cos_t and sin_t) against
+      // |e|^2, no root (the longest latency of a walk step) and no branch. The squares' relative
+      // roundings (a few 2^-24, of values below 8 S) stay far inside the error bound above;
+      // S >= 2^-30 keeps the squares of any bound that matters normal. A threshold no child
+      // needs is always above (0 and -1), a NaN |e|^2 never sure.
       const V length2 = hn::Add(hn::Mul(ex, ex), hn::Mul(ey, ey));
       for (int k = 0; k < thresholds; ++k) {
-        if (!(n.needed >> k & 1)) continue;
-        const float low = n.cos_t[k] - window, high = n.cos_t[k] + window;
-        const auto b = low > 0.0f ? hn::Lt(length2, hn::Set(d, low * low)) : hn::Lt(qlo, qlo);
-        const auto a = high < 0.0f ? hn::Eq(qlo, qlo) : hn::Gt(length2, hn::Set(d, high * high));
+        const auto b = hn::Lt(length2, hn::Set(d, n.cos_t[k]));
+        const auto a = hn::Gt(length2, hn::Set(d, n.sin_t[k]));
         sure = hn::And(sure, hn::Or(a, b));
         (read_below(k) ? below : above)[k] |= (float_lane_bits(d, read_below(k) ? b : a) & reached)
                                               << j;
@@ -659,8 +664,7 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
   if (nodes.empty() || active == 0) return;
   // The float window: at least 2^-16 (see evaluate_in_float), wider where a test widens the
   // double one, so that the lanes it hands back still reach the double path.
-  const float float_window = float(std::max(0x1p-16, 2.0 * traversal.decision_window));
-  const float planar_window = float_window * float(frame.scale);
+  const float float_window = cone_window(traversal.nodes->decision_window);
   stack.clear();
   stack.push_back({active, 0});
   while (!stack.empty()) {
@@ -682,10 +686,10 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
           decisions = evaluate_in_float<true>(fn, pk, lanes, float_window, unsure);
           break;
         case 3:
-          decisions = evaluate_planar_in_float<false>(fn, pk, lanes, planar_window, unsure);
+          decisions = evaluate_planar_in_float<false>(fn, pk, lanes, unsure);
           break;
         default:
-          decisions = evaluate_planar_in_float<true>(fn, pk, lanes, planar_window, unsure);
+          decisions = evaluate_planar_in_float<true>(fn, pk, lanes, unsure);
           break;
       }
       if (unsure != 0) {
@@ -797,7 +801,7 @@ ClusterTriangles cluster_triangles_soa(const CasterArrays& casters,
   return out;
 }
 
-PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene) {
+PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene, double decision_window) {
   using shadowcts::metric::CentreKind;
   using shadowcts::metric::no_node;
   using shadowcts::metric::TreeChild;
@@ -818,6 +822,8 @@ PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene) {
     }
   }
   PacketNodes out;
+  out.decision_window = decision_window;
+  const float planar_window = cone_window(decision_window) * float(frame.scale);
   out.nodes = FilledArray<PacketNode>(order.size());
   out.fast = FilledArray<FastNode>(order.size());
   out.clusters = FilledArray<NodeCluster>(order.size());
@@ -939,10 +945,17 @@ PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene) {
             if (n.kind == NodeKind::capsule_2d && n.segment_length_squared > 0.0)
               in_float = in_float && f.segment_length_squared >= 0x1p-100f;
             for (int k = 0; k < thresholds; ++k) {
+              // evaluate_planar_in_float's squared limits; 0 and -1 (always above) where no
+              // child needs the threshold.
+              f.cos_t[k] = 0.0f;
+              f.sin_t[k] = -1.0f;
               if (!(f.needed >> k & 1)) continue;
               const double shifted = n.threshold[k] + n.radius;
               in_float = in_float && fits(shifted);
-              f.cos_t[k] = float(shifted);
+              const float low = float(shifted) - planar_window,
+                          high = float(shifted) + planar_window;
+              if (low > 0.0f) f.cos_t[k] = low * low;
+              if (!(high < 0.0f)) f.sin_t[k] = high * high;
             }
             if (in_float) f.in_float = n.kind == NodeKind::disk ? 3 : 4;
           }

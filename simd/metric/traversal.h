@@ -94,8 +94,8 @@ struct alignas(128) FastNode {
   // Floats below and above the doubles (light distances are compared in double by the reference).
   float light_distance_low = 0, light_distance_high = 0;
   float a[3] = {0, 0, 0};
-  // Cones: cos and sin of each threshold as PacketNode's; disk and capsule_2d: cos_t holds
-  // threshold + radius.
+  // Cones: cos and sin of each threshold as PacketNode's; disk and capsule_2d: cos_t and sin_t
+  // hold the squares of threshold + radius -+ the planar window (evaluate_planar_in_float).
   float cos_t[thresholds] = {}, sin_t[thresholds] = {};
   // 1: point_cone, 2: arc_cone, 3: disk, 4: capsule_2d: the lanes are decided in float first.
   std::uint8_t in_float = 0;
@@ -155,13 +155,22 @@ class FilledArray {
   std::size_t size_ = 0;
 };
 
+inline constexpr double default_decision_window = 0x1p-40;
+
 struct PacketNodes {
+  // Half-width of the band around a threshold where a lane hands its decision to the reference:
+  // an angle, or a multiple of S in the plane. 2^-40 lies far above the error of s cos T - c sin T
+  // (a few 2^-53) and of the reference's atan2, subtraction and threshold sums (a few ulp of
+  // numbers below 8), and, in the plane, of any order of evaluation. Tests widen it to send many
+  // lanes to the reference. The float nodes' limits are built for it.
+  double decision_window = default_decision_window;
   FilledArray<PacketNode> nodes;  // doubles: the certain decisions in double, then the reference
   FilledArray<FastNode> fast;     // same order
   FilledArray<NodeCluster> clusters;
 };
 
-PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene);
+PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene,
+                         double decision_window = default_decision_window);
 
 // The width in pixels of the image tiles of `packet` (8, 16 or 64) samples: 8 x 8 tiles for 64,
 // 4 wide for the smaller packets.
@@ -180,20 +189,12 @@ struct SampleTiles {
 
 SampleTiles sample_tiles(const RegularSamples& samples, std::uint32_t width, std::uint32_t packet);
 
-inline constexpr double default_decision_window = 0x1p-40;
-
 struct PacketTraversal {
   const shadowcts::metric::TraversalScene* scene = nullptr;  // the reference's, for its decisions
   const PacketNodes* nodes = nullptr;
   const ClusterTriangles* triangles = nullptr;
   const PreparedScene* prepared = nullptr;
   const SampleTiles* tiles = nullptr;
-  // Half-width of the band around a threshold where a lane hands its decision to the reference:
-  // an angle, or a multiple of S in the plane. 2^-40 lies far above the error of s cos T - c sin T
-  // (a few 2^-53) and of the reference's atan2, subtraction and threshold sums (a few ulp of
-  // numbers below 8), and, in the plane, of any order of evaluation. Tests widen it to send many
-  // lanes to the reference.
-  double decision_window = default_decision_window;
 };
 
 // Answers the samples of tiles [tile_begin, tile_end): shadowed[v] for the view sample v
