@@ -162,7 +162,7 @@ void BM_MetricSimdQueryOnly(benchmark::State& state, const std::string& generato
   traversal_scene.ray_length = 4.0 * structure.frame.scale;
   const simd::metric::PacketNodes nodes = simd::metric::packet_nodes(traversal_scene);
   const simd::metric::SampleTiles tiles =
-      simd::metric::sample_tiles(scene.samples, scene.view_samples.width, 16);
+      simd::metric::sample_tiles(scene.samples, scene.view_samples.width, options.packet);
   simd::metric::PacketTraversal traversal;
   traversal.scene = &traversal_scene;
   traversal.nodes = &nodes;
@@ -234,7 +234,7 @@ void register_benchmarks() {
         ->Iterations(5);
   for (const char* generator : {"gate_house", "ground_blockers", "closed_shapes"})
     for (const char* variant : {"capsules16", "capsules"})
-      for (std::uint32_t packet : {16u, 8u})
+      for (std::uint32_t packet : {64u, 16u, 8u})
         benchmark::RegisterBenchmark((std::string("metric_simd/") + generator + "/" + variant +
                                       "/packet" + std::to_string(packet))
                                          .c_str(),
@@ -247,7 +247,7 @@ void register_benchmarks() {
             ->Iterations(3);
   // The simd port alone (and Embree), for profiles and packet-size comparisons.
   for (const char* generator : {"gate_house", "ground_blockers", "closed_shapes"})
-    for (std::uint32_t packet : {16u, 8u})
+    for (std::uint32_t packet : {64u, 16u, 8u})
       benchmark::RegisterBenchmark((std::string("metric_simd_only/") + generator +
                                     "/capsules16/packet" + std::to_string(packet))
                                        .c_str(),
@@ -258,9 +258,9 @@ void register_benchmarks() {
           ->Unit(benchmark::kMillisecond)
           ->UseRealTime()
           ->Iterations(5);
-  benchmark::RegisterBenchmark("metric_simd_only/ground_blockers/capsules16/packet16",
+  benchmark::RegisterBenchmark("metric_simd_only/ground_blockers/capsules16/packet64",
                                [](benchmark::State& state) {
-                                 BM_MetricSimd(state, "ground_blockers", "capsules16", 16, false);
+                                 BM_MetricSimd(state, "ground_blockers", "capsules16", 64, false);
                                })
       ->Arg(10'000'000)
       ->Unit(benchmark::kMillisecond)

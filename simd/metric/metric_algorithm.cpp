@@ -36,7 +36,7 @@ std::unique_ptr<Algorithm> make_simd_metric() {
           .id = "metric",
           .backend = "simd",
           .summary = "metric on Highway + oneTBB: the reference's clusters, the same ternary "
-                     "metric tree built in parallel, 4x4-sample packets in vector lanes (Deves "
+                     "metric tree built in parallel, 8x8-sample packets in vector lanes (Deves "
                      "2018)",
           .capabilities = point_and_directional_hard_shadows},
       variant_table({"capsules", "spheres", "capsules16"}, simd::metric::parse_simd_metric_variant,

@@ -211,21 +211,22 @@ SimdMetricRun run_metric(const PreparedScene& scene, const SimdMetricOptions& op
   traversal_scene.tree = &structure.tree;
   traversal_scene.frame = structure.frame;
   traversal_scene.ray_length = 4.0 * structure.frame.scale;  // as the reference
-  const PacketNodes nodes = packet_nodes(traversal_scene);
+  const PacketNodes nodes = packet_nodes(traversal_scene, options.decision_window);
   run.build_seconds = seconds_since(start);
   run.build_cpu_seconds = process_cpu_seconds() - cpu_start;
 
   start = std::chrono::steady_clock::now();
   cpu_start = process_cpu_seconds();
-  const SampleTiles tiles =
-      sample_tiles(scene.samples, scene.view_samples.width, options.packet <= 8 ? 8 : 16);
+  const SampleTiles tiles = sample_tiles(scene.samples, scene.view_samples.width,
+                                         options.packet <= 8    ? 8
+                                         : options.packet <= 16 ? 16
+                                                                : 64);
   PacketTraversal traversal;
   traversal.scene = &traversal_scene;
   traversal.nodes = &nodes;
   traversal.triangles = &triangles;
   traversal.prepared = &scene;
   traversal.tiles = &tiles;
-  traversal.decision_window = options.decision_window;
   // Written by the traversal per view sample (0 for the others): no serial scatter afterwards.
   run.output.shadowed.assign(scene.view_samples.samples.size(), 0);
   std::uint8_t* const shadowed = run.output.shadowed.data();

@@ -12,8 +12,11 @@ namespace shadowcts::simd::metric {
 
 struct SimdMetricOptions {
   shadowcts::metric::MetricOptions metric;  // insertion build only
-  std::uint32_t packet = 16;                // samples per packet: 8 (4 x 2 pixels) or 16 (4 x 4)
-  double decision_window = 0x1p-40;         // PacketTraversal::decision_window
+  // Samples per packet: 8 (4 x 2 pixels), 16 (4 x 4) or 64 (8 x 8). The widest walks each node
+  // for the most lanes at once: its per-visit work (the node's loads, branches and stack entry)
+  // is shared by the most samples.
+  std::uint32_t packet = 64;
+  double decision_window = 0x1p-40;  // PacketNodes::decision_window
 };
 
 // The variants the port implements: "capsules", "spheres" and "capsules16" (and the reference's

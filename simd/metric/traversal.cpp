@@ -22,14 +22,28 @@
 #ifndef SHADOWCTS_SIMD_METRIC_TRAVERSAL_ONCE
 #define SHADOWCTS_SIMD_METRIC_TRAVERSAL_ONCE
 namespace shadowcts::simd::metric {
+// The float next to f towards -infinity (down) or +infinity, for f not NaN and not already the
+// infinity it goes towards: std::nextafter's answer by the bit pattern, without its library call
+// (two per sample of the traversal's setup). Floats of one sign are ordered as their bits.
+inline float next_float(float f, bool down) {
+  if (f == 0.0f) return down ? -0x1p-149f : 0x1p-149f;
+  const auto bits = std::bit_cast<std::uint32_t>(f);
+  return std::bit_cast<float>((f > 0.0f) == down ? bits - 1 : bits + 1);
+}
 // The largest float <= x and the smallest float >= x (x not NaN).
 inline float float_below(double x) {
   const float f = float(x);
-  return double(f) > x ? std::nextafter(f, -INFINITY) : f;
+  return double(f) > x ? next_float(f, true) : f;
 }
 inline float float_above(double x) {
   const float f = float(x);
-  return double(f) < x ? std::nextafter(f, INFINITY) : f;
+  return double(f) < x ? next_float(f, false) : f;
+}
+// The window of the float cone tests: at least 2^-16 (see evaluate_in_float), wider where a test
+// widens the double one, so that the lanes it hands back still reach the double path. The planar
+// tests' window is this times S.
+inline float cone_window(double decision_window) {
+  return float(std::max(0x1p-16, 2.0 * decision_window));
 }
 }  // namespace shadowcts::simd::metric
 #endif
@@ -50,10 +64,11 @@ constexpr std::size_t max_float_lanes = 16;
 template <std::size_t P>
 struct Packet {
   alignas(64) double ux[P], uy[P], uz[P], qld[P];
-  // The direction in float, and floats below and above the light distance; 16 wide for any P so
+  // The direction in float, and floats below and above the light distance; at least 16 wide so
   // that a full float vector can always be loaded (lanes past P are masked off).
-  alignas(64) float fx[max_float_lanes], fy[max_float_lanes], fz[max_float_lanes];
-  alignas(64) float qlo[max_float_lanes], qhi[max_float_lanes];
+  static constexpr std::size_t float_lanes = P < max_float_lanes ? max_float_lanes : P;
+  alignas(64) float fx[float_lanes], fy[float_lanes], fz[float_lanes];
+  alignas(64) float qlo[float_lanes], qhi[float_lanes];
   std::uint32_t sample_index[P];  // the view sample's (ViewSamples::samples) index
   const ViewSample* sample[P];
   std::uint32_t receiver[P];
@@ -97,11 +112,21 @@ constexpr bool read_below(int k) {
   return k == inside || k == overlap_high || k == near_side;
 }
 
+// Lane l of a packet is bit l (packets of up to 64 samples).
+using LaneMask = std::uint64_t;
+
+// A node and the lanes that walk it. Each field is written and read whole, so that every pop's
+// loads are forwarded from the push's stores.
+struct StackEntry {
+  LaneMask lanes;
+  std::uint32_t node;
+};
+
 // The decisions of one node for the lanes of a packet, as lane masks.
 struct NodeDecisions {
-  std::uint32_t reached = 0;  // step 1 passed: the sample is not closer to the light
-  std::uint32_t deep = 0;     // not in front of the pivot's own volume
-  std::uint32_t inside = 0, overlap = 0, far = 0, near = 0;
+  LaneMask reached = 0;  // step 1 passed: the sample is not closer to the light
+  LaneMask deep = 0;     // not in front of the pivot's own volume
+  LaneMask inside = 0, overlap = 0, far = 0, near = 0;
 };
 
 template <class D, class V>
@@ -121,15 +146,15 @@ HWY_INLINE void sine_cosine(V ux, V uy, V uz, V ax, V ay, V az, V& s, V& c) {
 
 template <std::size_t P>
 NodeDecisions evaluate_node(const PacketTraversal& traversal, const PacketNode& n,
-                            const Packet<P>& pk, std::uint32_t lanes) {
+                            const Packet<P>& pk, LaneMask lanes) {
   const hn::ScalableTag<double> d;
   using V = hn::Vec<decltype(d)>;
   constexpr std::size_t max_lanes = 8;
   const std::size_t N = std::min(hn::Lanes(d), max_lanes);
-  const std::uint32_t chunk = (1u << N) - 1;
+  const LaneMask chunk = (LaneMask(1) << N) - 1;
   const LightFrame& frame = traversal.scene->frame;
-  const double window =
-      frame.directional ? traversal.decision_window * frame.scale : traversal.decision_window;
+  const double window = frame.directional ? traversal.nodes->decision_window * frame.scale
+                                          : traversal.nodes->decision_window;
   const V lo = hn::Set(d, -window), hi = hn::Set(d, window);
   bool needed[thresholds];
   needed[inside] = true;
@@ -138,12 +163,12 @@ NodeDecisions evaluate_node(const PacketTraversal& traversal, const PacketNode& 
   needed[near_side] = n.has_child[int(TreeChild::near)];
 
   NodeDecisions out;
-  std::uint32_t below[thresholds] = {}, above[thresholds] = {}, unsure = 0;
+  LaneMask below[thresholds] = {}, above[thresholds] = {}, unsure = 0;
   for (std::size_t j = 0; j < P; j += N) {
-    const std::uint32_t here = (lanes >> j) & chunk;
+    const LaneMask here = (lanes >> j) & chunk;
     if (here == 0) continue;
     const V qld = hn::Load(d, pk.qld + j);
-    const std::uint32_t reached =
+    const LaneMask reached =
         lane_bits(d, hn::Not(hn::Lt(qld, hn::Set(d, n.light_distance)))) & here;
     if (reached == 0) continue;
     out.reached |= reached << j;
@@ -191,7 +216,7 @@ NodeDecisions evaluate_node(const PacketTraversal& traversal, const PacketNode& 
                            zero),
                     hn::Ge(hn::Add(hn::Add(hn::Mul(wbx, nx), hn::Mul(wby, ny)), hn::Mul(wbz, nz)),
                            zero)));
-        const std::uint32_t span_bits = lane_bits(d, spans);
+        const LaneMask span_bits = lane_bits(d, spans);
         V sb, cb;
         sine_cosine(ux, uy, uz, bx, by, bz, sb, cb);
         const V sp = hn::Abs(h);
@@ -201,10 +226,10 @@ NodeDecisions evaluate_node(const PacketTraversal& traversal, const PacketNode& 
           angle_thresholds(d, n, s, c, k, fa);
           angle_thresholds(d, n, sb, cb, k, fb);
           angle_thresholds(d, n, sp, length, k, fp);
-          const std::uint32_t below_spanned = lane_bits(d, hn::Lt(fp, lo)),
-                              above_spanned = lane_bits(d, hn::Gt(fp, hi));
-          const std::uint32_t below_ends = lane_bits(d, hn::Or(hn::Lt(fa, lo), hn::Lt(fb, lo))),
-                              above_ends = lane_bits(d, hn::And(hn::Gt(fa, hi), hn::Gt(fb, hi)));
+          const LaneMask below_spanned = lane_bits(d, hn::Lt(fp, lo)),
+                         above_spanned = lane_bits(d, hn::Gt(fp, hi));
+          const LaneMask below_ends = lane_bits(d, hn::Or(hn::Lt(fa, lo), hn::Lt(fb, lo))),
+                         above_ends = lane_bits(d, hn::And(hn::Gt(fa, hi), hn::Gt(fb, hi)));
           below[k] |= (((span_bits & below_spanned) | (~span_bits & below_ends)) & reached) << j;
           above[k] |= (((span_bits & above_spanned) | (~span_bits & above_ends)) & reached) << j;
         }
@@ -242,9 +267,9 @@ NodeDecisions evaluate_node(const PacketTraversal& traversal, const PacketNode& 
   out.near = below[near_side];
   // The reference's own pivot distance and comparisons for the lanes near a threshold.
   const auto& scene = *traversal.scene;
-  for (std::uint32_t rest = unsure; rest != 0; rest &= rest - 1) {
+  for (LaneMask rest = unsure; rest != 0; rest &= rest - 1) {
     const int l = std::countr_zero(rest);
-    const std::uint32_t bit = 1u << l;
+    const LaneMask bit = LaneMask(1) << l;
     const double distance =
         shadowcts::metric::pivot_distance(frame, (*scene.elements)[n.pivot], pk.query[l]);
     out.inside = (out.inside & ~bit) | (distance <= n.threshold[inside] ? bit : 0);
@@ -264,17 +289,16 @@ NodeDecisions evaluate_node(const PacketTraversal& traversal, const PacketNode& 
 // (returned), the deep ones among them (into out.deep, by the pivot's distance), and in `doubt`
 // those whose reach or depth the float bounds leave open.
 template <class D, class V>
-HWY_INLINE std::uint32_t reaching_lanes(D d, const FastNode& n, V qlo, V qhi, std::uint32_t here,
-                                        std::size_t j, NodeDecisions& out, std::uint32_t& doubt) {
-  const std::uint32_t reached =
+HWY_INLINE LaneMask reaching_lanes(D d, const FastNode& n, V qlo, V qhi, LaneMask here,
+                                   std::size_t j, NodeDecisions& out, LaneMask& doubt) {
+  const LaneMask reached =
       float_lane_bits(d, hn::Ge(qlo, hn::Set(d, n.light_distance_high))) & here;
-  const std::uint32_t not_reached =
+  const LaneMask not_reached =
       float_lane_bits(d, hn::Lt(qhi, hn::Set(d, n.light_distance_low))) & here;
   doubt = here & ~(reached | not_reached);
   if (reached != 0) {
-    const std::uint32_t deep =
-        float_lane_bits(d, hn::Ge(qlo, hn::Set(d, n.pivot_light_distance_high)));
-    const std::uint32_t shallow =
+    const LaneMask deep = float_lane_bits(d, hn::Ge(qlo, hn::Set(d, n.pivot_light_distance_high)));
+    const LaneMask shallow =
         float_lane_bits(d, hn::Lt(qhi, hn::Set(d, n.pivot_light_distance_low)));
     doubt |= reached & ~(deep | shallow);
     out.deep |= (deep & reached) << j;
@@ -284,10 +308,9 @@ HWY_INLINE std::uint32_t reaching_lanes(D d, const FastNode& n, V qlo, V qhi, st
 
 // The node's decisions from the lanes read below and above each threshold, for the lanes no
 // test left unsure.
-inline NodeDecisions certain_decisions(const FastNode& n, NodeDecisions out,
-                                       const std::uint32_t* below, const std::uint32_t* above,
-                                       std::uint32_t unsure) {
-  const std::uint32_t sure = ~unsure;
+inline NodeDecisions certain_decisions(const FastNode& n, NodeDecisions out, const LaneMask* below,
+                                       const LaneMask* above, LaneMask unsure) {
+  const LaneMask sure = ~unsure;
   out.reached &= sure;
   out.deep &= sure;
   out.inside = below[inside] & sure;
@@ -318,22 +341,22 @@ inline NodeDecisions certain_decisions(const FastNode& n, NodeDecisions out,
 // same count of operations on unit inputs, plus the projection's), so the same windows hold; a lane
 // where the span is not certain goes to the double path.
 template <bool arc, std::size_t P>
-NodeDecisions evaluate_in_float(const FastNode& n, const Packet<P>& pk, std::uint32_t lanes,
-                                float window, std::uint32_t& unsure) {
+NodeDecisions evaluate_in_float(const FastNode& n, const Packet<P>& pk, LaneMask lanes,
+                                float window, LaneMask& unsure) {
   const hn::ScalableTag<float> d;
   using V = hn::Vec<decltype(d)>;
   const std::size_t N = std::min(hn::Lanes(d), max_float_lanes);
-  const std::uint32_t chunk = N >= 32 ? ~0u : (1u << N) - 1;
+  const LaneMask chunk = (LaneMask(1) << N) - 1;
   const V lo = hn::Set(d, -window), hi = hn::Set(d, window);
   NodeDecisions out;
-  std::uint32_t below[thresholds] = {}, above[thresholds] = {};
+  LaneMask below[thresholds] = {}, above[thresholds] = {};
   unsure = 0;
   for (std::size_t j = 0; j < P; j += N) {
-    const std::uint32_t here = (lanes >> j) & chunk;
+    const LaneMask here = (lanes >> j) & chunk;
     if (here == 0) continue;
     const V qlo = hn::Load(d, pk.qlo + j), qhi = hn::Load(d, pk.qhi + j);
-    std::uint32_t doubt = 0;
-    const std::uint32_t reached = reaching_lanes(d, n, qlo, qhi, here, j, out, doubt);
+    LaneMask doubt = 0;
+    const LaneMask reached = reaching_lanes(d, n, qlo, qhi, here, j, out, doubt);
     if (reached != 0) {
       auto sure = hn::Eq(qlo, qlo);  // true but in NaN lanes, which `reached` leaves out
       const V ux = hn::Load(d, pk.fx + j), uy = hn::Load(d, pk.fy + j), uz = hn::Load(d, pk.fz + j);
@@ -435,21 +458,21 @@ NodeDecisions evaluate_in_float(const FastNode& n, const Packet<P>& pk, std::uin
 // closest parameter t in [0, 1], the difference, the norm) by less than 2^-18 S; `window` is at
 // least 2^-16 S, beyond which the double f is beyond the double path's window on the same side.
 template <bool capsule, std::size_t P>
-NodeDecisions evaluate_planar_in_float(const FastNode& n, const Packet<P>& pk, std::uint32_t lanes,
-                                       float window, std::uint32_t& unsure) {
+NodeDecisions evaluate_planar_in_float(const FastNode& n, const Packet<P>& pk, LaneMask lanes,
+                                       LaneMask& unsure) {
   const hn::ScalableTag<float> d;
   using V = hn::Vec<decltype(d)>;
   const std::size_t N = std::min(hn::Lanes(d), max_float_lanes);
-  const std::uint32_t chunk = N >= 32 ? ~0u : (1u << N) - 1;
+  const LaneMask chunk = (LaneMask(1) << N) - 1;
   NodeDecisions out;
-  std::uint32_t below[thresholds] = {}, above[thresholds] = {};
+  LaneMask below[thresholds] = {}, above[thresholds] = {};
   unsure = 0;
   for (std::size_t j = 0; j < P; j += N) {
-    const std::uint32_t here = (lanes >> j) & chunk;
+    const LaneMask here = (lanes >> j) & chunk;
     if (here == 0) continue;
     const V qlo = hn::Load(d, pk.qlo + j), qhi = hn::Load(d, pk.qhi + j);
-    std::uint32_t doubt = 0;
-    const std::uint32_t reached = reaching_lanes(d, n, qlo, qhi, here, j, out, doubt);
+    LaneMask doubt = 0;
+    const LaneMask reached = reaching_lanes(d, n, qlo, qhi, here, j, out, doubt);
     if (reached != 0) {
       auto sure = hn::Eq(qlo, qlo);  // true but in NaN lanes, which `reached` leaves out
       const V ux = hn::Load(d, pk.fx + j), uy = hn::Load(d, pk.fy + j);
@@ -467,16 +490,15 @@ NodeDecisions evaluate_planar_in_float(const FastNode& n, const Packet<P>& pk, s
         }
       }
       // |e| - (T + r) < -W iff T + r - W > 0 and |e|^2 < (T + r - W)^2; > W iff T + r + W < 0
-      // or |e|^2 > (T + r + W)^2: per node constants against |e|^2, no root (the longest latency
-      // of a walk step). The squares' relative roundings (a few 2^-24, of values below 8 S) stay
-      // far inside the error bound above; S >= 2^-30 keeps the squares of any bound that matters
-      // normal.
+      // or |e|^2 > (T + r + W)^2: the node's squared limits (FastNode::cos_t and sin_t) against
+      // |e|^2, no root (the longest latency of a walk step) and no branch. The squares' relative
+      // roundings (a few 2^-24, of values below 8 S) stay far inside the error bound above;
+      // S >= 2^-30 keeps the squares of any bound that matters normal. A threshold no child
+      // needs is always above (0 and -1), a NaN |e|^2 never sure.
       const V length2 = hn::Add(hn::Mul(ex, ex), hn::Mul(ey, ey));
       for (int k = 0; k < thresholds; ++k) {
-        if (!(n.needed >> k & 1)) continue;
-        const float low = n.cos_t[k] - window, high = n.cos_t[k] + window;
-        const auto b = low > 0.0f ? hn::Lt(length2, hn::Set(d, low * low)) : hn::Lt(qlo, qlo);
-        const auto a = high < 0.0f ? hn::Eq(qlo, qlo) : hn::Gt(length2, hn::Set(d, high * high));
+        const auto b = hn::Lt(length2, hn::Set(d, n.cos_t[k]));
+        const auto a = hn::Gt(length2, hn::Set(d, n.sin_t[k]));
         sure = hn::And(sure, hn::Or(a, b));
         (read_below(k) ? below : above)[k] |= (float_lane_bits(d, read_below(k) ? b : a) & reached)
                                               << j;
@@ -546,11 +568,9 @@ std::uint64_t triangles_to_decide(const TriangleGroup* groups, std::uint32_t cou
       const VF bound =
           hn::MulAdd(extent[q], hn::MulAdd(product_scale, extent[p], scaled_lateral[p]),
                      hn::MulAdd(extent[p], scaled_lateral[q], absolute));
-      // Certain implies nonzero: the bound is at least 2^-60.
-      const auto certain = hn::Gt(hn::Abs(edge), bound);
-      const auto below = hn::Lt(edge, zero);
-      negative = hn::Or(negative, hn::And(certain, below));
-      positive = hn::Or(positive, hn::AndNot(below, certain));
+      // Certainly negative or positive: beyond the bound (at least 2^-60) on either side.
+      negative = hn::Or(negative, hn::Lt(edge, hn::Neg(bound)));
+      positive = hn::Or(positive, hn::Gt(edge, bound));
     }
     const auto skip = hn::And(in_range, hn::And(negative, positive));
     decide |= std::uint64_t(float_lane_bits(df, hn::Not(skip))) << j;
@@ -600,13 +620,13 @@ bool cluster_blocks(const PacketTraversal& traversal, Packet<P>& pk, int l,
 
 template <std::size_t P>
 void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* members,
-                     std::uint32_t count, Packet<P>& pk, std::vector<std::uint64_t>& stack,
+                     std::uint32_t count, Packet<P>& pk, std::vector<StackEntry>& stack,
                      std::uint8_t* shadowed, TraversalCounters& counters) {
   const TraversalScene& scene = *traversal.scene;
   const LightFrame& frame = scene.frame;
   const Case& c = *scene.c;
   const PreparedScene& prepared = *traversal.prepared;
-  std::uint32_t active = 0;
+  LaneMask active = 0;
   for (std::uint32_t l = 0; l < P; ++l) {
     pk.ux[l] = pk.uy[l] = pk.uz[l] = pk.qld[l] = 0.0;
     pk.fx[l] = pk.fy[l] = pk.fz[l] = pk.qlo[l] = pk.qhi[l] = 0.0f;
@@ -644,7 +664,7 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
     pk.fz[l] = float(pk.uz[l]);
     pk.qlo[l] = float_below(pk.qld[l]);
     pk.qhi[l] = float_above(pk.qld[l]);
-    active |= 1u << l;
+    active |= LaneMask(1) << l;
   }
   const FilledArray<PacketNode>& nodes = traversal.nodes->nodes;
   const FilledArray<FastNode>& fast = traversal.nodes->fast;
@@ -652,23 +672,20 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
   if (nodes.empty() || active == 0) return;
   // The float window: at least 2^-16 (see evaluate_in_float), wider where a test widens the
   // double one, so that the lanes it hands back still reach the double path.
-  const float float_window = float(std::max(0x1p-16, 2.0 * traversal.decision_window));
-  const float planar_window = float_window * float(frame.scale);
-  // Entries are node | lanes << 32, written and read as one word: a pair written as two halves
-  // and read back at once stalls the store forwarding on every pop.
+  const float float_window = cone_window(traversal.nodes->decision_window);
   stack.clear();
-  stack.push_back(std::uint64_t(active) << 32);
+  stack.push_back({active, 0});
   while (!stack.empty()) {
-    const std::uint64_t entry = stack.back();
+    const StackEntry entry = stack.back();
     stack.pop_back();
-    const std::uint32_t index = std::uint32_t(entry), pushed = std::uint32_t(entry >> 32);
-    const std::uint32_t lanes = pushed & active;
+    const std::uint32_t index = entry.node;
+    const LaneMask lanes = entry.lanes & active;
     if (lanes == 0) continue;
     counters.nodes_visited += std::uint64_t(std::popcount(lanes));
     const FastNode& fn = fast[index];
     NodeDecisions decisions;
     if (fn.in_float) {
-      std::uint32_t unsure = 0;
+      LaneMask unsure = 0;
       switch (fn.in_float) {
         case 1:
           decisions = evaluate_in_float<false>(fn, pk, lanes, float_window, unsure);
@@ -677,10 +694,10 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
           decisions = evaluate_in_float<true>(fn, pk, lanes, float_window, unsure);
           break;
         case 3:
-          decisions = evaluate_planar_in_float<false>(fn, pk, lanes, planar_window, unsure);
+          decisions = evaluate_planar_in_float<false>(fn, pk, lanes, unsure);
           break;
         default:
-          decisions = evaluate_planar_in_float<true>(fn, pk, lanes, planar_window, unsure);
+          decisions = evaluate_planar_in_float<true>(fn, pk, lanes, unsure);
           break;
       }
       if (unsure != 0) {
@@ -695,24 +712,24 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
     } else {
       decisions = evaluate_node(traversal, nodes[index], pk, lanes);
     }
-    for (std::uint32_t visit = decisions.inside & decisions.deep; visit != 0; visit &= visit - 1) {
+    for (LaneMask visit = decisions.inside & decisions.deep; visit != 0; visit &= visit - 1) {
       const int l = std::countr_zero(visit);
       if (cluster_blocks(traversal, pk, l, clusters[index], counters)) {
         shadowed[pk.sample_index[l]] = 1;
-        active &= ~(1u << l);
+        active &= ~(LaneMask(1) << l);
       }
     }
-    const std::uint32_t going = decisions.reached & active;
+    const LaneMask going = decisions.reached & active;
     // Pushed overlap, far, near, so that near is walked first, as the reference walks it.
-    const std::uint32_t overlap = decisions.overlap & going, far = decisions.far & going,
-                        near = decisions.near & going;
+    const LaneMask overlap = decisions.overlap & going, far = decisions.far & going,
+                   near = decisions.near & going;
     // The first lines of a pushed node are fetched while the walk goes on: far and overlap
     // children lie elsewhere in the near-first order.
-    const auto push = [&](int child, std::uint32_t mask) {
+    const auto push = [&](int child, LaneMask mask) {
       const FastNode* next = &fast[fn.child[child]];
       __builtin_prefetch(next);
       __builtin_prefetch(reinterpret_cast<const char*>(next) + 64);
-      stack.push_back(fn.child[child] | std::uint64_t(mask) << 32);
+      stack.push_back({mask, fn.child[child]});
     };
     if (overlap) push(int(TreeChild::overlap), overlap);
     if (far) push(int(TreeChild::far), far);
@@ -724,7 +741,7 @@ template <std::size_t P>
 void traverse_tiles_of(const PacketTraversal& traversal, std::size_t tile_begin,
                        std::size_t tile_end, std::uint8_t* shadowed, TraversalCounters& counters) {
   Packet<P> packet;
-  std::vector<std::uint64_t> stack;
+  std::vector<StackEntry> stack;
   stack.reserve(256);
   const SampleTiles& tiles = *traversal.tiles;
   for (std::size_t k = tile_begin; k < tile_end; ++k)
@@ -736,8 +753,10 @@ void TraverseTiles(const PacketTraversal& traversal, std::size_t tile_begin, std
                    std::uint8_t* shadowed, TraversalCounters& counters) {
   if (traversal.tiles->packet <= 8)
     traverse_tiles_of<8>(traversal, tile_begin, tile_end, shadowed, counters);
-  else
+  else if (traversal.tiles->packet <= 16)
     traverse_tiles_of<16>(traversal, tile_begin, tile_end, shadowed, counters);
+  else
+    traverse_tiles_of<64>(traversal, tile_begin, tile_end, shadowed, counters);
 }
 
 std::int64_t TraversalTarget() {
@@ -790,7 +809,7 @@ ClusterTriangles cluster_triangles_soa(const CasterArrays& casters,
   return out;
 }
 
-PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene) {
+PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene, double decision_window) {
   using shadowcts::metric::CentreKind;
   using shadowcts::metric::no_node;
   using shadowcts::metric::TreeChild;
@@ -811,6 +830,8 @@ PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene) {
     }
   }
   PacketNodes out;
+  out.decision_window = decision_window;
+  const float planar_window = cone_window(decision_window) * float(frame.scale);
   out.nodes = FilledArray<PacketNode>(order.size());
   out.fast = FilledArray<FastNode>(order.size());
   out.clusters = FilledArray<NodeCluster>(order.size());
@@ -932,10 +953,17 @@ PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene) {
             if (n.kind == NodeKind::capsule_2d && n.segment_length_squared > 0.0)
               in_float = in_float && f.segment_length_squared >= 0x1p-100f;
             for (int k = 0; k < thresholds; ++k) {
+              // evaluate_planar_in_float's squared limits; 0 and -1 (always above) where no
+              // child needs the threshold.
+              f.cos_t[k] = 0.0f;
+              f.sin_t[k] = -1.0f;
               if (!(f.needed >> k & 1)) continue;
               const double shifted = n.threshold[k] + n.radius;
               in_float = in_float && fits(shifted);
-              f.cos_t[k] = float(shifted);
+              const float low = float(shifted) - planar_window,
+                          high = float(shifted) + planar_window;
+              if (low > 0.0f) f.cos_t[k] = low * low;
+              if (!(high < 0.0f)) f.sin_t[k] = high * high;
             }
             if (in_float) f.in_float = n.kind == NodeKind::disk ? 3 : 4;
           }
@@ -956,40 +984,70 @@ PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene) {
 SampleTiles sample_tiles(const RegularSamples& samples, std::uint32_t width, std::uint32_t packet) {
   SampleTiles tiles;
   tiles.packet = packet;
-  const std::uint32_t tile_width = 4, tile_height = packet / tile_width;
-  const std::uint32_t columns = (std::max(width, 1u) + tile_width - 1) / tile_width;
-  std::vector<std::uint32_t> tile_of(samples.size());
-  std::uint32_t tile_count = 0;
-  // The samples come in pixel order: the row advances without a division per sample (three
-  // divisions per sample cost some 20 ms at 1080p, inside the timed query).
-  std::uint32_t row = 0, row_start = 0, tile_row = 0;
-  for (std::size_t i = 0; i < samples.size(); ++i) {
-    const std::uint32_t pixel = samples.index[i];
-    std::uint32_t x = 0;
-    if (width > 0) {
-      if (pixel < row_start) {  // out of order: start the row again
-        row = pixel / width;
-        row_start = row * width;
-        tile_row = row / tile_height;
-      }
-      while (pixel - row_start >= width) {
-        ++row;
-        row_start += width;
-        tile_row = row / tile_height;
-      }
-      x = pixel - row_start;
-    }
-    tile_of[i] = tile_row * columns + x / tile_width;
-    tile_count = std::max(tile_count, tile_of[i] + 1);
+  const std::size_t n = samples.size();
+  const std::uint32_t tile_width = tile_width_of(packet), tile_height = packet / tile_width;
+  const int column_shift = std::countr_zero(tile_width);  // a power of two: no division
+  const std::uint64_t w = std::max(width, 1u);
+  const std::uint32_t columns = std::uint32_t((w + tile_width - 1) / tile_width);
+  // The samples in pixel order (as the prepared scene gives them), else through a permutation
+  // that sorts them.
+  std::vector<std::uint32_t> order;
+  const bool in_order = std::is_sorted(samples.index.begin(), samples.index.end());
+  if (!in_order) {
+    order.resize(n);
+    for (std::uint32_t i = 0; i < n; ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+      return samples.index[a] < samples.index[b];
+    });
   }
-  std::vector<std::uint32_t> begin(tile_count + 1, 0);
-  for (std::uint32_t t : tile_of) ++begin[t + 1];
-  for (std::uint32_t t = 0; t < tile_count; ++t) begin[t + 1] += begin[t];
-  tiles.samples.resize(samples.size());
-  std::vector<std::uint32_t> next(begin.begin(), begin.end() - 1);
-  for (std::uint32_t i = 0; i < samples.size(); ++i) tiles.samples[next[tile_of[i]]++] = i;
-  for (std::uint32_t t = 0; t < tile_count; ++t)
-    if (begin[t + 1] > begin[t]) tiles.begin.push_back(begin[t + 1]);
+  const auto sample_at = [&](std::size_t k) { return in_order ? std::uint32_t(k) : order[k]; };
+  const auto pixel_at = [&](std::size_t k) { return samples.index[sample_at(k)]; };
+  const auto first_at = [&](std::uint64_t pixel) {  // the first sample at or after `pixel`
+    std::size_t low = 0, high = n;
+    while (low < high) {
+      const std::size_t mid = (low + high) / 2;
+      if (pixel_at(mid) < pixel)
+        low = mid + 1;
+      else
+        high = mid;
+    }
+    return low;
+  };
+  // Bands of tile_height pixel rows hold contiguous runs of the samples in pixel order: each
+  // band is sorted by tile column on its own, the bands in parallel (one counting sort of the
+  // whole image was some 5 ms of serial work inside the timed query at 1080p).
+  const std::uint64_t rows = n == 0 ? 0 : pixel_at(n - 1) / w + 1;
+  const std::size_t bands = std::size_t((rows + tile_height - 1) / tile_height);
+  std::vector<std::uint32_t> count(bands * columns, 0), used(bands + 1, 0);
+  const auto for_each_in_band = [&](std::size_t b, auto&& visit) {
+    for (std::uint64_t row = b * tile_height;
+         row < std::min<std::uint64_t>((b + 1) * tile_height, rows); ++row)
+      for (std::size_t k = first_at(row * w), end = first_at((row + 1) * w); k < end; ++k)
+        visit(k, std::uint32_t((pixel_at(k) - row * w) >> column_shift));
+  };
+  tbb::parallel_for(std::size_t(0), bands, [&](std::size_t b) {
+    std::uint32_t* band = count.data() + b * columns;
+    for_each_in_band(b, [&](std::size_t, std::uint32_t column) { ++band[column]; });
+    used[b + 1] =
+        std::uint32_t(std::count_if(band, band + columns, [](std::uint32_t c) { return c > 0; }));
+  });
+  for (std::size_t b = 0; b < bands; ++b) used[b + 1] += used[b];
+  tiles.samples = FilledArray<std::uint32_t>(n);
+  tiles.begin.resize(used[bands] + 1);
+  tbb::parallel_for(std::size_t(0), bands, [&](std::size_t b) {
+    std::uint32_t* band = count.data() + b * columns;
+    // Each tile's next slot, and its end into tiles.begin (the tiles of a band by column).
+    std::uint32_t next = std::uint32_t(first_at(b * tile_height * w)), tile = used[b];
+    for (std::uint32_t column = 0; column < columns; ++column) {
+      const std::uint32_t size = band[column];
+      band[column] = next;
+      next += size;
+      if (size > 0) tiles.begin[++tile] = next;
+    }
+    for_each_in_band(b, [&](std::size_t k, std::uint32_t column) {
+      tiles.samples[band[column]++] = sample_at(k);
+    });
+  });
   return tiles;
 }
 

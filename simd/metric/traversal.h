@@ -1,9 +1,9 @@
 #pragma once
 // Packet traversal of the ternary metric tree (Deves et al. 2018, section 5.4) for the simd
-// `metric`: the samples of a 4 x 4 (or 4 x 2) pixel tile walk the tree together, one Highway lane
-// per sample for the node tests, one stack of (node, lane mask) entries. A lane's entries are
-// pushed and popped in the order its own depth-first walk would push and pop them, so every
-// per-sample counter is the reference's (reference/metric/traversal.h).
+// `metric`: the samples of an 8 x 8 (or 4 x 4, 4 x 2) pixel tile walk the tree together, one
+// Highway lane per sample for the node tests, one stack of (node, lane mask) entries. A lane's
+// entries are pushed and popped in the order its own depth-first walk would push and pop them, so
+// every per-sample counter is the reference's (reference/metric/traversal.h).
 //
 // Exactness: the node tests decide in lanes only where the decision is certain. A node is first
 // tested in float (16 lanes per AVX-512 vector: cones and arcs of a point light, disks and 2D
@@ -94,8 +94,8 @@ struct alignas(128) FastNode {
   // Floats below and above the doubles (light distances are compared in double by the reference).
   float light_distance_low = 0, light_distance_high = 0;
   float a[3] = {0, 0, 0};
-  // Cones: cos and sin of each threshold as PacketNode's; disk and capsule_2d: cos_t holds
-  // threshold + radius.
+  // Cones: cos and sin of each threshold as PacketNode's; disk and capsule_2d: cos_t and sin_t
+  // hold the squares of threshold + radius -+ the planar window (evaluate_planar_in_float).
   float cos_t[thresholds] = {}, sin_t[thresholds] = {};
   // 1: point_cone, 2: arc_cone, 3: disk, 4: capsule_2d: the lanes are decided in float first.
   std::uint8_t in_float = 0;
@@ -155,25 +155,41 @@ class FilledArray {
   std::size_t size_ = 0;
 };
 
+inline constexpr double default_decision_window = 0x1p-40;
+
 struct PacketNodes {
+  // Half-width of the band around a threshold where a lane hands its decision to the reference:
+  // an angle, or a multiple of S in the plane. 2^-40 lies far above the error of s cos T - c sin T
+  // (a few 2^-53) and of the reference's atan2, subtraction and threshold sums (a few ulp of
+  // numbers below 8), and, in the plane, of any order of evaluation. Tests widen it to send many
+  // lanes to the reference. The float nodes' limits are built for it.
+  double decision_window = default_decision_window;
   FilledArray<PacketNode> nodes;  // doubles: the certain decisions in double, then the reference
   FilledArray<FastNode> fast;     // same order
   FilledArray<NodeCluster> clusters;
 };
 
-PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene);
+PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene,
+                         double decision_window = default_decision_window);
 
-// The regular samples grouped into image tiles of `packet` samples (4 pixels wide).
+// The width in pixels of the image tiles of `packet` (8, 16 or 64) samples: 8 x 8 tiles for 64,
+// 4 wide for the smaller packets.
+constexpr std::uint32_t tile_width_of(std::uint32_t packet) {
+  return packet >= 64 ? 8 : 4;
+}
+
+// The regular samples grouped into image tiles of `packet` samples (tile_width_of(packet) pixels
+// wide).
 struct SampleTiles {
-  std::uint32_t packet = 16;
+  std::uint32_t packet = 64;
   std::vector<std::uint32_t> begin{0};  // tile k holds samples[begin[k] .. begin[k + 1])
-  std::vector<std::uint32_t> samples;   // indices into RegularSamples
+  // Indices into RegularSamples; written by the bands in parallel, unzeroed: a vector's serial
+  // zeroing (and first touch of 4 MB) was a few ms inside the timed query at 1080p.
+  FilledArray<std::uint32_t> samples;
   std::size_t size() const { return begin.size() - 1; }
 };
 
 SampleTiles sample_tiles(const RegularSamples& samples, std::uint32_t width, std::uint32_t packet);
-
-inline constexpr double default_decision_window = 0x1p-40;
 
 struct PacketTraversal {
   const shadowcts::metric::TraversalScene* scene = nullptr;  // the reference's, for its decisions
@@ -181,12 +197,6 @@ struct PacketTraversal {
   const ClusterTriangles* triangles = nullptr;
   const PreparedScene* prepared = nullptr;
   const SampleTiles* tiles = nullptr;
-  // Half-width of the band around a threshold where a lane hands its decision to the reference:
-  // an angle, or a multiple of S in the plane. 2^-40 lies far above the error of s cos T - c sin T
-  // (a few 2^-53) and of the reference's atan2, subtraction and threshold sums (a few ulp of
-  // numbers below 8), and, in the plane, of any order of evaluation. Tests widen it to send many
-  // lanes to the reference.
-  double decision_window = default_decision_window;
 };
 
 // Answers the samples of tiles [tile_begin, tile_end): shadowed[v] for the view sample v

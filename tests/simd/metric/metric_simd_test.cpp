@@ -74,7 +74,7 @@ std::string first_sample_difference(const std::vector<std::uint8_t>& expected,
 
 // The simd run against the reference's on one case: answers and counters identical.
 void expect_same_as_reference(const Case& c, const ViewSamples& samples, const std::string& variant,
-                              std::uint32_t packet = 16, double decision_window = 0x1p-40) {
+                              std::uint32_t packet = 64, double decision_window = 0x1p-40) {
   SCOPED_TRACE(variant + ", packet " + std::to_string(packet) + ", window " +
                std::to_string(decision_window));
   const ref::MetricRun expected = ref::run_metric(c, samples, ref::parse_metric_variant(variant));
@@ -148,7 +148,7 @@ INSTANTIATE_TEST_SUITE_P(
     ref::testing::fixture_test_name);
 
 // The reference tests' random blockers with samples on shadow-boundary images, the light outside
-// and inside the blocker field, point and directional; both packet sizes.
+// and inside the blocker field, point and directional; every packet size.
 class SimdMetricOnRandomCases : public ::testing::TestWithParam<int> {};
 
 TEST_P(SimdMetricOnRandomCases, SameAnswersAndCountersAsTheReference) {
@@ -159,7 +159,7 @@ TEST_P(SimdMetricOnRandomCases, SameAnswersAndCountersAsTheReference) {
                                 : shadowcts::testing::directional_light({0.25f, 1.0f, -0.375f});
   auto h = shadowcts::testing::make_random_case(500 + std::uint64_t(k), 8, 800, 0.75f, 1500, light);
   for (const char* variant : {"capsules", "spheres4", "capsules16"})
-    for (std::uint32_t packet : {8u, 16u})
+    for (std::uint32_t packet : {8u, 16u, 64u})
       expect_same_as_reference(h.c, h.samples, variant, packet);
 }
 
@@ -206,8 +206,9 @@ TEST(SimdMetric, LightInsideVolumesSharedEdgesAndATJunction) {
   }
 }
 
-// Every regular sample lands in exactly one tile, the tile of its pixel (4 pixels wide, packet / 4
-// high), whether the pixels come in order (as the prepared scene gives them) or not.
+// Every regular sample lands in exactly one tile, the tile of its pixel (tile_width_of(packet)
+// pixels wide, packet / that high), whether the pixels come in order (as the prepared scene gives
+// them) or not.
 TEST(SimdMetric, SampleTilesHoldEverySampleInItsPixelsTile) {
   const std::uint32_t width = 13;
   for (const bool in_order : {true, false}) {
@@ -215,12 +216,13 @@ TEST(SimdMetric, SampleTilesHoldEverySampleInItsPixelsTile) {
     for (std::uint32_t pixel = 0; pixel < width * 11; pixel += (pixel % 7 == 3 ? 5 : 1))
       samples.index.push_back(pixel);
     if (!in_order) std::swap(samples.index[3], samples.index[samples.index.size() - 4]);
-    for (const std::uint32_t packet : {8u, 16u}) {
+    for (const std::uint32_t packet : {8u, 16u, 64u}) {
       SCOPED_TRACE(std::string(in_order ? "in order" : "out of order") + ", packet " +
                    std::to_string(packet));
       const SampleTiles tiles = sample_tiles(samples, width, packet);
       std::vector<int> seen(samples.size(), 0);
-      const std::uint32_t columns = (width + 3) / 4;
+      const std::uint32_t tile_width = tile_width_of(packet);
+      const std::uint32_t columns = (width + tile_width - 1) / tile_width;
       for (std::size_t t = 0; t < tiles.size(); ++t) {
         ASSERT_LE(tiles.begin[t + 1] - tiles.begin[t], packet);
         std::uint32_t tile = ~0u;
@@ -229,7 +231,7 @@ TEST(SimdMetric, SampleTilesHoldEverySampleInItsPixelsTile) {
           ++seen[i];
           const std::uint32_t pixel = samples.index[i];
           const std::uint32_t expected =
-              (pixel / width) / (packet / 4) * columns + pixel % width / 4;
+              (pixel / width) / (packet / tile_width) * columns + pixel % width / tile_width;
           if (tile == ~0u) tile = expected;
           EXPECT_EQ(expected, tile) << "sample " << i;
         }
