@@ -176,7 +176,8 @@ CasterClosure::CasterClosure(const Case& c, const CasterBvh& casters,
     const glm::vec3& b = positions_[group_b];
     const int axis = line_axis(a, b);
     std::uint32_t partner = no_partner;
-    for (const auto& [at, target] : {std::pair{from, to}, std::pair{to, from}}) {
+    for (const auto& ends : {std::pair{from, to}, std::pair{to, from}}) {
+      const std::uint32_t at = ends.first, target = ends.second;
       const glm::vec3& q = positions_[target];
       const bool increasing = q[axis] > positions_[at][axis];
       // The other caster's edge from its point at `at` to the vertex of group x, its third vertex
