@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include <hwy/contrib/sort/vqsort.h>
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
@@ -113,7 +114,7 @@ CasterClosure::CasterClosure(const Case& c, const CasterBvh& casters,
                          });
     keys = std::move(merged);
   }
-  const auto use_at = [&](std::size_t i) { return std::uint32_t(keys[i].lo); };
+  const auto key_use = [&](std::size_t i) { return std::uint32_t(keys[i].lo); };
   const auto same_position = [&](std::size_t i, std::size_t j) {
     return keys[i].hi == keys[j].hi && keys[i].lo >> 32 == keys[j].lo >> 32;
   };
@@ -135,7 +136,7 @@ CasterClosure::CasterClosure(const Case& c, const CasterBvh& casters,
   tbb::parallel_for(std::size_t(0), pieces, [&](std::size_t p) {
     std::uint32_t g = piece_groups[p];  // groups started so far: the number of the next one
     for (std::size_t i = p * piece; i < std::min(use_count, (p + 1) * piece); ++i) {
-      const std::uint32_t use = use_at(i);
+      const std::uint32_t use = key_use(i);
       if (i == 0 || !same_position(i - 1, i)) {
         group_begin[g] = i;
         positions_[g++] = corner(c.triangles[use / 4], int(use % 4));
@@ -147,6 +148,19 @@ CasterClosure::CasterClosure(const Case& c, const CasterBvh& casters,
   const auto group_of = [&](std::uint32_t t, int k) {
     return vertex_group_[3 * std::size_t(t) + std::size_t(k)];
   };
+  // Per use in group order: the use, and the groups of its caster's next and previous vertices.
+  // The searches below walk a group's uses and read these, one run of memory per group, instead
+  // of every caster's vertex groups and corners.
+  struct UseAround {
+    std::uint32_t use, next, previous;
+  };
+  std::vector<UseAround> around(use_count);
+  tbb::parallel_for(std::size_t(0), use_count, [&](std::size_t i) {
+    const std::uint32_t use = key_use(i), t = use / 4;
+    const int k = int(use % 4);
+    around[i] = {use, group_of(t, (k + 1) % 3), group_of(t, (k + 2) % 3)};
+  });
+  keys.reset();
 
   // Each caster's side: light_plane_side(v0, v1, v2). The side of the third vertex against the
   // plane through an edge and the light is the same for every edge (the orientation of (L, a, b,
@@ -169,9 +183,9 @@ CasterClosure::CasterClosure(const Case& c, const CasterBvh& casters,
   // passes through it (a junction).
   // Casters are read through their vertex groups (12 bytes each, positions_ in Morton order),
   // not their triangles, which keeps this search in the cache.
-  const auto closing_partner = [&](std::uint32_t t, int k, int side, std::uint32_t from,
-                                   std::uint32_t to) {
-    const std::uint32_t group_a = group_of(t, k), group_b = group_of(t, (k + 1) % 3);
+  // group_a and group_b: the groups of the edge's end points.
+  const auto closing_partner = [&](std::uint32_t t, int side, std::uint32_t group_a,
+                                   std::uint32_t group_b, std::uint32_t from, std::uint32_t to) {
     const glm::vec3& a = positions_[group_a];
     const glm::vec3& b = positions_[group_b];
     const int axis = line_axis(a, b);
@@ -202,12 +216,9 @@ CasterClosure::CasterClosure(const Case& c, const CasterBvh& casters,
           partner = several_partners;
       };
       for (std::size_t i = group_begin[at]; i < group_begin[at + 1]; ++i) {
-        const std::uint32_t other = use_at(i) / 4;
-        const int kv = int(use_at(i) % 4);
-        const std::uint32_t next = group_of(other, (kv + 1) % 3);
-        const std::uint32_t previous = group_of(other, (kv + 2) % 3);
-        consider(other, next, previous, true);
-        consider(other, previous, next, false);
+        const UseAround& u = around[i];
+        consider(u.use / 4, u.next, u.previous, true);
+        consider(u.use / 4, u.previous, u.next, false);
       }
       for (std::uint32_t i = junction_begin_[at]; i < junction_begin_[at + 1]; ++i) {
         const Junction& j = junctions_[i];
@@ -220,15 +231,22 @@ CasterClosure::CasterClosure(const Case& c, const CasterBvh& casters,
     return partner;
   };
 
-  // Every edge as a whole first: most are closed by an edge with the same end points.
-  tbb::parallel_for(std::size_t(0), ids.size(), [&](std::size_t i) {
-    const std::uint32_t t = ids[i];
-    const int side = side_of[t];
-    if (side == 0) return;  // no plane through an edge and the light, or seen edge-on
-    for (int k = 0; k < 3; ++k)
-      edge_partner_[3 * std::size_t(t) + std::size_t(k)] =
-          closing_partner(t, k, side, group_of(t, k), group_of(t, (k + 1) % 3));
-  });
+  // Every edge as a whole first: most are closed by an edge with the same end points. Edges are
+  // taken from the group of their first end point, in group order (near in space, so the
+  // searches stay in the cache); each edge is written once.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, groups, 256),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t g = range.begin(); g != range.end(); ++g)
+                        for (std::size_t i = group_begin[g]; i < group_begin[g + 1]; ++i) {
+                          const UseAround& u = around[i];
+                          const std::uint32_t t = u.use / 4;
+                          const int side = side_of[t];
+                          // no plane through an edge and the light, or seen edge-on
+                          if (side == 0) continue;
+                          edge_partner_[3 * std::size_t(t) + u.use % 4] = closing_partner(
+                              t, side, std::uint32_t(g), u.next, std::uint32_t(g), u.next);
+                        }
+                    });
 
   // T-junctions: caster vertices strictly inside another caster's edge. Found along collinear
   // edges, as meshes make them (splitting a triangle at an edge point): two casters at a vertex a
@@ -236,15 +254,6 @@ CasterClosure::CasterClosure(const Case& c, const CasterBvh& casters,
   // then, from each junction y found inside an edge, an edge on the same line that starts at y
   // and ends inside that edge gives the next one. A vertex that touches an edge in no such chain
   // is not found, which only leaves pieces open (conservative).
-  struct EdgeEnd {  // an edge of a caster seen from one of its end points
-    std::uint32_t triangle;
-    int edge;   // from vertex `edge` to vertex `edge + 1`
-    int other;  // the vertex index of the other end point
-  };
-  const auto edges_at = [&](std::uint32_t t, int k, EdgeEnd out[2]) {
-    out[0] = {t, k, (k + 1) % 3};            // from vertex k
-    out[1] = {t, (k + 2) % 3, (k + 2) % 3};  // to vertex k
-  };
   const auto strictly_inside = [](const glm::vec3& a, const glm::vec3& x, const glm::vec3& y) {
     const int axis = line_axis(a, x);
     return std::min(a[axis], x[axis]) < y[axis] && y[axis] < std::max(a[axis], x[axis]);
@@ -253,18 +262,16 @@ CasterClosure::CasterClosure(const Case& c, const CasterBvh& casters,
   // on its line: their far ends are junctions of (t, k).
   const auto junctions_from = [&](std::size_t g, std::uint32_t t, int k,
                                   std::vector<Junction>& out) {
-    const Triangle& tri = c.triangles[t];
-    const glm::vec3& a = corner(tri, k);
-    const glm::vec3& b = corner(tri, (k + 1) % 3);
+    const glm::vec3& a = positions_[group_of(t, k)];
+    const glm::vec3& b = positions_[group_of(t, (k + 1) % 3)];
     for (std::size_t i = group_begin[g]; i < group_begin[g + 1]; ++i) {
-      const std::uint32_t other = use_at(i) / 4;
-      if (other == t) continue;
-      EdgeEnd ends[2];
-      edges_at(other, int(use_at(i) % 4), ends);
-      for (const EdgeEnd& e : ends) {
-        const glm::vec3& y = corner(c.triangles[other], e.other);
+      const UseAround& u = around[i];
+      if (u.use / 4 == t) continue;
+      // The far ends of the use's two edges: its next and its previous vertex.
+      for (const std::uint32_t y_group : {u.next, u.previous}) {
+        const glm::vec3& y = positions_[y_group];
         if (y == a || y == b || !strictly_inside(a, b, y) || !collinear(a, b, y)) continue;
-        out.push_back({group_of(other, e.other), t, k});
+        out.push_back({y_group, t, k});
       }
     }
   };
@@ -332,7 +339,7 @@ CasterClosure::CasterClosure(const Case& c, const CasterBvh& casters,
     if (side == 0) return;
     const std::uint32_t from = group_of(t, k), to = group_of(t, (k + 1) % 3);
     for (std::size_t p = 0; p <= s.points.size(); ++p)
-      s.partner[p] = closing_partner(t, k, side, p == 0 ? from : s.points[p - 1],
+      s.partner[p] = closing_partner(t, side, from, to, p == 0 ? from : s.points[p - 1],
                                      p == s.points.size() ? to : s.points[p]);
   });
 
@@ -374,11 +381,9 @@ CasterClosure::CasterClosure(const Case& c, const CasterBvh& casters,
       return predicate.light_plane_side(dv(v), dv(w), dv(x)) == -side;
     };
     for (std::size_t i = group_begin[g]; i < group_begin[g + 1]; ++i) {
-      const std::uint32_t other = use_at(i) / 4;
-      if (other == self) continue;
-      const int kv = int(use_at(i) % 4);
-      const Triangle& o = c.triangles[other];
-      const glm::vec3 &x1 = corner(o, (kv + 1) % 3), &x2 = corner(o, (kv + 2) % 3);
+      const UseAround& u = around[i];
+      if (u.use / 4 == self) continue;
+      const glm::vec3 &x1 = positions_[u.next], &x2 = positions_[u.previous];
       if ((along(x1) && opposite(x2)) || (along(x2) && opposite(x1))) return true;
     }
     for (std::uint32_t i = junction_begin_[g]; i < junction_begin_[g + 1]; ++i) {
@@ -402,12 +407,12 @@ CasterClosure::CasterClosure(const Case& c, const CasterBvh& casters,
       return ray_crossed(g, t, w, third);
     };
     for (std::size_t i = group_begin[g]; i < group_begin[g + 1]; ++i) {
-      const std::uint32_t t = use_at(i) / 4;
-      const int k = int(use_at(i) % 4);
+      const UseAround& u = around[i];
+      const std::uint32_t t = u.use / 4;
+      const int k = int(u.use % 4);
       if (edge_on(t)) continue;
       any = true;
-      const Triangle& tri = c.triangles[t];
-      const glm::vec3 &next = corner(tri, (k + 1) % 3), &previous = corner(tri, (k + 2) % 3);
+      const glm::vec3 &next = positions_[u.next], &previous = positions_[u.previous];
       if (!crossed(t, k, next, previous) || !crossed(t, (k + 2) % 3, previous, next)) return;
     }
     for (std::uint32_t i = junction_begin_[g]; i < junction_begin_[g + 1]; ++i) {
