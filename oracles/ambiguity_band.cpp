@@ -32,10 +32,10 @@ glm::dvec3 vertex(const Triangle& t, int i) {
 
 }  // namespace
 
-ExactBandClassifier::ExactBandClassifier(const Case& c, const HardShadowLight& light,
+ExactBandClassifier::ExactBandClassifier(const Case& c, double scale, const HardShadowLight& light,
                                          const CasterBvh& casters,
                                          const ExactShadowPredicate& predicate)
-    : case_(c), light_(light), casters_(casters), predicate_(predicate), scale_(c.scale()) {
+    : case_(c), light_(light), casters_(casters), predicate_(predicate), scale_(scale) {
   for (int k = band_min_exponent; k <= band_max_exponent; ++k)
     level_lengths_.push_back(std::ldexp(scale_, k));  // exact: S times a power of two
 

@@ -65,8 +65,9 @@ struct BandCandidate {
 
 class ExactBandClassifier {
  public:
-  ExactBandClassifier(const Case& c, const HardShadowLight& light, const CasterBvh& casters,
-                      const ExactShadowPredicate& predicate);
+  // scale: c.scale(), passed in because computing it reads every triangle.
+  ExactBandClassifier(const Case& c, double scale, const HardShadowLight& light,
+                      const CasterBvh& casters, const ExactShadowPredicate& predicate);
 
   // The sample must be regular. `candidates` is scratch space, reused between calls. With
   // `with_exponent`, robust_exponent too (candidates within the largest level, 2^-10 S: 64 times

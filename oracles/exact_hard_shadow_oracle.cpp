@@ -22,12 +22,13 @@ namespace {
 // and a cache (a sample's exponent is computed at most once whatever asks for it).
 class ExactLazyExponents final : public LazyRobustExponents {
  public:
-  ExactLazyExponents(const Case& c, const ViewSamples& samples, const HardShadowLight& light)
+  ExactLazyExponents(const Case& c, double scale, const ViewSamples& samples,
+                     const HardShadowLight& light)
       : case_(c),
         samples_(samples.samples),
         casters_(case_),
-        predicate_(light, case_.scale()),
-        classifier_(case_, light, casters_, predicate_),
+        predicate_(light, scale),
+        classifier_(case_, scale, light, casters_, predicate_),
         cache_(samples_.size()) {
     for (auto& e : cache_) e.store(robust_exponent_unknown, std::memory_order_relaxed);
   }
@@ -75,8 +76,8 @@ class DeferredExactExponents final : public LazyRobustExponents {
                std::vector<std::int8_t>& out) const override {
     std::call_once(built_, [&] {
       run_with_thread_limit(case_.parameters.threads, [&] {
-        exponents_ =
-            std::make_unique<const ExactLazyExponents>(case_, samples_, hard_shadow_light(case_));
+        exponents_ = std::make_unique<const ExactLazyExponents>(case_, case_.scale(), samples_,
+                                                                hard_shadow_light(case_));
       });
     });
     exponents_->resolve(samples, out);
@@ -103,13 +104,14 @@ HardShadowTruth exact_hard_shadow_oracle(const Case& c, const ViewSamples& sampl
       "exponents on demand";
   truth.exact = true;
   truth.eps_rel = c.parameters.eps_rel;
-  truth.tau = c.parameters.eps_rel * c.scale();
+  const double scale = c.scale();
+  truth.tau = c.parameters.eps_rel * scale;
   truth.shadowed.assign(n, 0);
   truth.band.assign(n, BandClass::not_compared);
   truth.robust_exponent.assign(n, ambiguous_at_every_exponent);
   std::shared_ptr<const ExactLazyExponents> lazy;
   run_with_thread_limit(c.parameters.threads, [&] {
-    lazy = std::make_shared<const ExactLazyExponents>(c, samples, light);
+    lazy = std::make_shared<const ExactLazyExponents>(c, scale, samples, light);
   });
   const ExactBandClassifier& classifier = lazy->classifier();
   run_with_thread_limit(c.parameters.threads, [&] {

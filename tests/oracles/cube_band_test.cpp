@@ -386,7 +386,7 @@ TEST_P(BandOnRandomCases, PacketsGiveEverySampleItsOwnTruth) {
     const HardShadowLight light = hard_shadow_light(h.c);
     const CasterBvh casters(h.c);
     const ExactShadowPredicate predicate(light, h.c.scale());
-    const ExactBandClassifier classifier(h.c, light, casters, predicate);
+    const ExactBandClassifier classifier(h.c, h.c.scale(), light, casters, predicate);
     std::vector<const ViewSample*> regular;
     for (const ViewSample& s : h.samples.samples)
       if (s.sample_class == SampleClass::regular) regular.push_back(&s);
