@@ -1,12 +1,15 @@
 #include "oracles/caster_bvh.h"
 
 #include <algorithm>
+#include <array>
 #include <utility>
 
+#include <hwy/contrib/sort/vqsort.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
 #include "oracles/exact_segment_triangle.h"
+#include "oracles/ordered_float_bits.h"
 #include "shadowcts/hard_shadow_inputs.h"
 
 namespace shadowcts {
@@ -31,6 +34,14 @@ std::size_t node_count(std::size_t m) {
 }
 
 }  // namespace
+
+// Item ids in the order of each axis, the arrays the halves' orders are written to, and a flag
+// per item.
+struct CasterBvh::SortedItems {
+  std::uint32_t* by_axis[3];
+  std::uint32_t* spare[3];
+  std::uint8_t* goes_left;
+};
 
 struct CasterBvh::BuildItem {
   float lo[3], hi[3];
@@ -70,65 +81,98 @@ CasterBvh::CasterBvh(const Case& c) {
     }
   });
   if (items.empty()) return;
-  nodes_.resize(node_count(items.size()));
-  triangles_.resize(items.size());
-  leaf_boxes_.resize(items.size());
-  build(items, 0, items.size(), 0);
+  // The items in the order of their centroids along each axis, ties by index (the triangle
+  // order): every median split takes the lower half of its longest axis's order and carries the
+  // other two orders into the halves by stable partitions, one pass each, instead of a selection
+  // over the items per node. The same splits as a selection by (centroid, triangle) would make.
+  const std::size_t m = items.size();
+  std::array<std::vector<std::uint32_t>, 3> order, spare;
+  tbb::parallel_for(0, 3, [&](int k) {
+    std::vector<std::uint64_t> keys(m);
+    for (std::size_t i = 0; i < m; ++i)
+      keys[i] = std::uint64_t(ordered_float_bits(items[i].centroid[k])) << 32 | i;
+    hwy::Sorter()(keys.data(), m, hwy::SortAscending());
+    order[std::size_t(k)].resize(m);
+    spare[std::size_t(k)].resize(m);
+    for (std::size_t i = 0; i < m; ++i) order[std::size_t(k)][i] = std::uint32_t(keys[i]);
+  });
+  std::vector<std::uint8_t> goes_left(m);
+  SortedItems sorted{{order[0].data(), order[1].data(), order[2].data()},
+                     {spare[0].data(), spare[1].data(), spare[2].data()},
+                     goes_left.data()};
+  nodes_.resize(node_count(m));
+  triangles_.resize(m);
+  leaf_boxes_.resize(m);
+  build(items, sorted, 0, m, 0);
 }
 
-void CasterBvh::build(std::vector<BuildItem>& items, std::size_t begin, std::size_t end,
-                      std::size_t node_index) {
+void CasterBvh::build(const std::vector<BuildItem>& items, const SortedItems& sorted,
+                      std::size_t begin, std::size_t end, std::size_t node_index) {
   Node& node = nodes_[node_index];
-  float centroid_lo[3], centroid_hi[3];
-  for (int k = 0; k < 3; ++k) {
-    node.lo[k] = items[begin].lo[k];
-    node.hi[k] = items[begin].hi[k];
-    centroid_lo[k] = centroid_hi[k] = items[begin].centroid[k];
-  }
-  for (std::size_t i = begin; i < end; ++i)
-    for (int k = 0; k < 3; ++k) {
-      node.lo[k] = std::min(node.lo[k], items[i].lo[k]);
-      node.hi[k] = std::max(node.hi[k], items[i].hi[k]);
-      centroid_lo[k] = std::min(centroid_lo[k], items[i].centroid[k]);
-      centroid_hi[k] = std::max(centroid_hi[k], items[i].centroid[k]);
-    }
   const std::size_t count = end - begin;
   if (count <= max_leaf_size) {
+    const std::uint32_t* ids = sorted.by_axis[0];
+    for (int k = 0; k < 3; ++k) {
+      node.lo[k] = items[ids[begin]].lo[k];
+      node.hi[k] = items[ids[begin]].hi[k];
+    }
     node.first_or_right = std::uint32_t(begin);
     node.count = std::uint32_t(count);
     for (std::size_t i = begin; i < end; ++i) {
-      triangles_[i] = items[i].triangle;
+      const BuildItem& item = items[ids[i]];
+      for (int k = 0; k < 3; ++k) {
+        node.lo[k] = std::min(node.lo[k], item.lo[k]);
+        node.hi[k] = std::max(node.hi[k], item.hi[k]);
+      }
+      triangles_[i] = item.triangle;
       Node& box = leaf_boxes_[i];
-      std::copy(items[i].lo, items[i].lo + 3, box.lo);
-      std::copy(items[i].hi, items[i].hi + 3, box.hi);
+      std::copy(item.lo, item.lo + 3, box.lo);
+      std::copy(item.hi, item.hi + 3, box.hi);
       box.first_or_right = 0;
       box.count = 1;
     }
     return;
   }
+  // The longest extent of the centroids, whose ends are the ends of each axis's order.
   int axis = 0;
+  float extent[3];
+  for (int k = 0; k < 3; ++k)
+    extent[k] =
+        items[sorted.by_axis[k][end - 1]].centroid[k] - items[sorted.by_axis[k][begin]].centroid[k];
   for (int k = 1; k < 3; ++k)
-    if (centroid_hi[k] - centroid_lo[k] > centroid_hi[axis] - centroid_lo[axis]) axis = k;
+    if (extent[k] > extent[axis]) axis = k;
   const std::size_t middle = begin + count / 2;
-  // Ties broken by triangle index: a strict total order makes the split unique.
-  std::nth_element(items.begin() + std::ptrdiff_t(begin), items.begin() + std::ptrdiff_t(middle),
-                   items.begin() + std::ptrdiff_t(end),
-                   [axis](const BuildItem& a, const BuildItem& b) {
-                     if (a.centroid[axis] != b.centroid[axis])
-                       return a.centroid[axis] < b.centroid[axis];
-                     return a.triangle < b.triangle;
-                   });
+  const std::uint32_t* split = sorted.by_axis[axis];
+  for (std::size_t i = begin; i < end; ++i) sorted.goes_left[split[i]] = i < middle ? 1 : 0;
+  // The split axis's order is already split. The other two go to their spare arrays (same
+  // places), which become the children's.
+  SortedItems halves = sorted;
+  for (int k = 0; k < 3; ++k) {
+    if (k == axis) continue;
+    std::swap(halves.by_axis[k], halves.spare[k]);
+    const std::uint32_t* from = sorted.by_axis[k];
+    std::uint32_t* to = halves.by_axis[k];
+    std::size_t left = begin, right = middle;
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::uint32_t id = from[i];
+      to[sorted.goes_left[id] ? left++ : right++] = id;
+    }
+  }
   const std::size_t left = node_index + 1;
   const std::size_t right = left + node_count(middle - begin);
+  if (count >= parallel_build_threshold) {
+    tbb::parallel_invoke([&] { build(items, halves, begin, middle, left); },
+                         [&] { build(items, halves, middle, end, right); });
+  } else {
+    build(items, halves, begin, middle, left);
+    build(items, halves, middle, end, right);
+  }
+  for (int k = 0; k < 3; ++k) {
+    node.lo[k] = std::min(nodes_[left].lo[k], nodes_[right].lo[k]);
+    node.hi[k] = std::max(nodes_[left].hi[k], nodes_[right].hi[k]);
+  }
   node.first_or_right = std::uint32_t(right);
   node.count = 0;
-  if (count >= parallel_build_threshold) {
-    tbb::parallel_invoke([&] { build(items, begin, middle, left); },
-                         [&] { build(items, middle, end, right); });
-  } else {
-    build(items, begin, middle, left);
-    build(items, middle, end, right);
-  }
 }
 
 }  // namespace shadowcts

@@ -57,9 +57,11 @@ class CasterBvh {
 
  private:
   struct BuildItem;
+  struct SortedItems;
   // visit_packet's traversal, with box_may_meet in vector lanes (Highway, dispatched at run time).
   void visit_lanes(const QueryLanes& q, int lanes, LaneVisitor visit, void* context) const;
-  void build(std::vector<BuildItem>& items, std::size_t begin, std::size_t end, std::size_t node);
+  void build(const std::vector<BuildItem>& items, const SortedItems& sorted, std::size_t begin,
+             std::size_t end, std::size_t node);
 
   std::vector<Node> nodes_;
   std::vector<std::uint32_t> triangles_;

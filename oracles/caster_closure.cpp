@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <memory>
 #include <set>
 #include <tuple>
@@ -12,19 +11,13 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
+#include "oracles/ordered_float_bits.h"
+
 namespace shadowcts {
 namespace {
 
 const glm::vec3& corner(const Triangle& t, int k) {
   return k == 0 ? t.v0 : k == 1 ? t.v1 : t.v2;
-}
-
-// A float's bits, mapped so that their unsigned order is the numeric order (-0 taken as +0).
-std::uint32_t ordered_bits(float v) {
-  v += 0.0f;  // -0 becomes +0
-  std::uint32_t bits = 0;
-  std::memcpy(&bits, &v, sizeof bits);
-  return (bits & 0x80000000u) != 0 ? ~bits : bits | 0x80000000u;
 }
 
 // The coordinate along which the points of the line through a != b are ordered (the largest
@@ -83,7 +76,8 @@ CasterClosure::CasterClosure(const Case& c, const CasterBvh& casters,
   tbb::parallel_for(std::size_t(0), ids.size(), [&](std::size_t i) {
     for (std::uint32_t k = 0; k < 3; ++k) {
       const glm::vec3& p = corner(c.triangles[ids[i]], int(k));
-      const std::uint64_t x = ordered_bits(p.x), y = ordered_bits(p.y), z = ordered_bits(p.z);
+      const std::uint64_t x = ordered_float_bits(p.x), y = ordered_float_bits(p.y),
+                          z = ordered_float_bits(p.z);
       hwy::uint128_t& key = keys[3 * i + k];
       key.hi =
           (spread(x >> 11) << 3 | spread(y >> 11) << 2 | spread(z >> 11) << 1) | (x >> 10 & 1u);
