@@ -198,34 +198,40 @@ HWY_INLINE V spread_every_third(D du, V x) {
   return hn::And(hn::Or(x, hn::ShiftLeft<2>(x)), hn::Set(du, 0x1249249249249249ull));
 }
 
-void MortonCodes(const RangedLight* lights, std::size_t count, const double* low,
-                 const double* extent, std::uint64_t* code) {
+void MortonCodes(const float* sphere, std::size_t count, const double* low, const double* extent,
+                 std::uint64_t* code) {
   const hn::ScalableTag<double> d;
+  const hn::Rebind<float, decltype(d)> df;
   const hn::RebindToSigned<decltype(d)> di;
   const hn::RebindToUnsigned<decltype(d)> du;
   const std::size_t lanes = hn::Lanes(d);
   constexpr std::size_t max_lanes = HWY_MAX_BYTES / sizeof(double);
-  HWY_ALIGN double centre[3][max_lanes];
+  HWY_ALIGN float padded[4 * max_lanes];
   HWY_ALIGN std::uint64_t out[max_lanes];
   for (std::size_t start = 0; start < count; start += lanes) {
     const std::size_t n = std::min(lanes, count - start);
-    for (std::size_t i = 0; i < lanes; ++i) {
-      const RangedLight& light = lights[start + (i < n ? i : n - 1)];
-      centre[0][i] = double(light.centre.x);
-      centre[1][i] = double(light.centre.y);
-      centre[2][i] = double(light.centre.z);
+    const float* at = sphere + 4 * start;
+    if (n < lanes) {  // the last lanes repeat the last light
+      for (std::size_t i = 0; i < 4 * lanes; ++i) padded[i] = at[std::min(i, 4 * n - 4 + i % 4)];
+      at = padded;
     }
+    hn::Vec<decltype(df)> centre[3], range;
+    hn::LoadInterleaved4(df, at, centre[0], centre[1], centre[2], range);
     auto result = hn::Zero(du);
     for (int k = 0; k < 3; ++k) {
       const auto t =
-          hn::Div(hn::Sub(hn::Load(d, centre[k]), hn::Set(d, low[k])), hn::Set(d, extent[k]));
+          hn::Div(hn::Sub(hn::PromoteTo(d, centre[k]), hn::Set(d, low[k])), hn::Set(d, extent[k]));
       const auto q =
           hn::Min(hn::Max(hn::Mul(t, hn::Set(d, 2097152.0)), hn::Zero(d)), hn::Set(d, 2097151.0));
       const auto spread = spread_every_third(du, hn::BitCast(du, hn::ConvertTo(di, q)));
       result = hn::Or(result, hn::ShiftLeftSame(spread, 2 - k));
     }
-    hn::Store(result, du, out);
-    std::copy(out, out + n, code + start);
+    if (n == lanes) {
+      hn::StoreU(result, du, code + start);
+    } else {
+      hn::Store(result, du, out);
+      std::copy(out, out + n, code + start);
+    }
   }
 }
 
@@ -492,9 +498,9 @@ void row_cluster_keys(const ViewFrame& frame, const SliceTable& slices, int slic
   (frame, slices, slice_shift, tile_key_of_x, row_pixel, index, x, y, z, count, key, deepest);
 }
 
-void morton_codes(const RangedLight* lights, std::size_t count, const double* low,
-                  const double* extent, std::uint64_t* code) {
-  HWY_DYNAMIC_DISPATCH(MortonCodes)(lights, count, low, extent, code);
+void morton_codes(const float* sphere, std::size_t count, const double* low, const double* extent,
+                  std::uint64_t* code) {
+  HWY_DYNAMIC_DISPATCH(MortonCodes)(sphere, count, low, extent, code);
 }
 
 void leaf_node_boxes(const LightBvhLanes& bvh, std::size_t first, std::size_t count,

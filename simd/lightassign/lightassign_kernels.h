@@ -15,9 +15,9 @@ namespace shadowcts::simd {
 
 // The light BVH's build steps (light_bvh.h), each the reference's operations in lanes:
 // LightBvh's 63-bit Morton code of each light's centre over the centres' box (low, extent per
-// axis) into code[i];
-void morton_codes(const RangedLight* lights, std::size_t count, const double* low,
-                  const double* extent, std::uint64_t* code);
+// axis) into code[i], the lights' spheres packed as (centre x, y, z, range) in `sphere`;
+void morton_codes(const float* sphere, std::size_t count, const double* low, const double* extent,
+                  std::uint64_t* code);
 // the boxes of nodes [first, first + count) of the first level around their 32 leaves' boxes
 // (each sphere's float box rounded outwards), from bvh.sphere;
 void leaf_node_boxes(const LightBvhLanes& bvh, std::size_t first, std::size_t count,
