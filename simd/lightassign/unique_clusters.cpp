@@ -198,6 +198,21 @@ class KeySlots {
 struct KeySlot {
   std::uint32_t key = 0, count = 0;
   glm::vec3 low{0.0f}, high{0.0f};
+
+  // Adds `members` later samples whose box is (run_low, run_high); the box keeps the first of
+  // equal values (its own), as a box grown sample by sample does.
+  void add_run(const glm::vec3& run_low, const glm::vec3& run_high, std::uint32_t members) {
+    if (count == 0) {
+      low = run_low;
+      high = run_high;
+    } else {
+      for (int a = 0; a < 3; ++a) {
+        low[a] = run_low[a] < low[a] ? run_low[a] : low[a];
+        high[a] = run_high[a] > high[a] ? run_high[a] : high[a];
+      }
+    }
+    count += members;
+  }
 };
 
 }  // namespace
@@ -212,8 +227,9 @@ SampleClusters cluster_samples(const RegularSamples& regular, const ViewFrame& f
   const SliceTable slices(grid);
 
   // Per band: the keys row by row, their slots (slot_of_sample), each slot's count and box. A run
-  // of samples with one key (one tile: a key holds its tile) grows a box in registers, merged into
-  // its slot's when the key changes; both keep the first of equal values, as grow_to_contain.
+  // of a row's samples with one key (one tile: a key holds its tile) finds its slot once and grows
+  // a box in registers, then added to its slot's; both keep the first of equal values, as
+  // grow_to_contain.
   UninitializedVector<std::uint32_t> slot_of_sample(m);
   std::vector<std::vector<KeySlot>> band_slots(bands);
   std::vector<double> band_deepest(bands, 0.0);
@@ -224,56 +240,39 @@ SampleClusters cluster_samples(const RegularSamples& regular, const ViewFrame& f
       tile_key_of_x[x] = grid.pack({.i = x / tile_size, .j = band, .k = 0, .normal = 0});
     std::vector<KeySlot>& slots = band_slots[band];
     KeySlots slot_of_key;
-    std::uint32_t run_key = 0, run_slot = 0, run_count = 0;
-    float low_x = 0, low_y = 0, low_z = 0, high_x = 0, high_y = 0, high_z = 0;
-    auto end_run = [&] {
-      KeySlot& slot = slots[run_slot];
-      if (slot.count == 0) {
-        slot.low = {low_x, low_y, low_z};
-        slot.high = {high_x, high_y, high_z};
-      } else {
-        const glm::vec3 run_low(low_x, low_y, low_z), run_high(high_x, high_y, high_z);
-        for (int a = 0; a < 3; ++a) {
-          slot.low[a] = run_low[a] < slot.low[a] ? run_low[a] : slot.low[a];
-          slot.high[a] = run_high[a] > slot.high[a] ? run_high[a] : slot.high[a];
-        }
-      }
-      slot.count += run_count;
-    };
     for (std::uint32_t y = band * tile_size; y < y_end; ++y) {
       const std::uint32_t first = row_start[y], count = row_start[y + 1] - first;
+      const float* px = regular.px.data() + first;
+      const float* py = regular.py.data() + first;
+      const float* pz = regular.pz.data() + first;
       row_cluster_keys(frame, slices, grid.bits_normal(), tile_key_of_x.data(), y * width,
-                       regular.index.data() + first, regular.px.data() + first,
-                       regular.py.data() + first, regular.pz.data() + first, count, row_key.data(),
+                       regular.index.data() + first, px, py, pz, count, row_key.data(),
                        band_deepest[band]);
       if (normal_divisions > 0)
         for (std::uint32_t j = 0; j < count; ++j)
           row_key[j] |= quantize_normal(regular.normal(first + j), normal_divisions);
-      for (std::uint32_t j = 0; j < count; ++j) {
-        const std::uint32_t i = first + j, key = row_key[j];
-        const float px = regular.px[i], py = regular.py[i], pz = regular.pz[i];
-        if (run_count == 0 || key != run_key) {
-          if (run_count > 0) end_run();
-          run_slot = slot_of_key.find_or_add(key, std::uint32_t(slots.size()));
-          if (run_slot == slots.size()) slots.push_back({.key = key});
-          run_key = key;
-          run_count = 0;
-          low_x = high_x = px;
-          low_y = high_y = py;
-          low_z = high_z = pz;
-        } else {
-          low_x = px < low_x ? px : low_x;
-          low_y = py < low_y ? py : low_y;
-          low_z = pz < low_z ? pz : low_z;
-          high_x = px > high_x ? px : high_x;
-          high_y = py > high_y ? py : high_y;
-          high_z = pz > high_z ? pz : high_z;
+      std::uint32_t* slot_out = slot_of_sample.data() + first;
+      for (std::uint32_t j = 0; j < count;) {
+        const std::uint32_t key = row_key[j];
+        std::uint32_t end = j + 1;
+        while (end < count && row_key[end] == key) ++end;
+        const std::uint32_t slot = slot_of_key.find_or_add(key, std::uint32_t(slots.size()));
+        if (slot == slots.size()) slots.push_back({.key = key});
+        float low_x = px[j], low_y = py[j], low_z = pz[j];
+        float high_x = low_x, high_y = low_y, high_z = low_z;
+        for (std::uint32_t e = j + 1; e < end; ++e) {
+          low_x = px[e] < low_x ? px[e] : low_x;
+          low_y = py[e] < low_y ? py[e] : low_y;
+          low_z = pz[e] < low_z ? pz[e] : low_z;
+          high_x = px[e] > high_x ? px[e] : high_x;
+          high_y = py[e] > high_y ? py[e] : high_y;
+          high_z = pz[e] > high_z ? pz[e] : high_z;
         }
-        ++run_count;
-        slot_of_sample[i] = run_slot;
+        slots[slot].add_run({low_x, low_y, low_z}, {high_x, high_y, high_z}, end - j);
+        std::fill(slot_out + j, slot_out + end, slot);
+        j = end;
       }
     }
-    if (run_count > 0) end_run();
   });
 
   SampleClusters out;
