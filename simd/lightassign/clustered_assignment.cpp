@@ -39,20 +39,26 @@ AlgorithmOutput assign_lights_clustered(const PreparedScene& scene,
   if (grid.slices() != to_far.slices())
     sampled = cluster_samples(regular, frame, grid, samples.width, samples.height);
   UniqueClusters& clusters = sampled.clusters;
-  const UninitializedVector<std::uint32_t>& member_regular = sampled.member_regular;
   const std::size_t lists = clusters.keys.size();
 
-  // Bounds and cones per cluster (Sections 3.2, 4.2), as the reference's, from the members'
-  // positions and normals as arrays.
+  // Bounds and cones per cluster (Sections 3.2, 4.2), as the reference's, from the members' boxes
+  // and, where a variant reads them one by one, the members' positions and normals as arrays. An
+  // implicit box grows (in member order) only where it does not hold its members' box.
+  UninitializedVector<std::uint32_t> member_regular;
+  auto members_of = [&](std::size_t k) {
+    return std::pair(member_regular.data() + clusters.member_offsets[k],
+                     member_regular.data() + clusters.member_offsets[k + 1]);
+  };
+  if (settings.explicit_normal_cones)
+    member_regular =
+        cluster_members(clusters, regular, samples.width, samples.height, settings.tile_size);
   LightLists out;
   out.bounds.resize(lists);
   std::vector<NormalCone> cones(lists);
   const bool use_cones = settings.explicit_normal_cones || settings.normal_divisions > 0;
-  std::vector<std::uint32_t> grown(lists, 0);
+  std::vector<std::uint8_t> outgrown(lists, 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, lists, 16), [&](const auto& r) {
     for (std::size_t k = r.begin(); k != r.end(); ++k) {
-      const std::uint32_t* first = member_regular.data() + clusters.member_offsets[k];
-      const std::uint32_t* last = member_regular.data() + clusters.member_offsets[k + 1];
       const ClusterCoordinates coordinates = grid.unpack(clusters.keys[k]);
       Aabb& box = out.bounds[k];
       if (settings.explicit_bounds) {
@@ -61,9 +67,10 @@ AlgorithmOutput assign_lights_clustered(const PreparedScene& scene,
         box.max = sampled.high[k];
       } else {
         box = frustum.bounding_box(grid.sub_frustum(coordinates));
-        grown[k] = grow_to_contain_all(box, sampled.low[k], sampled.high[k], regular, first, last);
+        outgrown[k] = !box_holds(box, sampled.low[k], sampled.high[k]);
       }
       if (settings.explicit_normal_cones) {
+        const auto [first, last] = members_of(k);
         ExplicitNormalCone accumulate;
         for (const std::uint32_t* m = first; m < last; ++m)
           accumulate.add_direction(regular.normal(*m));
@@ -75,6 +82,18 @@ AlgorithmOutput assign_lights_clustered(const PreparedScene& scene,
       }
     }
   });
+  std::vector<std::uint32_t> grown(lists, 0);
+  if (std::find(outgrown.begin(), outgrown.end(), 1) != outgrown.end()) {
+    if (member_regular.empty())
+      member_regular =
+          cluster_members(clusters, regular, samples.width, samples.height, settings.tile_size);
+    tbb::parallel_for(std::size_t(0), lists, [&](std::size_t k) {
+      if (!outgrown[k]) return;
+      const auto [first, last] = members_of(k);
+      grown[k] =
+          grow_to_contain_all(out.bounds[k], sampled.low[k], sampled.high[k], regular, first, last);
+    });
+  }
 
   // The reference's light BVH, built in parallel and in lanes. (Built beside the clusters in a
   // task group it was slower: its arrays then come from a worker thread's malloc arena, fresh

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cstring>
 #include <limits>
 #include <utility>
 
@@ -53,11 +52,17 @@ void morton_order(const UninitializedVector<float>& packed,
   UninitializedVector<std::uint64_t> bucketed(n);
   UninitializedVector<Sphere> bucketed_sphere(n);
   tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
-    std::uint32_t* at = offsets.data() + b * buckets;
+    // Plain pointers: the compiler need not reload the vectors' after every store.
+    std::uint32_t* const at = offsets.data() + b * buckets;
+    const std::uint64_t* const key = keys.data();
+    const float* const sphere_of = packed.data();
+    std::uint64_t* const to_key = bucketed.data();
+    Sphere* const to_sphere = bucketed_sphere.data();
     for (std::size_t i = b * block; i < std::min(n, (b + 1) * block); ++i) {
-      const std::uint32_t position = at[keys[i] >> top_shift]++;
-      bucketed[position] = keys[i];
-      std::memcpy(&bucketed_sphere[position], packed.data() + 4 * i, sizeof(Sphere));
+      const std::uint32_t position = at[key[i] >> top_shift]++;
+      to_key[position] = key[i];
+      const float* from = sphere_of + 4 * i;
+      to_sphere[position] = {from[0], from[1], from[2], from[3]};
     }
   });
   tbb::enumerable_thread_specific<std::vector<std::uint64_t>> scratch;

@@ -291,18 +291,16 @@ SampleClusters cluster_samples(const RegularSamples& regular, const ViewFrame& f
   found.cluster_of_sample.assign(std::size_t(width) * height, UniqueClusters::no_cluster);
   out.low.resize(clusters);
   out.high.resize(clusters);
-  out.member_regular.resize(m);
 
   // Per band: its slots in key order are its clusters in the reference's order; the samples in
-  // pixel order then go to their clusters' members in order (a run of one slot keeps its next
-  // position in a register).
+  // pixel order then take their clusters (a run of one slot keeps its cluster in a register).
   tbb::parallel_for(std::uint32_t(0), bands, [&](std::uint32_t band) {
     const std::vector<KeySlot>& slots = band_slots[band];
     std::vector<std::uint32_t> by_key(slots.size());
     for (std::uint32_t s = 0; s < by_key.size(); ++s) by_key[s] = s;
     std::sort(by_key.begin(), by_key.end(),
               [&](std::uint32_t a, std::uint32_t b) { return slots[a].key < slots[b].key; });
-    std::vector<std::uint32_t> cluster_of_slot(slots.size()), next_member(slots.size());
+    std::vector<std::uint32_t> cluster_of_slot(slots.size());
     const std::uint32_t first = row_start[std::min(height, band * tile_size)];
     const std::uint32_t end = row_start[std::min(height, (band + 1) * tile_size)];
     std::uint32_t position = first;
@@ -311,7 +309,6 @@ SampleClusters cluster_samples(const RegularSamples& regular, const ViewFrame& f
       const std::uint32_t cluster = band_first_cluster[band] + rank;
       const ClusterCoordinates coordinates = grid.unpack(slot.key);
       cluster_of_slot[by_key[rank]] = cluster;
-      next_member[by_key[rank]] = position;
       found.keys[cluster] = slot.key;
       found.tiles[cluster] = coordinates.j * tiles_x + coordinates.i;
       found.member_offsets[cluster] = position;
@@ -319,22 +316,38 @@ SampleClusters cluster_samples(const RegularSamples& regular, const ViewFrame& f
       out.high[cluster] = slot.high;
       position += slot.count;
     }
-    if (first == end) return;
-    std::uint32_t run_slot = slot_of_sample[first], cluster = cluster_of_slot[run_slot];
-    std::uint32_t member = next_member[run_slot];
+    const std::uint32_t* const slot_of = slot_of_sample.data();
+    const std::uint32_t* const pixel_of = regular.index.data();
+    std::uint32_t* const cluster_of_pixel = found.cluster_of_sample.data();
+    std::uint32_t run_slot = UniqueClusters::no_cluster, cluster = 0;
     for (std::uint32_t i = first; i < end; ++i) {
-      const std::uint32_t slot = slot_of_sample[i];
-      if (slot != run_slot) {
-        next_member[run_slot] = member;
-        run_slot = slot;
-        cluster = cluster_of_slot[slot];
-        member = next_member[slot];
+      if (slot_of[i] != run_slot) {
+        run_slot = slot_of[i];
+        cluster = cluster_of_slot[run_slot];
       }
-      out.member_regular[member++] = i;
-      found.cluster_of_sample[regular.index[i]] = cluster;
+      cluster_of_pixel[pixel_of[i]] = cluster;
     }
   });
   return out;
+}
+
+UninitializedVector<std::uint32_t> cluster_members(const UniqueClusters& clusters,
+                                                   const RegularSamples& regular,
+                                                   std::uint32_t width, std::uint32_t height,
+                                                   std::uint32_t tile_size) {
+  const std::vector<std::uint32_t> row_start = regular_rows(regular, width, height);
+  // A band's samples are the members of its clusters only: each band advances its own entries.
+  std::vector<std::uint32_t> next_member(clusters.member_offsets.begin(),
+                                         clusters.member_offsets.end());
+  UninitializedVector<std::uint32_t> members(regular.size());
+  const std::uint32_t bands = (height + tile_size - 1) / tile_size;
+  tbb::parallel_for(std::uint32_t(0), bands, [&](std::uint32_t band) {
+    const std::uint32_t first = row_start[band * tile_size];
+    const std::uint32_t end = row_start[std::min(height, (band + 1) * tile_size)];
+    for (std::uint32_t i = first; i < end; ++i)
+      members[next_member[clusters.cluster_of_sample[regular.index[i]]]++] = i;
+  });
+  return members;
 }
 
 std::uint32_t grow_to_contain_all(Aabb& box, const RegularSamples& regular,
@@ -354,10 +367,8 @@ std::uint32_t grow_to_contain_all(Aabb& box, const RegularSamples& regular,
 std::uint32_t grow_to_contain_all(Aabb& box, const glm::vec3& low, const glm::vec3& high,
                                   const RegularSamples& regular, const std::uint32_t* first,
                                   const std::uint32_t* last) {
-  // Inside on every axis (false for NaN): no member is outside, nothing grows.
-  if (box.min.x <= low.x && box.min.y <= low.y && box.min.z <= low.z && high.x <= box.max.x &&
-      high.y <= box.max.y && high.z <= box.max.z)
-    return 0;
+  // Inside on every axis: no member is outside, nothing grows.
+  if (box_holds(box, low, high)) return 0;
   std::uint32_t grown = 0;
   for (const std::uint32_t* m = first; m < last; ++m)
     grown += grow_to_contain(box, regular.position(*m));

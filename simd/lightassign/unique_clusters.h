@@ -43,8 +43,6 @@ UniqueClusters find_unique_clusters(const RegularSamples& regular, const std::ui
 // key holds its tile column above its slice and normal), each sample's cluster and the members.
 struct SampleClusters {
   UniqueClusters clusters;  // as find_unique_clusters, without `members`
-  // The regular index of every member, in the order of members.
-  UninitializedVector<std::uint32_t> member_regular;
   // Per cluster: the box of its members' positions, as grow_to_contain grows it from the first
   // member in member order (the first of equal values is kept).
   std::vector<glm::vec3> low, high;
@@ -53,6 +51,20 @@ struct SampleClusters {
 
 SampleClusters cluster_samples(const RegularSamples& regular, const ViewFrame& frame,
                                const ClusterGrid& grid, std::uint32_t width, std::uint32_t height);
+
+// The regular index of every member of cluster_samples' clusters, in the order of members (by
+// cluster, each in pixel order), band by band in parallel. Only the variants that read members
+// (explicit normal cones, implicit bounds that some member grows) ask for them.
+UninitializedVector<std::uint32_t> cluster_members(const UniqueClusters& clusters,
+                                                   const RegularSamples& regular,
+                                                   std::uint32_t width, std::uint32_t height,
+                                                   std::uint32_t tile_size);
+
+// Whether `box` holds the box (low, high) (false for NaN).
+inline bool box_holds(const Aabb& box, const glm::vec3& low, const glm::vec3& high) {
+  return box.min.x <= low.x && box.min.y <= low.y && box.min.z <= low.z && high.x <= box.max.x &&
+         high.y <= box.max.y && high.z <= box.max.z;
+}
 
 // grow_to_contain (reference/lightassign/view_frustum.h) of `box` by the positions of regular
 // samples first..last in order, returning how many grew it; members whose box lies inside `box`
