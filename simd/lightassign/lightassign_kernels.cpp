@@ -85,11 +85,26 @@ HWY_INLINE void sphere_box_filter(D d, const V cx, const V cy, const V cz, const
 // x < the float after M, and round_up(x) >= m exactly when x > the float before m.
 struct LeafTest {
   double below_min[3], above_max[3];
+  float below_min_float[3], above_max_float[3];
   explicit LeafTest(const Aabb& box) {
     for (int k = 0; k < 3; ++k) {
-      below_min[k] = double(std::nextafter(box.min[k], -std::numeric_limits<float>::infinity()));
-      above_max[k] = double(std::nextafter(box.max[k], std::numeric_limits<float>::infinity()));
+      below_min_float[k] = std::nextafter(box.min[k], -std::numeric_limits<float>::infinity());
+      above_max_float[k] = std::nextafter(box.max[k], std::numeric_limits<float>::infinity());
+      below_min[k] = double(below_min_float[k]);
+      above_max[k] = double(above_max_float[k]);
     }
+  }
+  // A necessary condition for `overlaps` in float lanes (twice as many): rounding is monotone,
+  // so c - r < M (a float) in double makes c - r <= M in float, and c + r > m makes c + r >= m.
+  template <class D, class V>
+  HWY_INLINE auto may_overlap(D d, V cx, V cy, V cz, V r) const {
+    const V c[3] = {cx, cy, cz};
+    auto m = hn::And(hn::Le(hn::Sub(c[0], r), hn::Set(d, above_max_float[0])),
+                     hn::Ge(hn::Add(c[0], r), hn::Set(d, below_min_float[0])));
+    for (int k = 1; k < 3; ++k)
+      m = hn::And(m, hn::And(hn::Le(hn::Sub(c[k], r), hn::Set(d, above_max_float[k])),
+                             hn::Ge(hn::Add(c[k], r), hn::Set(d, below_min_float[k]))));
+    return m;
   }
   template <class D, class V>
   HWY_INLINE auto overlaps(D d, V cx, V cy, V cz, V r) const {
@@ -114,8 +129,22 @@ HWY_INLINE void test_leaves(const LightBvhLanes& bvh, const LeafTest& leaf, cons
   const std::size_t dlanes = hn::Lanes(dd);
   const std::uint64_t dlane_mask = dlanes >= 64 ? ~0ull : (1ull << dlanes) - 1;
   w.nodes_tested += std::min(first + node_width, bvh.order.size()) - first;
+  // The float lanes' necessary condition first: the double lanes test only the leaves it keeps.
+  const hn::CappedTag<float, node_width> dwide;
+  const std::size_t wide_lanes = hn::Lanes(dwide);
+  std::uint64_t candidates = 0;
+  for (std::size_t i = 0; i < node_width; i += wide_lanes) {
+    const std::size_t at = first + i;
+    const auto maybe = leaf.may_overlap(dwide, hn::LoadU(dwide, bvh.sphere[0].data() + at),
+                                        hn::LoadU(dwide, bvh.sphere[1].data() + at),
+                                        hn::LoadU(dwide, bvh.sphere[2].data() + at),
+                                        hn::LoadU(dwide, bvh.sphere[3].data() + at));
+    candidates |= mask_bits(dwide, maybe) << i;
+  }
+  if (candidates == 0) return;
   std::uint64_t overlapping = 0, inside = 0, outside = 0;
   for (std::size_t i = 0; i < node_width; i += dlanes) {
+    if (((candidates >> i) & dlane_mask) == 0) continue;
     const std::size_t at = first + i;
     const auto r = hn::PromoteTo(dd, hn::LoadU(df, bvh.sphere[3].data() + at));
     const auto cx = hn::PromoteTo(dd, hn::LoadU(df, bvh.sphere[0].data() + at));
