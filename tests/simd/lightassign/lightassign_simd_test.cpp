@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <random>
 #include <sstream>
@@ -188,6 +189,29 @@ TEST(SimdLightAssign, IdenticalWithSamplesPastTheFarPlane) {
   const ViewSamples samples = generate_view_samples(c);
   c.camera.far_plane *= 0.25f;
   expect_identical(c, samples, "samples past the far plane");
+}
+
+// Samples before the near plane (the near plane moved out after they were cast): slice 0 takes
+// them and its implicit box grows to hold them, member by member.
+TEST(SimdLightAssign, IdenticalWithSamplesBeforeTheNearPlane) {
+  Case c = small_city();
+  const ViewSamples samples = generate_view_samples(c);
+  double nearest = std::numeric_limits<double>::infinity();
+  const ViewFrustum frustum(c.camera);
+  for (const ViewSample& s : samples.samples)
+    if (s.sample_class == SampleClass::regular)
+      nearest = std::min(nearest, frustum.depth(glm::dvec3(s.position)));
+  c.camera.near_plane = float(nearest * 1.5);
+  ASSERT_LT(c.camera.near_plane, c.camera.far_plane);
+  for (const std::string variant : {"clustered", "clustered+en"}) {
+    const AlgorithmOutput ref = reference().run(c, samples, variant);
+    const auto grown =
+        std::find_if(ref.counters.begin(), ref.counters.end(),
+                     [](const auto& counter) { return counter.first == "bounds_grown_samples"; });
+    ASSERT_NE(grown, ref.counters.end());
+    EXPECT_GT(grown->second, 0u) << variant << ": no box grew, a weak case";
+  }
+  expect_identical(c, samples, "samples before the near plane");
 }
 
 // Lights whose spheres touch cluster boxes within rounding: the exact fallback decides them.
