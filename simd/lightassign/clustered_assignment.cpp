@@ -6,7 +6,6 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
 
 #include "reference/lightassign/cluster_key.h"
 #include "reference/lightassign/light_bvh.h"
@@ -28,85 +27,50 @@ AlgorithmOutput assign_lights_clustered(const PreparedScene& scene,
   const RegularSamples& regular = scene.samples;
   const ViewFrustum frustum(c.camera);
 
-  // The view depths of the regular samples and their depth slices, in lanes per block. The
-  // slices depend on the deepest sample only through their count (the last slice takes what lies
-  // beyond): they are found in the same pass with the slices to the far plane, and found again
+  // Keys, unique clusters and their members' boxes in one pass over the samples per band
+  // (cluster_samples). The slices depend on the deepest sample only through their count (the
+  // last slice takes what lies beyond): the pass runs with the slices to the far plane, and again
   // only where the deepest sample lies past the far plane's last slice.
   const ViewFrame frame(c.camera);
-  constexpr std::size_t block = 4096;
-  const std::size_t blocks = (regular.size() + block - 1) / block;
-  auto block_size = [&](std::size_t b) {
-    return std::min(regular.size(), (b + 1) * block) - b * block;
-  };
-  UninitializedVector<std::uint32_t> key(regular.size());  // the slice, then the key
-  auto find_slices = [&](const ClusterGrid& slicing) {
-    return tbb::parallel_reduce(
-        tbb::blocked_range<std::size_t>(0, blocks, 1), 0.0,
-        [&](const auto& r, double deepest) {
-          double depth[block];
-          for (std::size_t b = r.begin(); b != r.end(); ++b) {
-            const std::size_t first = b * block, count = block_size(b);
-            view_depths(frame, regular.px.data() + first, regular.py.data() + first,
-                        regular.pz.data() + first, count, depth);
-            for (std::size_t i = 0; i < count; ++i) deepest = std::max(deepest, depth[i]);
-            slices_of(slicing, depth, count, key.data() + first);
-          }
-          return deepest;
-        },
-        [](double a, double b) { return std::max(a, b); });  // exact in any order
-  };
   const ClusterGrid to_far(c.camera, settings.tile_size, settings.normal_divisions, 0.0);
-  const double deepest = find_slices(to_far);
-  const ClusterGrid grid(c.camera, settings.tile_size, settings.normal_divisions, deepest);
+  SampleClusters sampled = cluster_samples(regular, frame, to_far, samples.width, samples.height);
+  const ClusterGrid grid(c.camera, settings.tile_size, settings.normal_divisions, sampled.deepest);
   if (auto why = grid.overflow_reason()) throw std::invalid_argument("lightassign: " + *why);
-  if (grid.slices() != to_far.slices()) find_slices(grid);
-
-  // Cluster keys (Section 3.1) per regular sample, row by row (a row's samples are consecutive).
-  // The fields take disjoint bits, so a key is its tile's key (pack with k = normal = 0) or'ed
-  // with the slice and normal fields packed alone.
-  const std::uint32_t width = samples.width;
-  const std::vector<std::uint32_t> row_start = regular_rows(regular, width, samples.height);
-  std::vector<std::uint32_t> column_of(width);
-  for (std::uint32_t x = 0; x < width; ++x) column_of[x] = x / settings.tile_size;
-  const int slice_shift = grid.bits_normal();
-  tbb::parallel_for(std::uint32_t(0), samples.height, [&](std::uint32_t y) {
-    std::vector<std::uint32_t> tile_key(grid.tiles_x());
-    for (std::uint32_t i = 0; i < grid.tiles_x(); ++i)
-      tile_key[i] = grid.pack({.i = i, .j = y / settings.tile_size, .k = 0, .normal = 0});
-    for (std::size_t i = row_start[y]; i < row_start[y + 1]; ++i) {
-      std::uint32_t k = tile_key[column_of[regular.index[i] - y * width]] | key[i] << slice_shift;
-      if (settings.normal_divisions > 0)
-        k |= quantize_normal(regular.normal(i), settings.normal_divisions);
-      key[i] = k;
-    }
-  });
-  UninitializedVector<std::uint32_t> member_regular;  // read instead of clusters.members
-  UniqueClusters clusters = find_unique_clusters(regular, key.data(), width, samples.height,
-                                                 settings.tile_size, member_regular, false);
+  if (grid.slices() != to_far.slices())
+    sampled = cluster_samples(regular, frame, grid, samples.width, samples.height);
+  UniqueClusters& clusters = sampled.clusters;
   const std::size_t lists = clusters.keys.size();
 
-  // Bounds and cones per cluster (Sections 3.2, 4.2), as the reference's, from the members'
-  // positions and normals as arrays.
+  // Bounds and cones per cluster (Sections 3.2, 4.2), as the reference's, from the members' boxes
+  // and, where a variant reads them one by one, the members' positions and normals as arrays. An
+  // implicit box grows (in member order) only where it does not hold its members' box.
+  UninitializedVector<std::uint32_t> member_regular;
+  auto members_of = [&](std::size_t k) {
+    return std::pair(member_regular.data() + clusters.member_offsets[k],
+                     member_regular.data() + clusters.member_offsets[k + 1]);
+  };
+  if (settings.explicit_normal_cones)
+    member_regular =
+        cluster_members(clusters, regular, samples.width, samples.height, settings.tile_size);
   LightLists out;
   out.bounds.resize(lists);
   std::vector<NormalCone> cones(lists);
   const bool use_cones = settings.explicit_normal_cones || settings.normal_divisions > 0;
-  std::vector<std::uint32_t> grown(lists, 0);
+  std::vector<std::uint8_t> outgrown(lists, 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, lists, 16), [&](const auto& r) {
     for (std::size_t k = r.begin(); k != r.end(); ++k) {
-      const std::uint32_t* first = member_regular.data() + clusters.member_offsets[k];
-      const std::uint32_t* last = member_regular.data() + clusters.member_offsets[k + 1];
       const ClusterCoordinates coordinates = grid.unpack(clusters.keys[k]);
       Aabb& box = out.bounds[k];
       if (settings.explicit_bounds) {
-        box.min = box.max = regular.position(*first);
-        for (const std::uint32_t* m = first + 1; m < last; ++m)
-          grow_to_contain(box, regular.position(*m));
+        // grow_to_contain from the first member's position: the members' box.
+        box.min = sampled.low[k];
+        box.max = sampled.high[k];
       } else {
         box = frustum.bounding_box(grid.sub_frustum(coordinates));
-        grown[k] = grow_to_contain_all(box, regular, first, last);
+        outgrown[k] = !box_holds(box, sampled.low[k], sampled.high[k]);
       }
       if (settings.explicit_normal_cones) {
+        const auto [first, last] = members_of(k);
         ExplicitNormalCone accumulate;
         for (const std::uint32_t* m = first; m < last; ++m)
           accumulate.add_direction(regular.normal(*m));
@@ -118,6 +82,18 @@ AlgorithmOutput assign_lights_clustered(const PreparedScene& scene,
       }
     }
   });
+  std::vector<std::uint32_t> grown(lists, 0);
+  if (std::find(outgrown.begin(), outgrown.end(), 1) != outgrown.end()) {
+    if (member_regular.empty())
+      member_regular =
+          cluster_members(clusters, regular, samples.width, samples.height, settings.tile_size);
+    tbb::parallel_for(std::size_t(0), lists, [&](std::size_t k) {
+      if (!outgrown[k]) return;
+      const auto [first, last] = members_of(k);
+      grown[k] =
+          grow_to_contain_all(out.bounds[k], sampled.low[k], sampled.high[k], regular, first, last);
+    });
+  }
 
   // The reference's light BVH, built in parallel and in lanes. (Built beside the clusters in a
   // task group it was slower: its arrays then come from a worker thread's malloc arena, fresh

@@ -8,7 +8,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
 
 #include "simd/lightassign/lightassign_kernels.h"
 
@@ -26,13 +25,13 @@ constexpr std::size_t buckets = 1 << 8;
 
 // The leaves in Morton order: the light indices of `keys` (the code's upper 32 bits over the
 // light index, in index order) sorted by (code, index) into `order`, the lights' spheres laid out
-// in that order. One parallel pass moves each key and its light's sphere, read in index order,
-// into a bucket by the top 8 bits (few buckets: few write streams; `offsets` holds each block's
-// count per bucket); each bucket is then ordered in cache: its keys by the other 24 bits of the
-// upper half (three 8-bit LSD passes over (bits, position), or std::sort when small), runs of
-// equal upper halves by the lower 31 bits of the code (low_bits) and the index. No light is read
-// out of order.
-void morton_order(const std::vector<RangedLight>& lights,
+// in that order. One parallel pass moves each key and its light's sphere (from `packed`, read in
+// index order) into a bucket by the top 8 bits (few buckets: few write streams; `offsets` holds
+// each block's count per bucket); each bucket is then ordered in cache: its keys by the other 24
+// bits of the upper half (three 8-bit LSD passes over (bits, position), or std::sort when small),
+// runs of equal upper halves by the lower 31 bits of the code (low_bits) and the index. No light
+// is read out of order (a gather of the spheres in Morton order from `packed` waits on memory).
+void morton_order(const UninitializedVector<float>& packed,
                   const UninitializedVector<std::uint64_t>& keys,
                   const UninitializedVector<std::uint32_t>& low_bits,
                   std::vector<std::uint32_t>& offsets, UninitializedVector<std::uint32_t>& order,
@@ -53,19 +52,25 @@ void morton_order(const std::vector<RangedLight>& lights,
   UninitializedVector<std::uint64_t> bucketed(n);
   UninitializedVector<Sphere> bucketed_sphere(n);
   tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
-    std::uint32_t* at = offsets.data() + b * buckets;
+    // Plain pointers: the compiler need not reload the vectors' after every store.
+    std::uint32_t* const at = offsets.data() + b * buckets;
+    const std::uint64_t* const key = keys.data();
+    const float* const sphere_of = packed.data();
+    std::uint64_t* const to_key = bucketed.data();
+    Sphere* const to_sphere = bucketed_sphere.data();
     for (std::size_t i = b * block; i < std::min(n, (b + 1) * block); ++i) {
-      const std::uint32_t position = at[keys[i] >> top_shift]++;
-      bucketed[position] = keys[i];
-      const RangedLight& l = lights[i];
-      bucketed_sphere[position] = {l.centre.x, l.centre.y, l.centre.z, l.range};
+      const std::uint32_t position = at[key[i] >> top_shift]++;
+      to_key[position] = key[i];
+      const float* from = sphere_of + 4 * i;
+      to_sphere[position] = {from[0], from[1], from[2], from[3]};
     }
   });
   tbb::enumerable_thread_specific<std::vector<std::uint64_t>> scratch;
   tbb::parallel_for(std::size_t(0), buckets, [&](std::size_t bucket) {
     const std::size_t first = bucket_start[bucket], count = bucket_start[bucket + 1] - first;
     if (count == 0) return;
-    // (the upper half's other 24 bits, position in the bucket): sorted, a stable order.
+    // (the upper half's other 24 bits, light index): the bucket holds its lights in index
+    // order, so a stable sort by the bits orders them by (bits, index).
     std::vector<std::uint64_t>& local = scratch.local();
     local.resize(2 * count);
     std::uint64_t* from = local.data();
@@ -132,35 +137,41 @@ LightBvhLanes::LightBvhLanes(const std::vector<RangedLight>& lights) {
   if (n == 0) return;
   const std::size_t blocks = (n + block - 1) / block;
 
-  // The box around the centres (min and max are exact in any order).
-  struct Bounds {
-    std::array<float, 3> low, high;
-  };
-  const Bounds bounds = tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(0, n, block),
-      Bounds{{std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity(),
-              std::numeric_limits<float>::infinity()},
-             {-std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(),
-              -std::numeric_limits<float>::infinity()}},
-      [&](const auto& r, Bounds b) {
-        for (std::size_t i = r.begin(); i != r.end(); ++i)
-          for (int k = 0; k < 3; ++k) {
-            b.low[k] = std::min(b.low[k], lights[i].centre[k]);
-            b.high[k] = std::max(b.high[k], lights[i].centre[k]);
-          }
-        return b;
-      },
-      [](Bounds a, const Bounds& b) {
-        for (int k = 0; k < 3; ++k) {
-          a.low[k] = std::min(a.low[k], b.low[k]);
-          a.high[k] = std::max(a.high[k], b.high[k]);
-        }
-        return a;
-      });
+  // The lights' spheres packed (centre x, y, z, range: one 16-byte read per light for the codes
+  // and the leaves, instead of the lights' larger records) and the box around the centres, in one
+  // pass over the lights (min and max are exact in any order).
+  UninitializedVector<float> packed(4 * n);
+  std::vector<std::array<float, 6>> block_bounds(blocks);
+  tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
+    constexpr float infinity = std::numeric_limits<float>::infinity();
+    float low_x = infinity, low_y = infinity, low_z = infinity;
+    float high_x = -infinity, high_y = -infinity, high_z = -infinity;
+    for (std::size_t i = b * block; i < std::min(n, (b + 1) * block); ++i) {
+      const RangedLight& l = lights[i];
+      float* sphere_of = packed.data() + 4 * i;
+      sphere_of[0] = l.centre.x;
+      sphere_of[1] = l.centre.y;
+      sphere_of[2] = l.centre.z;
+      sphere_of[3] = l.range;
+      low_x = std::min(low_x, l.centre.x);
+      low_y = std::min(low_y, l.centre.y);
+      low_z = std::min(low_z, l.centre.z);
+      high_x = std::max(high_x, l.centre.x);
+      high_y = std::max(high_y, l.centre.y);
+      high_z = std::max(high_z, l.centre.z);
+    }
+    block_bounds[b] = {low_x, low_y, low_z, high_x, high_y, high_z};
+  });
+  std::array<float, 6> bounds = block_bounds[0];
+  for (const std::array<float, 6>& b : block_bounds)
+    for (int k = 0; k < 3; ++k) {
+      bounds[k] = std::min(bounds[k], b[k]);
+      bounds[k + 3] = std::max(bounds[k + 3], b[k + 3]);
+    }
   double low[3], extent[3];
   for (int k = 0; k < 3; ++k) {
-    low[k] = double(bounds.low[k]);
-    extent[k] = std::max(double(bounds.high[k]) - low[k], 1e-300);
+    low[k] = double(bounds[k]);
+    extent[k] = std::max(double(bounds[k + 3]) - low[k], 1e-300);
   }
 
   // Morton codes in lanes; the sort key holds the code's upper 32 bits over the light index (so
@@ -170,7 +181,7 @@ LightBvhLanes::LightBvhLanes(const std::vector<RangedLight>& lights) {
   std::vector<std::uint32_t> offsets(blocks * buckets, 0);  // [block][bucket]: the key counts
   tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
     const std::size_t first = b * block, count = std::min(n, first + block) - first;
-    morton_codes(lights.data() + first, count, low, extent, keys.data() + first);
+    morton_codes(packed.data() + 4 * first, count, low, extent, keys.data() + first);
     std::uint32_t* in_bucket = offsets.data() + b * buckets;
     for (std::size_t i = first; i < first + count; ++i) {
       low_bits[i] = std::uint32_t(keys[i] & 0x7FFFFFFFu);
@@ -185,7 +196,7 @@ LightBvhLanes::LightBvhLanes(const std::vector<RangedLight>& lights) {
     std::fill(sphere[k].begin() + std::ptrdiff_t(n), sphere[k].end(),
               k < 3 ? std::numeric_limits<float>::quiet_NaN() : 0.0f);
   }
-  morton_order(lights, keys, low_bits, offsets, order, sphere);
+  morton_order(packed, keys, low_bits, offsets, order, sphere);
 
   // Levels of 32 consecutive children each, until one root.
   do {

@@ -85,11 +85,26 @@ HWY_INLINE void sphere_box_filter(D d, const V cx, const V cy, const V cz, const
 // x < the float after M, and round_up(x) >= m exactly when x > the float before m.
 struct LeafTest {
   double below_min[3], above_max[3];
+  float below_min_float[3], above_max_float[3];
   explicit LeafTest(const Aabb& box) {
     for (int k = 0; k < 3; ++k) {
-      below_min[k] = double(std::nextafter(box.min[k], -std::numeric_limits<float>::infinity()));
-      above_max[k] = double(std::nextafter(box.max[k], std::numeric_limits<float>::infinity()));
+      below_min_float[k] = std::nextafter(box.min[k], -std::numeric_limits<float>::infinity());
+      above_max_float[k] = std::nextafter(box.max[k], std::numeric_limits<float>::infinity());
+      below_min[k] = double(below_min_float[k]);
+      above_max[k] = double(above_max_float[k]);
     }
+  }
+  // A necessary condition for `overlaps` in float lanes (twice as many): rounding is monotone,
+  // so c - r < M (a float) in double makes c - r <= M in float, and c + r > m makes c + r >= m.
+  template <class D, class V>
+  HWY_INLINE auto may_overlap(D d, V cx, V cy, V cz, V r) const {
+    const V c[3] = {cx, cy, cz};
+    auto m = hn::And(hn::Le(hn::Sub(c[0], r), hn::Set(d, above_max_float[0])),
+                     hn::Ge(hn::Add(c[0], r), hn::Set(d, below_min_float[0])));
+    for (int k = 1; k < 3; ++k)
+      m = hn::And(m, hn::And(hn::Le(hn::Sub(c[k], r), hn::Set(d, above_max_float[k])),
+                             hn::Ge(hn::Add(c[k], r), hn::Set(d, below_min_float[k]))));
+    return m;
   }
   template <class D, class V>
   HWY_INLINE auto overlaps(D d, V cx, V cy, V cz, V r) const {
@@ -114,8 +129,22 @@ HWY_INLINE void test_leaves(const LightBvhLanes& bvh, const LeafTest& leaf, cons
   const std::size_t dlanes = hn::Lanes(dd);
   const std::uint64_t dlane_mask = dlanes >= 64 ? ~0ull : (1ull << dlanes) - 1;
   w.nodes_tested += std::min(first + node_width, bvh.order.size()) - first;
+  // The float lanes' necessary condition first: the double lanes test only the leaves it keeps.
+  const hn::CappedTag<float, node_width> dwide;
+  const std::size_t wide_lanes = hn::Lanes(dwide);
+  std::uint64_t candidates = 0;
+  for (std::size_t i = 0; i < node_width; i += wide_lanes) {
+    const std::size_t at = first + i;
+    const auto maybe = leaf.may_overlap(dwide, hn::LoadU(dwide, bvh.sphere[0].data() + at),
+                                        hn::LoadU(dwide, bvh.sphere[1].data() + at),
+                                        hn::LoadU(dwide, bvh.sphere[2].data() + at),
+                                        hn::LoadU(dwide, bvh.sphere[3].data() + at));
+    candidates |= mask_bits(dwide, maybe) << i;
+  }
+  if (candidates == 0) return;
   std::uint64_t overlapping = 0, inside = 0, outside = 0;
   for (std::size_t i = 0; i < node_width; i += dlanes) {
+    if (((candidates >> i) & dlane_mask) == 0) continue;
     const std::size_t at = first + i;
     const auto r = hn::PromoteTo(dd, hn::LoadU(df, bvh.sphere[3].data() + at));
     const auto cx = hn::PromoteTo(dd, hn::LoadU(df, bvh.sphere[0].data() + at));
@@ -198,34 +227,40 @@ HWY_INLINE V spread_every_third(D du, V x) {
   return hn::And(hn::Or(x, hn::ShiftLeft<2>(x)), hn::Set(du, 0x1249249249249249ull));
 }
 
-void MortonCodes(const RangedLight* lights, std::size_t count, const double* low,
-                 const double* extent, std::uint64_t* code) {
+void MortonCodes(const float* sphere, std::size_t count, const double* low, const double* extent,
+                 std::uint64_t* code) {
   const hn::ScalableTag<double> d;
+  const hn::Rebind<float, decltype(d)> df;
   const hn::RebindToSigned<decltype(d)> di;
   const hn::RebindToUnsigned<decltype(d)> du;
   const std::size_t lanes = hn::Lanes(d);
   constexpr std::size_t max_lanes = HWY_MAX_BYTES / sizeof(double);
-  HWY_ALIGN double centre[3][max_lanes];
+  HWY_ALIGN float padded[4 * max_lanes];
   HWY_ALIGN std::uint64_t out[max_lanes];
   for (std::size_t start = 0; start < count; start += lanes) {
     const std::size_t n = std::min(lanes, count - start);
-    for (std::size_t i = 0; i < lanes; ++i) {
-      const RangedLight& light = lights[start + (i < n ? i : n - 1)];
-      centre[0][i] = double(light.centre.x);
-      centre[1][i] = double(light.centre.y);
-      centre[2][i] = double(light.centre.z);
+    const float* at = sphere + 4 * start;
+    if (n < lanes) {  // the last lanes repeat the last light
+      for (std::size_t i = 0; i < 4 * lanes; ++i) padded[i] = at[std::min(i, 4 * n - 4 + i % 4)];
+      at = padded;
     }
+    hn::Vec<decltype(df)> centre[3], range;
+    hn::LoadInterleaved4(df, at, centre[0], centre[1], centre[2], range);
     auto result = hn::Zero(du);
     for (int k = 0; k < 3; ++k) {
       const auto t =
-          hn::Div(hn::Sub(hn::Load(d, centre[k]), hn::Set(d, low[k])), hn::Set(d, extent[k]));
+          hn::Div(hn::Sub(hn::PromoteTo(d, centre[k]), hn::Set(d, low[k])), hn::Set(d, extent[k]));
       const auto q =
           hn::Min(hn::Max(hn::Mul(t, hn::Set(d, 2097152.0)), hn::Zero(d)), hn::Set(d, 2097151.0));
       const auto spread = spread_every_third(du, hn::BitCast(du, hn::ConvertTo(di, q)));
       result = hn::Or(result, hn::ShiftLeftSame(spread, 2 - k));
     }
-    hn::Store(result, du, out);
-    std::copy(out, out + n, code + start);
+    if (n == lanes) {
+      hn::StoreU(result, du, code + start);
+    } else {
+      hn::Store(result, du, out);
+      std::copy(out, out + n, code + start);
+    }
   }
 }
 
@@ -382,61 +417,69 @@ ListWork CullTileCandidates(const std::vector<RangedLight>& lights, const ViewFr
   return w;
 }
 
-void ViewDepths(const ViewFrame& frame, const float* x, const float* y, const float* z,
-                std::size_t count, double* depth) {
+void RowClusterKeys(const ViewFrame& frame, const SliceTable& slices, int slice_shift,
+                    const std::uint32_t* tile_key_of_x, std::uint32_t row_pixel,
+                    const std::uint32_t* index, const float* x, const float* y, const float* z,
+                    std::size_t count, std::uint32_t* key, double& deepest) {
   const hn::ScalableTag<double> d;
   const hn::Rebind<float, decltype(d)> df;
+  const hn::Rebind<std::int32_t, decltype(d)> di;
+  const hn::Rebind<std::uint32_t, decltype(d)> du;
+  const hn::RebindToSigned<decltype(d)> dl;
   const std::size_t lanes = hn::Lanes(d);
   const auto ox = hn::Set(d, frame.origin[0]), oy = hn::Set(d, frame.origin[1]),
              oz = hn::Set(d, frame.origin[2]);
+  const auto inverse_near = hn::Set(d, slices.inverse_near);
+  const auto one = hn::Set(d, 1.0);
+  const auto inverse_log_base = hn::Set(df, slices.inverse_log_base);
+  const auto last = hn::Set(di, std::int32_t(slices.last));
+  const auto first_pixel = hn::Set(du, row_pixel);
+  const bool tabled = !slices.low.empty();
+  auto deepest_lanes = hn::Zero(d);
+  constexpr std::size_t max_lanes = HWY_MAX_BYTES / sizeof(double);
+  HWY_ALIGN double depth[max_lanes];
+  HWY_ALIGN std::uint32_t tile_key[max_lanes];
   std::size_t i = 0;
   for (; i + lanes <= count; i += lanes) {
+    // ViewFrustum::depth: dot(p - eye, forward) in glm's order.
     const auto dx = hn::Sub(hn::PromoteTo(d, hn::LoadU(df, x + i)), ox);
     const auto dy = hn::Sub(hn::PromoteTo(d, hn::LoadU(df, y + i)), oy);
     const auto dz = hn::Sub(hn::PromoteTo(d, hn::LoadU(df, z + i)), oz);
-    hn::StoreU(dot3(dx, dy, dz, frame.forward), d, depth + i);
-  }
-  for (; i < count; ++i)
-    depth[i] = (((double(x[i]) - frame.origin[0]) * frame.forward[0] +
-                 (double(y[i]) - frame.origin[1]) * frame.forward[1]) +
-                (double(z[i]) - frame.origin[2]) * frame.forward[2]);
-}
-
-void SlicesOf(const ClusterGrid& grid, const double* depth, std::size_t count,
-              std::uint32_t* slice) {
-  const hn::ScalableTag<double> d;
-  const std::size_t lanes = hn::Lanes(d);
-  // slice_of: k = floor(log(depth / near) / log(base)); near_0 = near exactly (base^0 = 1).
-  const double near = grid.slice_near(0);
-  const auto near_v = hn::Set(d, near);
-  // Reciprocals instead of divisions: a few ulps more error, far inside the margin below.
-  const auto inverse_near = hn::Set(d, 1.0 / near);
-  const auto inverse_log_base = hn::Set(d, 1.0 / std::log(grid.slice_base()));
-  const auto margin = hn::Set(d, 1e-10);
-  const auto one = hn::Set(d, 1.0);
-  const double last = double(grid.slices() - 1);
-  HWY_ALIGN double floors[HWY_MAX_BYTES / sizeof(double)];
-  std::size_t i = 0;
-  for (; i + lanes <= count; i += lanes) {
-    const auto depth_v = hn::LoadU(d, depth + i);
-    const auto t = hn::Mul(hn::Log(d, hn::Mul(depth_v, inverse_near)), inverse_log_base);
-    const auto nearest = hn::Round(t);
-    // Sure: the quotient is away from every integer, or the depth is before the near plane.
-    const auto sure =
-        hn::Or(hn::Not(hn::Gt(depth_v, near_v)),
-               hn::Gt(hn::Abs(hn::Sub(t, nearest)), hn::Mul(margin, hn::Add(hn::Abs(t), one))));
-    hn::Store(hn::Floor(t), d, floors);
-    const std::uint64_t sure_bits = mask_bits(d, sure);
-    for (std::size_t j = 0; j < lanes; ++j) {
-      if (!((sure_bits >> j) & 1u))
-        slice[i + j] = grid.slice_of(depth[i + j]);
-      else if (!(depth[i + j] > near))
-        slice[i + j] = 0;
-      else
-        slice[i + j] = std::uint32_t(std::min(floors[j], last));
+    const auto depth_v = dot3(dx, dy, dz, frame.forward);
+    // std::max(deepest, depth): a NaN depth leaves it.
+    deepest_lanes = hn::IfThenElse(hn::Lt(deepest_lanes, depth_v), depth_v, deepest_lanes);
+    // The guess: floor of eq. 2's quotient in float (the ratio kept >= 1: depths before the near
+    // plane and NaN guess slice 0), clamped to the slices.
+    const auto ratio = hn::DemoteTo(df, hn::Max(hn::Mul(depth_v, inverse_near), one));
+    const auto quotient = hn::Mul(hn::Log(df, ratio), inverse_log_base);
+    const auto guess = hn::Min(hn::Max(hn::ConvertTo(di, hn::Floor(quotient)), hn::Zero(di)), last);
+    const auto xs = hn::BitCast(di, hn::Sub(hn::LoadU(du, index + i), first_pixel));
+    const auto tile = hn::GatherIndex(du, tile_key_of_x, xs);
+    hn::StoreU(hn::Or(tile, hn::ShiftLeftSame(hn::BitCast(du, guess), slice_shift)), du, key + i);
+    std::uint64_t unsure = ~0ull;
+    if (tabled) {
+      const auto at = hn::PromoteTo(dl, guess);
+      const auto sure = hn::And(hn::Ge(depth_v, hn::GatherIndex(d, slices.low.data(), at)),
+                                hn::Lt(depth_v, hn::GatherIndex(d, slices.high.data(), at)));
+      if (hn::AllTrue(d, sure)) continue;
+      unsure = ~mask_bits(d, sure);
     }
+    hn::Store(depth_v, d, depth);
+    hn::Store(tile, du, tile_key);
+    for (std::size_t j = 0; j < lanes; ++j)
+      if ((unsure >> j) & 1u)
+        key[i + j] = tile_key[j] | slices.grid->slice_of(depth[j]) << slice_shift;
   }
-  for (; i < count; ++i) slice[i] = grid.slice_of(depth[i]);
+  HWY_ALIGN double lane_deepest[max_lanes];
+  hn::Store(deepest_lanes, d, lane_deepest);
+  for (std::size_t j = 0; j < lanes; ++j) deepest = std::max(deepest, lane_deepest[j]);
+  for (; i < count; ++i) {
+    const double depth_i = (((double(x[i]) - frame.origin[0]) * frame.forward[0] +
+                             (double(y[i]) - frame.origin[1]) * frame.forward[1]) +
+                            (double(z[i]) - frame.origin[2]) * frame.forward[2]);
+    deepest = std::max(deepest, depth_i);
+    key[i] = tile_key_of_x[index[i] - row_pixel] | slices.grid->slice_of(depth_i) << slice_shift;
+  }
 }
 
 // NOLINTNEXTLINE(google-readability-namespace-comments)
@@ -453,22 +496,40 @@ HWY_EXPORT(MortonCodes);
 HWY_EXPORT(LeafNodeBoxes);
 HWY_EXPORT(NodeBoxes);
 HWY_EXPORT(CullTileCandidates);
-HWY_EXPORT(SlicesOf);
-HWY_EXPORT(ViewDepths);
+HWY_EXPORT(RowClusterKeys);
 
-void view_depths(const ViewFrame& frame, const float* x, const float* y, const float* z,
-                 std::size_t count, double* depth) {
-  HWY_DYNAMIC_DISPATCH(ViewDepths)(frame, x, y, z, count, depth);
+SliceTable::SliceTable(const ClusterGrid& grid)
+    : grid(&grid),
+      inverse_near(1.0 / grid.slice_near(0)),
+      inverse_log_base(float(1.0 / std::log(grid.slice_base()))),
+      last(std::uint32_t(grid.slices() - 1)) {
+  // A table for any grid a 32-bit key and a sane near/far ratio give; beyond, slice_of decides.
+  constexpr std::uint64_t most_slices = 1 << 16;
+  if (grid.slices() > most_slices) return;
+  constexpr double margin = 1e-10;
+  const std::size_t slices = std::size_t(grid.slices());
+  low.resize(slices);
+  high.resize(slices);
+  double next_near = grid.slice_near(0);
+  for (std::size_t k = 0; k < slices; ++k) {
+    const double near = next_near;
+    next_near = grid.slice_near(k + 1);
+    low[k] = k == 0 ? -std::numeric_limits<double>::infinity() : near * (1.0 + margin);
+    high[k] = k == last ? std::numeric_limits<double>::infinity() : next_near * (1.0 - margin);
+  }
 }
 
-void slices_of(const ClusterGrid& grid, const double* depth, std::size_t count,
-               std::uint32_t* slice) {
-  HWY_DYNAMIC_DISPATCH(SlicesOf)(grid, depth, count, slice);
+void row_cluster_keys(const ViewFrame& frame, const SliceTable& slices, int slice_shift,
+                      const std::uint32_t* tile_key_of_x, std::uint32_t row_pixel,
+                      const std::uint32_t* index, const float* x, const float* y, const float* z,
+                      std::size_t count, std::uint32_t* key, double& deepest) {
+  HWY_DYNAMIC_DISPATCH(RowClusterKeys)
+  (frame, slices, slice_shift, tile_key_of_x, row_pixel, index, x, y, z, count, key, deepest);
 }
 
-void morton_codes(const RangedLight* lights, std::size_t count, const double* low,
-                  const double* extent, std::uint64_t* code) {
-  HWY_DYNAMIC_DISPATCH(MortonCodes)(lights, count, low, extent, code);
+void morton_codes(const float* sphere, std::size_t count, const double* low, const double* extent,
+                  std::uint64_t* code) {
+  HWY_DYNAMIC_DISPATCH(MortonCodes)(sphere, count, low, extent, code);
 }
 
 void leaf_node_boxes(const LightBvhLanes& bvh, std::size_t first, std::size_t count,

@@ -15,9 +15,9 @@ namespace shadowcts::simd {
 
 // The light BVH's build steps (light_bvh.h), each the reference's operations in lanes:
 // LightBvh's 63-bit Morton code of each light's centre over the centres' box (low, extent per
-// axis) into code[i];
-void morton_codes(const RangedLight* lights, std::size_t count, const double* low,
-                  const double* extent, std::uint64_t* code);
+// axis) into code[i], the lights' spheres packed as (centre x, y, z, range) in `sphere`;
+void morton_codes(const float* sphere, std::size_t count, const double* low, const double* extent,
+                  std::uint64_t* code);
 // the boxes of nodes [first, first + count) of the first level around their 32 leaves' boxes
 // (each sphere's float box rounded outwards), from bvh.sphere;
 void leaf_node_boxes(const LightBvhLanes& bvh, std::size_t first, std::size_t count,
@@ -65,15 +65,30 @@ ListWork cull_tile_candidates(const std::vector<RangedLight>& lights, const View
                               const TileVolume& tile, const std::uint32_t* candidates,
                               std::size_t count, std::vector<std::uint32_t>& list);
 
-// ViewFrustum::depth of the points (x[i], y[i], z[i]), i < count, into depth[i]: dot(p - eye,
-// forward) in double with glm's order of operations.
-void view_depths(const ViewFrame& frame, const float* x, const float* y, const float* z,
-                 std::size_t count, double* depth);
+// ClusterGrid::slice_of as a table lookup: slice_of is floor(log(depth / near) / log(base)), so
+// a depth certainly lies in slice k when it is within [near_k, near_{k+1}) by more than 1e-10
+// (relative) of either end, far above the few ulps by which the logarithms and slice_near can
+// round. A float logarithm in lanes guesses k, the table confirms it, and the depths it does not
+// confirm (near a boundary, NaN, or a guess off by one) take the reference's own slice_of.
+struct SliceTable {
+  explicit SliceTable(const ClusterGrid& grid);
 
-// ClusterGrid::slice_of(depth[i]) for i < count into slice[i]: eq. 2 in lanes (Highway's
-// logarithm), the reference's own slice_of where the lanes' quotient lies within 1e-10 (relative)
-// of a slice boundary, far above the few ulps by which the two logarithms can differ.
-void slices_of(const ClusterGrid& grid, const double* depth, std::size_t count,
-               std::uint32_t* slice);
+  const ClusterGrid* grid;
+  double inverse_near;
+  float inverse_log_base;
+  std::uint32_t last;  // slices - 1
+  // Per slice k: the depths certainly in it are [low[k], high[k]); empty when the grid has too
+  // many slices for a table (then every depth takes slice_of).
+  std::vector<double> low, high;
+};
+
+// The cluster keys of `count` regular samples of one pixel row (positions x, y, z, pixel indices
+// `index`, the row's first pixel `row_pixel`): key[i] = tile_key_of_x[index[i] - row_pixel] |
+// slice << slice_shift, the slice of the sample's view depth (ViewFrustum::depth's doubles) by
+// `slices`. deepest becomes std::max of itself and every depth (NaN ignored, as std::max does).
+void row_cluster_keys(const ViewFrame& frame, const SliceTable& slices, int slice_shift,
+                      const std::uint32_t* tile_key_of_x, std::uint32_t row_pixel,
+                      const std::uint32_t* index, const float* x, const float* y, const float* z,
+                      std::size_t count, std::uint32_t* key, double& deepest);
 
 }  // namespace shadowcts::simd

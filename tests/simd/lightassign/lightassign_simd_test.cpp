@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <random>
 #include <sstream>
@@ -18,6 +19,7 @@
 #include "reference/lightassign/cluster_key.h"
 #include "reference/lightassign/lightassign_algorithm.h"
 #include "reference/lightassign/unique_clusters.h"
+#include "reference/lightassign/view_frustum.h"
 #include "shadowcts/fixtures.h"
 #include "shadowcts/geometry/sphere_box.h"
 #include "shadowcts/prepared_scene.h"
@@ -189,6 +191,29 @@ TEST(SimdLightAssign, IdenticalWithSamplesPastTheFarPlane) {
   expect_identical(c, samples, "samples past the far plane");
 }
 
+// Samples before the near plane (the near plane moved out after they were cast): slice 0 takes
+// them and its implicit box grows to hold them, member by member.
+TEST(SimdLightAssign, IdenticalWithSamplesBeforeTheNearPlane) {
+  Case c = small_city();
+  const ViewSamples samples = generate_view_samples(c);
+  double nearest = std::numeric_limits<double>::infinity();
+  const ViewFrustum frustum(c.camera);
+  for (const ViewSample& s : samples.samples)
+    if (s.sample_class == SampleClass::regular)
+      nearest = std::min(nearest, frustum.depth(glm::dvec3(s.position)));
+  c.camera.near_plane = float(nearest * 1.5);
+  ASSERT_LT(c.camera.near_plane, c.camera.far_plane);
+  for (const std::string variant : {"clustered", "clustered+en"}) {
+    const AlgorithmOutput ref = reference().run(c, samples, variant);
+    const auto grown =
+        std::find_if(ref.counters.begin(), ref.counters.end(),
+                     [](const auto& counter) { return counter.first == "bounds_grown_samples"; });
+    ASSERT_NE(grown, ref.counters.end());
+    EXPECT_GT(grown->second, 0u) << variant << ": no box grew, a weak case";
+  }
+  expect_identical(c, samples, "samples before the near plane");
+}
+
 // Lights whose spheres touch cluster boxes within rounding: the exact fallback decides them.
 TEST(SimdLightAssign, IdenticalWithLightsTangentToTheBoxes) {
   Case c = small_city();
@@ -225,7 +250,8 @@ TEST(SimdLightAssign, IdenticalWithLightsTangentToTheBoxes) {
 }
 
 // Depths on, beside and between the slice boundaries (where eq. 2's floor is decided by the
-// rounding of the reference's logarithm), before the near plane and past the last slice.
+// rounding of the reference's logarithm), before the near plane and past the last slice: the
+// slice table's certain ranges, and the keys of samples at those depths.
 TEST(SimdLightAssign, SlicesInLanesAreTheReferenceSlices) {
   for (const float near : {0.1f, 1e-5f, 3.0f}) {
     Camera camera;
@@ -244,10 +270,38 @@ TEST(SimdLightAssign, SlicesInLanesAreTheReferenceSlices) {
       depth.push_back(grid.slice_near(k) *
                       (1.0 + 0.5 * std::uniform_real_distribution<>()(random)));
     }
-    std::vector<std::uint32_t> slices(depth.size());
-    simd::slices_of(grid, depth.data(), depth.size(), slices.data());
-    for (std::size_t i = 0; i < depth.size(); ++i)
-      ASSERT_EQ(slices[i], grid.slice_of(depth[i])) << "depth " << depth[i] << " near " << near;
+    // The table's certain ranges hold only their slice, boundaries included.
+    const simd::SliceTable table(grid);
+    ASSERT_EQ(table.low.size(), grid.slices());
+    for (const double d : depth)
+      for (std::size_t k = 0; k < table.low.size(); ++k)
+        if (table.low[k] <= d && d < table.high[k]) {
+          ASSERT_EQ(k, grid.slice_of(d)) << "depth " << d << " near " << near;
+        }
+    // The lanes, on samples along the camera's axis (from an eye at the origin looking down -z,
+    // the view depth of (0, 0, -d) is d exactly): those depths as floats and the floats around
+    // every boundary, each in pixel 0 of a row whose tile key is 0, so the keys are the slices.
+    std::vector<float> z;
+    for (const double d : depth) z.push_back(-float(d));
+    for (std::uint64_t k = 0; k <= grid.slices(); ++k) {
+      float boundary = float(grid.slice_near(k));
+      for (int step = 0; step < 3; ++step) boundary = std::nextafter(boundary, 0.0f);
+      for (int step = 0; step < 7; ++step, boundary = std::nextafter(boundary, 1e30f))
+        z.push_back(-boundary);
+    }
+    camera.position = {0.0f, 0.0f, 0.0f};
+    camera.target = {0.0f, 0.0f, -1.0f};
+    camera.up = {0.0f, 1.0f, 0.0f};
+    const simd::ViewFrame frame(camera);
+    const std::vector<float> x(z.size(), 0.0f), y = x;
+    const std::vector<std::uint32_t> pixel(z.size(), 0), tile_key(1, 0);
+    std::vector<std::uint32_t> slices(z.size());
+    double deepest = 0.0;
+    simd::row_cluster_keys(frame, table, 0, tile_key.data(), 0, pixel.data(), x.data(), y.data(),
+                           z.data(), z.size(), slices.data(), deepest);
+    for (std::size_t i = 0; i < z.size(); ++i)
+      ASSERT_EQ(slices[i], grid.slice_of(-double(z[i]))) << "depth " << -z[i] << " near " << near;
+    EXPECT_EQ(deepest, -double(*std::min_element(z.begin(), z.end())));
   }
 }
 
@@ -454,6 +508,65 @@ TEST(SimdLightAssign, UniqueClustersAreTheReferences) {
     for (std::size_t e = 0; e < member_regular.size(); ++e)
       ASSERT_EQ(regular.index[member_regular[e]], got.members[e]) << e;
   }
+}
+
+// The clustered variants' keys and unique clusters in one pass (cluster_samples, and their
+// members by cluster_members) against the reference's keys (ClusterGrid of ViewFrustum::depth,
+// quantize_normal) and find_unique_clusters: keys, tiles, members in order, every sample's
+// cluster, and each cluster's members' box.
+TEST(SimdLightAssign, ClusterSamplesAreTheReferencesKeysAndClusters) {
+  for (const auto& [name, side] :
+       {std::pair("depth_gaps.20k", 160u), std::pair("many_lights.20k", 123u)})
+    for (const std::uint32_t normal_divisions : {0u, 3u}) {
+      Case c = make_fixture(name);
+      const ViewSamples samples = samples_at(c, side);
+      const PreparedScene scene = prepare_scene(c, samples);
+      const ViewFrustum frustum(c.camera);
+      double deepest = 0.0;
+      for (const ViewSample& s : samples.samples)
+        if (s.sample_class == SampleClass::regular)
+          deepest = std::max(deepest, frustum.depth(glm::dvec3(s.position)));
+      const ClusterGrid grid(c.camera, 32, normal_divisions, deepest);
+      std::vector<std::uint32_t> sample_tile(samples.samples.size(), UniqueClusters::no_cluster),
+          sample_key(samples.samples.size(), 0);
+      for (std::size_t s = 0; s < samples.samples.size(); ++s) {
+        const ViewSample& sample = samples.samples[s];
+        if (sample.sample_class != SampleClass::regular) continue;
+        ClusterCoordinates key{.i = sample.pixel_x / 32,
+                               .j = sample.pixel_y / 32,
+                               .k = grid.slice_of(frustum.depth(glm::dvec3(sample.position))),
+                               .normal = 0};
+        if (normal_divisions > 0) key.normal = quantize_normal(sample.normal, normal_divisions);
+        sample_tile[s] = key.j * grid.tiles_x() + key.i;
+        sample_key[s] = grid.pack(key);
+      }
+      const UniqueClusters want =
+          find_unique_clusters(sample_tile, sample_key, grid.tiles_x() * grid.tiles_y());
+      const simd::SampleClusters got = simd::cluster_samples(
+          scene.samples, simd::ViewFrame(c.camera), grid, samples.width, samples.height);
+      SCOPED_TRACE(std::string(name) + " normal divisions " + std::to_string(normal_divisions));
+      EXPECT_EQ(got.deepest, deepest);
+      EXPECT_EQ(got.clusters.keys, want.keys);
+      EXPECT_EQ(got.clusters.tiles, want.tiles);
+      EXPECT_EQ(got.clusters.member_offsets, want.member_offsets);
+      EXPECT_EQ(got.clusters.cluster_of_sample, want.cluster_of_sample);
+      const simd::UninitializedVector<std::uint32_t> members =
+          simd::cluster_members(got.clusters, scene.samples, samples.width, samples.height, 32);
+      ASSERT_EQ(members.size(), want.members.size());
+      for (std::size_t e = 0; e < want.members.size(); ++e)
+        ASSERT_EQ(scene.samples.index[members[e]], want.members[e]) << e;
+      ASSERT_GT(want.keys.size(), 1u);
+      for (std::size_t k = 0; k < want.keys.size(); ++k) {
+        Aabb box;
+        box.min = box.max = samples.samples[want.members[want.member_offsets[k]]].position;
+        for (std::uint32_t e = want.member_offsets[k] + 1; e < want.member_offsets[k + 1]; ++e)
+          grow_to_contain(box, samples.samples[want.members[e]].position);
+        for (int a = 0; a < 3; ++a) {
+          ASSERT_TRUE(same_float(got.low[k][a], box.min[a])) << "cluster " << k;
+          ASSERT_TRUE(same_float(got.high[k][a], box.max[a])) << "cluster " << k;
+        }
+      }
+    }
 }
 
 TEST(SimdLightAssign, ResultsDoNotDependOnTheThreadCountOrTheHighwayTarget) {
