@@ -140,6 +140,14 @@ void BM_EmbreeHardShadowOracle(benchmark::State& state) {
   report(state, b, truth);
 }
 
+void trace_one_ray_per_sample(const EmbreeShadowRays& rays, const BenchCase& b,
+                              std::vector<std::uint8_t>& shadowed) {
+  tbb::parallel_for(std::size_t(0), shadowed.size(), [&](std::size_t i) {
+    const ViewSample& s = b.samples.samples[i];
+    shadowed[i] = rays.occluded(s.position, s.receiver);
+  });
+}
+
 // One Embree occlusion ray per sample, no band: the plain answer a user's renderer would trace.
 // The oracles above do much more (the band's moves), so this is the floor they are measured
 // against, not a peer.
@@ -148,10 +156,7 @@ void BM_EmbreeSingleRayPerSample(benchmark::State& state) {
   const EmbreeShadowRays rays(b.c);
   std::vector<std::uint8_t> shadowed(b.samples.samples.size());
   for (auto _ : state) {
-    tbb::parallel_for(std::size_t(0), shadowed.size(), [&](std::size_t i) {
-      const ViewSample& s = b.samples.samples[i];
-      shadowed[i] = rays.occluded(s.position, s.receiver);
-    });
+    trace_one_ray_per_sample(rays, b, shadowed);
     benchmark::DoNotOptimize(shadowed.data());
   }
   state.counters["triangles"] = double(b.c.triangles.size());
@@ -164,10 +169,7 @@ void BM_EmbreeBuildAndSingleRayPerSample(benchmark::State& state) {
   std::vector<std::uint8_t> shadowed(b.samples.samples.size());
   for (auto _ : state) {
     const EmbreeShadowRays rays(b.c);
-    tbb::parallel_for(std::size_t(0), shadowed.size(), [&](std::size_t i) {
-      const ViewSample& s = b.samples.samples[i];
-      shadowed[i] = rays.occluded(s.position, s.receiver);
-    });
+    trace_one_ray_per_sample(rays, b, shadowed);
     benchmark::DoNotOptimize(shadowed.data());
   }
   state.counters["triangles"] = double(b.c.triangles.size());
