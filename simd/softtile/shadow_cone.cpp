@@ -19,6 +19,9 @@ namespace shadowcts::simd::softtile::detail {
 // The reference's relative margin (reference/softtile/shadow_cone.cpp).
 inline constexpr double relative_margin = 1e-9;
 
+// Rounds of nine more samples of a capsule's g before the reference's ternary search decides.
+inline constexpr int refinement_levels = 3;
+
 // What may_shadow computes from the bound alone, once per tile, in the reference's expressions.
 struct BoundTerms {
   bool capsule = false;
@@ -81,6 +84,7 @@ namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
 using detail::BoundTerms;
+using detail::refinement_levels;
 using detail::relative_margin;
 using D = hn::ScalableTag<double>;
 using V = hn::Vec<D>;
@@ -134,6 +138,43 @@ HWY_INLINE V capsule_gap(D d, const ConeLanes& l, const SunLanes& sun, const Bou
   V x[3];
   for (int k = 0; k < 3; ++k) x[k] = hn::Add(hn::Set(d, t.a[k]), hn::Mul(s, hn::Set(d, t.ab[k])));
   return gap(d, l, sun, x, hn::Add(hn::Set(d, t.ra), hn::Mul(s, hn::Set(d, t.dr))));
+}
+
+// Lower bounds on the exact g over each interval between nine samples g[k] a step apart (each
+// computed within err): Lipschitz, g >= (g_k + g_k+1 - L step) / 2 on [k, k+1]; convexity, g lies
+// above the lines through the neighbouring pairs of samples, L(t) = g_k + (g_k - g_k-1) t and R(t)
+// = g_k+1 - (g_k+2 - g_k+1) (1 - t), t in [0, 1]. Any weight w in [0, 1] gives min(max(L, R)) >=
+// min over t of w L(t) + (1 - w) R(t), attained at t = 0 or 1; the w that makes it flat gives the
+// lines' crossing. Each line carries at most 3 err from the samples; and g is convex only up to its
+// slack term -1e-9 |x(s) - tip| (concave), which moves the lines by at most 2e-9 max |x - tip|
+// <= 2e-9 (|tip| + magnitude) = 2000 err (err is 1e-12 of that sum).
+HWY_INLINE void interval_bounds(D d, const V g[9], V lipschitz_step, V err, V bound[8]) {
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0), half = hn::Set(d, 0.5);
+  const V line_err = hn::Mul(hn::Set(d, 2004.0), err);
+  for (int k = 0; k < 8; ++k) {
+    const V piece = hn::Mul(half, hn::Sub(hn::Add(g[k], g[k + 1]), lipschitz_step));
+    V convex;
+    if (k == 0) {
+      convex = hn::Min(hn::Sub(hn::Add(g[1], g[1]), g[2]), g[1]);
+    } else if (k == 7) {
+      convex = hn::Min(g[7], hn::Sub(hn::Add(g[7], g[7]), g[6]));
+    } else {
+      const V left_slope = hn::Sub(g[k], g[k - 1]);       // of L, per step
+      const V right_slope = hn::Sub(g[k + 2], g[k + 1]);  // of R, per step
+      // w left_slope + (1 - w) right_slope = 0; L alone where it does not fall, R alone where it
+      // does not rise.
+      V w = hn::Div(right_slope, hn::Sub(right_slope, left_slope));
+      w = hn::IfThenElse(hn::Ge(left_slope, zero), one, w);
+      w = hn::IfThenElse(hn::Le(right_slope, zero), zero, w);
+      w = hn::Min(hn::Max(w, zero), one);
+      const V at0 =
+          hn::Add(hn::Mul(w, g[k]), hn::Mul(hn::Sub(one, w), hn::Sub(g[k + 1], right_slope)));
+      const V at1 =
+          hn::Add(hn::Mul(w, hn::Add(g[k], left_slope)), hn::Mul(hn::Sub(one, w), g[k + 1]));
+      convex = hn::Min(at0, at1);
+    }
+    bound[k] = hn::Max(piece, hn::Sub(convex, line_err));
+  }
 }
 
 // may_shadow for the cones [begin, begin + count) of `a`, count <= lanes: bit i for begin + i.
@@ -190,24 +231,75 @@ HWY_INLINE std::uint64_t may_shadow_lanes(D d, const ConeArrays& a, std::size_t 
     result = end_hit;
     alive = hn::AndNot(end_hit, alive);
     if (!hn::AllFalse(d, alive)) {
-      // A certified shortcut for lanes whose answer is false anyway: g is Lipschitz in s with
-      // L' = (1 + 1e-9) L, so with g sampled at k / 8 its exact minimum over [0, 1] is at least
-      // min_k (g_k + g_(k+1) - L' / 8) / 2 (each computed g within err of exact). Where that
-      // exceeds L (2/3)^40 (the final interval, below 1e-7 L) plus 2 err, every g the ternary
-      // search evaluates is > 0 and so is best - L (hi - lo): the reference answers false.
-      const V lipschitz8 = hn::Set(d, t.lipschitz * (1.0 + 1e-6) / 8.0);
-      V previous = g0, bound = hn::Set(d, HUGE_VAL);
-      for (int k = 1; k <= 8; ++k) {
-        const V gk = k == 8 ? g1 : capsule_gap(d, l, sun, t, hn::Set(d, k / 8.0));
-        const V piece = hn::Mul(hn::Set(d, 0.5), hn::Sub(hn::Add(previous, gk), lipschitz8));
-        bound = hn::IfThenElse(hn::Lt(piece, bound), piece, bound);
-        // NaN anywhere: never certified.
-        bound = hn::IfThenElse(hn::Eq(piece, piece), bound, hn::Set(d, -HUGE_VAL));
-        previous = gk;
-      }
+      // Certified answers for most lanes, without the ternary search, from samples of g, each
+      // computed within err of the exact g, which is L-Lipschitz in s and convex but for its
+      // slack term (see interval_bounds):
+      // - false where the exact minimum over [0, 1] exceeds L (2/3)^40 (the final interval,
+      //   below 1e-7 L) plus 2 err: every g the search evaluates is then > 0, and so is
+      //   best - L (hi - lo);
+      // - true where the exact minimum is below -2200 err: with f = g + 1e-9 |x(s) - tip| (convex,
+      //   at most 1000 err above g), each of the search's 40 comparisons can lose at most 2 err
+      //   plus 1e-9 L third of f's minimum over the interval (a wrong choice means the two
+      //   thirds' f differ by less than that, and convexity bounds what lies beyond), so the
+      //   final interval's f stays below -(2200 - 1000 - 80 - 1000) err, and its g(mid) - L (hi -
+      //   lo) <= that + L (hi - lo) / 2 - L (hi - lo) < 0 (L <= magnitude).
+      // Nine samples at k / 8 first; then, while lanes stay undecided, nine across the two
+      // intervals beside the smallest sample, whose bounds replace those two intervals' (the
+      // positions stay dyadic, hence exact).
       const V err = hn::Mul(hn::Set(d, 1e-12), hn::Add(l.tip_length, hn::Set(d, t.magnitude)));
       const V needed = hn::Add(hn::Set(d, 1e-7 * t.lipschitz), hn::Add(err, err));
-      alive = hn::AndNot(hn::Gt(bound, needed), alive);
+      const V lipschitz = hn::Set(d, t.lipschitz * (1.0 + 1e-6));
+      const V inf = hn::Set(d, HUGE_VAL), one = hn::Set(d, 1.0), eighth = hn::Set(d, 0.125);
+      M finite = hn::Lt(hn::Abs(err), inf);
+      V g[9];
+      g[0] = g0;
+      g[8] = g1;
+      for (int k = 1; k < 8; ++k) g[k] = capsule_gap(d, l, sun, t, hn::Set(d, k / 8.0));
+      V lo = zero, step = eighth;
+      V outside = inf;  // a lower bound on g over [0, 1] outside [lo, lo + 8 step]
+      V upper = inf;    // the smallest sample
+      for (int level = 0;; ++level) {
+        for (const V& gk : g) {
+          finite = hn::And(finite, hn::Lt(hn::Abs(gk), inf));
+          upper = hn::Min(upper, gk);
+        }
+        V bound[8];
+        interval_bounds(d, g, hn::Mul(lipschitz, step), err, bound);
+        V lower = outside;
+        for (const V& b : bound) lower = hn::Min(lower, b);
+        // A NaN or infinity anywhere: never certified.
+        const M certain_miss = hn::And(hn::And(alive, finite), hn::Gt(lower, needed));
+        alive = hn::AndNot(certain_miss, alive);
+        // upper + err >= the exact minimum.
+        const M certain_hit = hn::And(
+            hn::And(alive, finite), hn::Lt(hn::Add(upper, err), hn::Mul(hn::Set(d, -2200.0), err)));
+        result = hn::Or(result, certain_hit);
+        alive = hn::AndNot(certain_hit, alive);
+        if (level == refinement_levels || hn::AllFalse(d, alive)) break;
+        V smallest = g[0], at = zero;
+        for (int k = 1; k < 9; ++k) {
+          const M smaller = hn::Lt(g[k], smallest);
+          smallest = hn::IfThenElse(smaller, g[k], smallest);
+          at = hn::IfThenElse(smaller, hn::Set(d, double(k)), at);
+        }
+        const V first = hn::Max(hn::Sub(at, one), zero),
+                last = hn::Min(hn::Add(at, one), hn::Set(d, 8.0));
+        V g_first = g[0], g_last = g[8];
+        for (int k = 0; k < 9; ++k) {
+          const V index = hn::Set(d, double(k));
+          g_first = hn::IfThenElse(hn::Eq(first, index), g[k], g_first);
+          g_last = hn::IfThenElse(hn::Eq(last, index), g[k], g_last);
+          if (k < 8)
+            outside = hn::IfThenElse(hn::Or(hn::Lt(index, first), hn::Ge(index, last)),
+                                     hn::Min(outside, bound[k]), outside);
+        }
+        lo = hn::Add(lo, hn::Mul(first, step));
+        step = hn::Mul(hn::Mul(hn::Sub(last, first), step), eighth);
+        g[0] = g_first;
+        g[8] = g_last;
+        for (int k = 1; k < 8; ++k)
+          g[k] = capsule_gap(d, l, sun, t, hn::Add(lo, hn::Mul(hn::Set(d, double(k)), step)));
+      }
     }
     V lo = zero, hi = hn::Set(d, 1.0);
     const V three = hn::Set(d, 3.0);
