@@ -177,6 +177,88 @@ HWY_INLINE void interval_bounds(D d, const V g[9], V lipschitz_step, V err, V bo
   }
 }
 
+// What computed gaps are within of the exact ones: 1e-12 of |tip| + the bound's magnitude, far
+// above the rounding of gap()'s few operations on those magnitudes.
+HWY_INLINE V gap_error(D d, const ConeLanes& l, const BoundTerms& t) {
+  return hn::Mul(hn::Set(d, 1e-12), hn::Add(l.tip_length, hn::Set(d, t.magnitude)));
+}
+
+struct CapsuleMinimum {
+  M above;  // lanes whose exact minimum is > above_limit - err
+  M below;  // lanes whose exact minimum is < below_limit
+};
+
+// Certifies, for the lanes of `alive`, where the exact minimum over s in [0, 1] of the capsule's
+// g (the gap of cone l at a + s (b - a), radius ra + s (rb - ra); g0 and g1 its computed values at
+// 0 and 1) lies against two limits, from samples of g, each computed within err of the exact g,
+// which is L-Lipschitz in s and convex but for its slack term (see interval_bounds).
+// Nine samples at k / 8 first; then, while lanes stay undecided, nine across the two intervals
+// beside the smallest sample, whose bounds replace those two intervals' (the positions stay
+// dyadic, hence exact). A NaN or infinity anywhere: never certified.
+HWY_INLINE CapsuleMinimum certify_capsule_minimum(D d, const ConeLanes& l, const SunLanes& sun,
+                                                  const BoundTerms& t, V g0, V g1, M alive, V err,
+                                                  V above_limit, V below_limit) {
+  const V zero = hn::Zero(d);
+  const V lipschitz = hn::Set(d, t.lipschitz * (1.0 + 1e-6));
+  const V inf = hn::Set(d, HUGE_VAL), one = hn::Set(d, 1.0), eighth = hn::Set(d, 0.125);
+  CapsuleMinimum out{hn::Lt(zero, zero), hn::Lt(zero, zero)};
+  M finite = hn::Lt(hn::Abs(err), inf);
+  V g[9];
+  g[0] = g0;
+  g[8] = g1;
+  for (int k = 1; k < 8; ++k) g[k] = capsule_gap(d, l, sun, t, hn::Set(d, k / 8.0));
+  V lo = zero, step = eighth;
+  V outside = inf;  // a lower bound on g over [0, 1] outside [lo, lo + 8 step]
+  V upper = inf;    // the smallest sample
+  for (int level = 0;; ++level) {
+    for (const V& gk : g) {
+      finite = hn::And(finite, hn::Lt(hn::Abs(gk), inf));
+      upper = hn::Min(upper, gk);
+    }
+    V bound[8];
+    interval_bounds(d, g, hn::Mul(lipschitz, step), err, bound);
+    V lower = outside;  // exact minimum >= lower - err
+    for (const V& b : bound) lower = hn::Min(lower, b);
+    const M above = hn::And(hn::And(alive, finite), hn::Gt(lower, above_limit));
+    out.above = hn::Or(out.above, above);
+    alive = hn::AndNot(above, alive);
+    // upper + err >= the exact minimum.
+    const M below = hn::And(hn::And(alive, finite), hn::Lt(hn::Add(upper, err), below_limit));
+    out.below = hn::Or(out.below, below);
+    alive = hn::AndNot(below, alive);
+    // Lanes that can be neither any more: a later lower is at most the minimum + err <= upper +
+    // 2 err, a later upper at least the minimum - err >= lower - 2 err.
+    alive = hn::AndNot(hn::And(hn::Le(hn::Add(upper, hn::Add(err, err)), above_limit),
+                               hn::Ge(lower, hn::Add(below_limit, err))),
+                       alive);
+    if (level == refinement_levels || hn::AllFalse(d, alive)) break;
+    V smallest = g[0], at = zero;
+    for (int k = 1; k < 9; ++k) {
+      const M smaller = hn::Lt(g[k], smallest);
+      smallest = hn::IfThenElse(smaller, g[k], smallest);
+      at = hn::IfThenElse(smaller, hn::Set(d, double(k)), at);
+    }
+    const V first = hn::Max(hn::Sub(at, one), zero),
+            last = hn::Min(hn::Add(at, one), hn::Set(d, 8.0));
+    V g_first = g[0], g_last = g[8];
+    for (int k = 0; k < 9; ++k) {
+      const V index = hn::Set(d, double(k));
+      g_first = hn::IfThenElse(hn::Eq(first, index), g[k], g_first);
+      g_last = hn::IfThenElse(hn::Eq(last, index), g[k], g_last);
+      if (k < 8)
+        outside = hn::IfThenElse(hn::Or(hn::Lt(index, first), hn::Ge(index, last)),
+                                 hn::Min(outside, bound[k]), outside);
+    }
+    lo = hn::Add(lo, hn::Mul(first, step));
+    step = hn::Mul(hn::Mul(hn::Sub(last, first), step), eighth);
+    g[0] = g_first;
+    g[8] = g_last;
+    for (int k = 1; k < 8; ++k)
+      g[k] = capsule_gap(d, l, sun, t, hn::Add(lo, hn::Mul(hn::Set(d, double(k)), step)));
+  }
+  return out;
+}
+
 // may_shadow for the cones [begin, begin + count) of `a`, count <= lanes: bit i for begin + i.
 HWY_INLINE std::uint64_t may_shadow_lanes(D d, const ConeArrays& a, std::size_t begin,
                                           std::size_t count, const SunLanes& sun,
@@ -226,15 +308,15 @@ HWY_INLINE std::uint64_t may_shadow_lanes(D d, const ConeArrays& a, std::size_t 
         max_of(hn::Add(height(l, sun, bound_a), ra), hn::Add(height(l, sun, bound_b), rb)), floor);
     const M enclosing_out = hn::Gt(gap(d, l, sun, middle, hn::Set(d, t.enclosing)), zero);
     M alive = hn::Not(hn::Or(below, enclosing_out));
+    // Most cones of a tile's surviving clusters end here.
+    if (hn::AllFalse(d, hn::And(alive, hn::FirstN(d, count)))) return 0;
     const V g0 = capsule_gap(d, l, sun, t, zero), g1 = capsule_gap(d, l, sun, t, hn::Set(d, 1.0));
     const M end_hit = hn::And(alive, hn::Or(hn::Le(g0, zero), hn::Le(g1, zero)));
     result = end_hit;
     alive = hn::AndNot(end_hit, alive);
     if (!hn::AllFalse(d, alive)) {
-      // Certified answers for most lanes, without the ternary search, from samples of g, each
-      // computed within err of the exact g, which is L-Lipschitz in s and convex but for its
-      // slack term (see interval_bounds):
-      // - false where the exact minimum over [0, 1] exceeds L (2/3)^40 (the final interval,
+      // Certified answers for most lanes, without the ternary search:
+      // - false where the exact minimum of g over [0, 1] exceeds L (2/3)^40 (the final interval,
       //   below 1e-7 L) plus 2 err: every g the search evaluates is then > 0, and so is
       //   best - L (hi - lo);
       // - true where the exact minimum is below -2200 err: with f = g + 1e-9 |x(s) - tip| (convex,
@@ -243,63 +325,13 @@ HWY_INLINE std::uint64_t may_shadow_lanes(D d, const ConeArrays& a, std::size_t 
       //   thirds' f differ by less than that, and convexity bounds what lies beyond), so the
       //   final interval's f stays below -(2200 - 1000 - 80 - 1000) err, and its g(mid) - L (hi -
       //   lo) <= that + L (hi - lo) / 2 - L (hi - lo) < 0 (L <= magnitude).
-      // Nine samples at k / 8 first; then, while lanes stay undecided, nine across the two
-      // intervals beside the smallest sample, whose bounds replace those two intervals' (the
-      // positions stay dyadic, hence exact).
-      const V err = hn::Mul(hn::Set(d, 1e-12), hn::Add(l.tip_length, hn::Set(d, t.magnitude)));
-      const V needed = hn::Add(hn::Set(d, 1e-7 * t.lipschitz), hn::Add(err, err));
-      const V lipschitz = hn::Set(d, t.lipschitz * (1.0 + 1e-6));
-      const V inf = hn::Set(d, HUGE_VAL), one = hn::Set(d, 1.0), eighth = hn::Set(d, 0.125);
-      M finite = hn::Lt(hn::Abs(err), inf);
-      V g[9];
-      g[0] = g0;
-      g[8] = g1;
-      for (int k = 1; k < 8; ++k) g[k] = capsule_gap(d, l, sun, t, hn::Set(d, k / 8.0));
-      V lo = zero, step = eighth;
-      V outside = inf;  // a lower bound on g over [0, 1] outside [lo, lo + 8 step]
-      V upper = inf;    // the smallest sample
-      for (int level = 0;; ++level) {
-        for (const V& gk : g) {
-          finite = hn::And(finite, hn::Lt(hn::Abs(gk), inf));
-          upper = hn::Min(upper, gk);
-        }
-        V bound[8];
-        interval_bounds(d, g, hn::Mul(lipschitz, step), err, bound);
-        V lower = outside;
-        for (const V& b : bound) lower = hn::Min(lower, b);
-        // A NaN or infinity anywhere: never certified.
-        const M certain_miss = hn::And(hn::And(alive, finite), hn::Gt(lower, needed));
-        alive = hn::AndNot(certain_miss, alive);
-        // upper + err >= the exact minimum.
-        const M certain_hit = hn::And(
-            hn::And(alive, finite), hn::Lt(hn::Add(upper, err), hn::Mul(hn::Set(d, -2200.0), err)));
-        result = hn::Or(result, certain_hit);
-        alive = hn::AndNot(certain_hit, alive);
-        if (level == refinement_levels || hn::AllFalse(d, alive)) break;
-        V smallest = g[0], at = zero;
-        for (int k = 1; k < 9; ++k) {
-          const M smaller = hn::Lt(g[k], smallest);
-          smallest = hn::IfThenElse(smaller, g[k], smallest);
-          at = hn::IfThenElse(smaller, hn::Set(d, double(k)), at);
-        }
-        const V first = hn::Max(hn::Sub(at, one), zero),
-                last = hn::Min(hn::Add(at, one), hn::Set(d, 8.0));
-        V g_first = g[0], g_last = g[8];
-        for (int k = 0; k < 9; ++k) {
-          const V index = hn::Set(d, double(k));
-          g_first = hn::IfThenElse(hn::Eq(first, index), g[k], g_first);
-          g_last = hn::IfThenElse(hn::Eq(last, index), g[k], g_last);
-          if (k < 8)
-            outside = hn::IfThenElse(hn::Or(hn::Lt(index, first), hn::Ge(index, last)),
-                                     hn::Min(outside, bound[k]), outside);
-        }
-        lo = hn::Add(lo, hn::Mul(first, step));
-        step = hn::Mul(hn::Mul(hn::Sub(last, first), step), eighth);
-        g[0] = g_first;
-        g[8] = g_last;
-        for (int k = 1; k < 8; ++k)
-          g[k] = capsule_gap(d, l, sun, t, hn::Add(lo, hn::Mul(hn::Set(d, double(k)), step)));
-      }
+      const V err = gap_error(d, l, t);
+      const CapsuleMinimum decided =
+          certify_capsule_minimum(d, l, sun, t, g0, g1, alive, err,
+                                  hn::Add(hn::Set(d, 1e-7 * t.lipschitz), hn::Add(err, err)),
+                                  hn::Mul(hn::Set(d, -2200.0), err));
+      result = hn::Or(result, decided.below);
+      alive = hn::AndNot(hn::Or(decided.above, decided.below), alive);
     }
     V lo = zero, hi = hn::Set(d, 1.0);
     const V three = hn::Set(d, 3.0);
