@@ -15,22 +15,30 @@
 
 namespace shadowcts::simd::softtile {
 
-// A tile's fragment setups as structure of arrays, padded to a whole number of vectors.
+// A tile's fragment setups as structure of arrays, with each fragment's receiver triangle, padded
+// to a whole number of 64-bit words of fragments.
 struct FragmentArrays {
   std::vector<float> x, y, z, cos_rotation, sin_rotation;
+  std::vector<std::uint32_t> receiver;
   float inverse_scale = 1.0f;
   std::size_t size = 0;
 
-  void assign(const std::vector<shadowcts::softtile::FragmentSetup>& fragments);
+  void assign(const std::vector<shadowcts::softtile::FragmentSetup>& fragments,
+              const std::vector<std::uint32_t>& receivers);
+  std::size_t words() const { return (size + 63) / 64; }
 };
 
-// The edge functions of one triangle (light-space vertices) for every fragment: for fragment j,
-// accepted[j] is 1 (else 0) where triangle_edges() returns true, and then edges[(3 i + c) * stride
-// + j] is component c (x, y, z) of edge i. stride >= the padded size of `fragments`.
-void triangle_edges(const FragmentArrays& fragments, const std::array<glm::vec3, 3>& light_space,
-                    std::uint32_t* accepted, float* edges, std::size_t stride);
+// The edge functions of one triangle (light-space vertices, its id `triangle`) for every
+// fragment: bit j % 64 of accepted[j / 64] is set where the fragment's receiver is not `triangle`
+// and triangle_edges() returns true, and then edges[(3 i + c) * stride + j] is component c (x, y,
+// z) of edge i (elsewhere edges holds anything). Returns how many fragments' receiver is not
+// `triangle` (the reference's pixel-triangle tests). stride >= the padded size of `fragments`;
+// accepted has fragments.words() words.
+std::size_t triangle_edges(const FragmentArrays& fragments,
+                           const std::array<glm::vec3, 3>& light_space, std::uint32_t triangle,
+                           std::uint64_t* accepted, float* edges, std::size_t stride);
 
 // The padding FragmentArrays::assign uses: sizes are rounded up to a multiple of this.
-inline constexpr std::size_t fragment_padding = 16;
+inline constexpr std::size_t fragment_padding = 64;
 
 }  // namespace shadowcts::simd::softtile

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -25,14 +26,14 @@ void rasterize_tile(const ViewSamples& samples, const ref::Gathered& gathered,
   const std::size_t n = tile.pixels.size();
   out.masks.assign(n, raster.empty_disk());
   out.tests = out.rasterized = out.rasterized_max = 0;
-  scratch.fragments.assign(tile.fragments);
-  const std::size_t stride = scratch.fragments.x.size();
-  scratch.accepted.resize(stride);
-  scratch.lane_edges.resize(9 * stride);
   scratch.receivers.resize(n);
-  scratch.per_pixel.resize(std::max(scratch.per_pixel.size(), n));
   for (std::size_t j = 0; j < n; ++j)
     scratch.receivers[j] = samples.samples[tile.pixels[j]].receiver;
+  scratch.fragments.assign(tile.fragments, scratch.receivers);
+  const std::size_t stride = scratch.fragments.x.size();
+  scratch.accepted.resize(scratch.fragments.words());
+  scratch.lane_edges.resize(9 * stride);
+  scratch.per_pixel.resize(std::max(scratch.per_pixel.size(), n));
   std::vector<std::uint64_t> rasterized(n, 0);
   // Batches of candidates: each triangle set up for every fragment in lanes, then each pixel's
   // accepted triangles rasterized into its mask with the rows in lanes. The masks persist across
@@ -43,17 +44,16 @@ void rasterize_tile(const ViewSamples& samples, const ref::Gathered& gathered,
     for (std::size_t j = 0; j < n; ++j) scratch.per_pixel[j].clear();
     for (std::size_t k = begin; k < end; ++k) {
       const ref::GatheredTriangle& t = gathered.triangles[tile.candidates[k]];
-      triangle_edges(scratch.fragments, t.light_space, scratch.accepted.data(),
-                     scratch.lane_edges.data(), stride);
-      for (std::size_t j = 0; j < n; ++j) {
-        if (scratch.receivers[j] == t.triangle) continue;
-        ++out.tests;
-        if (scratch.accepted[j] == 0) continue;
-        const float* e = scratch.lane_edges.data() + j;
-        for (int i = 0; i < 3; ++i)
-          scratch.per_pixel[j].emplace_back(e[(3 * i) * stride], e[(3 * i + 1) * stride],
-                                            e[(3 * i + 2) * stride]);
-      }
+      out.tests += triangle_edges(scratch.fragments, t.light_space, t.triangle,
+                                  scratch.accepted.data(), scratch.lane_edges.data(), stride);
+      for (std::size_t w = 0; w < scratch.accepted.size(); ++w)
+        for (std::uint64_t bits = scratch.accepted[w]; bits != 0; bits &= bits - 1) {
+          const std::size_t j = 64 * w + std::size_t(std::countr_zero(bits));
+          const float* e = scratch.lane_edges.data() + j;
+          for (int i = 0; i < 3; ++i)
+            scratch.per_pixel[j].emplace_back(e[(3 * i) * stride], e[(3 * i + 1) * stride],
+                                              e[(3 * i + 2) * stride]);
+        }
     }
     for (std::size_t j = 0; j < n; ++j) {
       const std::size_t triangles = scratch.per_pixel[j].size() / 3;

@@ -31,7 +31,8 @@ struct TileRaster {
 // Scratch reused across the tiles of one thread.
 struct TileScratch {
   FragmentArrays fragments;
-  std::vector<std::uint32_t> accepted, receivers;
+  std::vector<std::uint64_t> accepted;  // bit rows of accepted fragments
+  std::vector<std::uint32_t> receivers;
   std::vector<float> lane_edges;                  // 9 rows of the padded fragment count
   std::vector<std::vector<glm::vec3>> per_pixel;  // accepted edges of the current batch
 };

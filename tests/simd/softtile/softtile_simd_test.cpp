@@ -135,7 +135,8 @@ void expect_tiles_match(const Case& c, const ViewSamples& samples, const std::st
   port::TileScratch scratch;
   port::TileRaster result;
   const port::GatheredCones cones = port::gathered_cones(gathered);
-  std::vector<std::uint32_t> list, accepted;
+  std::vector<std::uint32_t> list;
+  std::vector<std::uint64_t> accepted;
   port::FragmentArrays fragments;
   std::vector<float> lane_edges;
   std::size_t compared = 0, capsules = 0;
@@ -147,18 +148,25 @@ void expect_tiles_match(const Case& c, const ViewSamples& samples, const std::st
           << "tile " << index << (tile.bound.capsule ? " (capsule)" : " (sphere)");
     });
     capsules += tile.bound.capsule ? 1 : 0;
-    // The fragment setup in lanes: the reference's accept/reject and edge functions, bitwise.
-    fragments.assign(tile.fragments);
+    // The fragment setup in lanes: the reference's receiver skip, accept/reject and edge
+    // functions, bitwise.
+    std::vector<std::uint32_t> receivers;
+    for (const std::size_t i : tile.pixels) receivers.push_back(samples.samples[i].receiver);
+    fragments.assign(tile.fragments, receivers);
     const std::size_t stride = fragments.x.size();
-    accepted.resize(stride);
+    accepted.resize(fragments.words());
     lane_edges.resize(9 * stride);
     for (std::size_t k = 0; k < std::min<std::size_t>(tile.candidates.size(), 64); ++k) {
       const ref::GatheredTriangle& t = gathered.triangles[tile.candidates[k]];
-      port::triangle_edges(fragments, t.light_space, accepted.data(), lane_edges.data(), stride);
+      const std::size_t tests = port::triangle_edges(fragments, t.light_space, t.triangle,
+                                                     accepted.data(), lane_edges.data(), stride);
+      std::size_t want_tests = 0;
       for (std::size_t j = 0; j < tile.pixels.size(); ++j) {
         std::array<glm::vec3, 3> want;
-        const bool ok = ref::triangle_edges(tile.fragments[j], t.light_space, want);
-        ASSERT_EQ(accepted[j], ok ? 1u : 0u)
+        const bool tested = receivers[j] != t.triangle;
+        want_tests += tested ? 1 : 0;
+        const bool ok = tested && ref::triangle_edges(tile.fragments[j], t.light_space, want);
+        ASSERT_EQ((accepted[j / 64] >> (j % 64)) & 1u, ok ? 1u : 0u)
             << "tile " << index << ", candidate " << k << ", pixel " << tile.pixels[j];
         if (!ok) continue;
         for (int i = 0; i < 3; ++i)
@@ -168,6 +176,10 @@ void expect_tiles_match(const Case& c, const ViewSamples& samples, const std::st
                 << "tile " << index << ", candidate " << k << ", pixel " << tile.pixels[j]
                 << ", edge " << i << ", component " << comp;
       }
+      ASSERT_EQ(tests, want_tests) << "tile " << index << ", candidate " << k;
+      // Nothing past the tile's pixels.
+      for (std::size_t j = tile.pixels.size(); j < 64 * accepted.size(); ++j)
+        ASSERT_EQ((accepted[j / 64] >> (j % 64)) & 1u, 0u) << "tile " << index << ", lane " << j;
     }
     port::rasterize_tile(samples, gathered, raster, tile, scratch, result);
     ASSERT_EQ(result.masks.size(), tile.pixels.size());
