@@ -6,8 +6,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <utility>
+#include <vector>
 
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 #include <glm/geometric.hpp>
 
 #include "simd/softtile/shadow_cone.h"
@@ -52,27 +57,6 @@ inline BoundTerms bound_terms(const shadowcts::softtile::TileBound& bound) {
   t.lipschitz = glm::length(bound.b - bound.a) + std::fabs(bound.radius_b - bound.radius_a);
   t.magnitude = t.length_a + t.length_b + t.ra + t.rb;
   return t;
-}
-
-// Whether every cluster of group `group` provably gets may_shadow false for a bound whose first
-// cone test is against the sphere (x, r) (the sphere bound, or the capsule's enclosing sphere):
-// member i answers false when its computed gap_i = dist(cone_i, x) - r - 1e-9 (|x - tip_i| + r)
-// is > 0. cone_i lies inside the group's cone G, so dist(cone_i, x) >= dist(G, x), and
-// |x - tip_i| <= |x - tip_G| + spread. Hence dist(G, x) - r > 2e-9 (|x - tip_G| + spread + r)
-// leaves gap_i > 1e-9 (...) exactly, far above the rounding of either computation (~1e-15 of the
-// same magnitudes). NaN anywhere: not skipped.
-inline bool group_outside(const GatheredCones& cones, const ConeGroups& groups, std::size_t group,
-                          const glm::dvec3& x, double r) {
-  if (!groups.skippable[group]) return false;
-  const glm::dvec3 tip(groups.tip[0][group], groups.tip[1][group], groups.tip[2][group]);
-  const glm::dvec3 axis(-cones.direction[0], -cones.direction[1], -cones.direction[2]);
-  const glm::dvec3 v = x - tip;
-  const double h = glm::dot(v, axis);
-  const double l = glm::length(v - h * axis);
-  const double distance = h * cones.cos_radius + l * cones.sin_radius <= 0.0
-                              ? glm::length(v)
-                              : std::max(0.0, l * cones.cos_radius - h * cones.sin_radius);
-  return distance - r > 2.0 * relative_margin * (glm::length(v) + groups.spread[group] + r);
 }
 
 }  // namespace shadowcts::simd::softtile::detail
@@ -259,29 +243,58 @@ HWY_INLINE CapsuleMinimum certify_capsule_minimum(D d, const ConeLanes& l, const
   return out;
 }
 
-// may_shadow for the cones [begin, begin + count) of `a`, count <= lanes: bit i for begin + i.
-HWY_INLINE std::uint64_t may_shadow_lanes(D d, const ConeArrays& a, std::size_t begin,
-                                          std::size_t count, const SunLanes& sun,
-                                          const BoundTerms& t) {
+HWY_INLINE std::uint64_t mask_bits(D d, M m) {
+  std::uint8_t bytes[8] = {};
+  hn::StoreMaskBits(d, m, bytes);
+  std::uint64_t bits = 0;
+  std::memcpy(&bits, bytes, sizeof bits);
+  return bits;
+}
+
+// The cones [begin, begin + count) of `a`, count <= lanes; missing lanes repeat the first cone.
+HWY_INLINE ConeLanes load_cones(D d, const ConeArrays& a, std::size_t begin, std::size_t count) {
   const std::size_t lanes = hn::Lanes(d);
   ConeLanes l;
   if (count == lanes) {
     for (int k = 0; k < 3; ++k) l.tip[k] = hn::LoadU(d, a.tip[k].data() + begin);
     l.start = hn::LoadU(d, a.start_height.data() + begin);
     l.tip_length = hn::LoadU(d, a.tip_length.data() + begin);
-  } else {
-    // A partial vector: the missing lanes repeat the first cone and are masked off at the end.
-    HWY_ALIGN double buffer[5][HWY_MAX_BYTES / sizeof(double)];
-    for (std::size_t i = 0; i < lanes; ++i) {
-      const std::size_t j = begin + (i < count ? i : 0);
-      for (int k = 0; k < 3; ++k) buffer[k][i] = a.tip[k][j];
-      buffer[3][i] = a.start_height[j];
-      buffer[4][i] = a.tip_length[j];
-    }
-    for (int k = 0; k < 3; ++k) l.tip[k] = hn::Load(d, buffer[k]);
-    l.start = hn::Load(d, buffer[3]);
-    l.tip_length = hn::Load(d, buffer[4]);
+    return l;
   }
+  HWY_ALIGN double buffer[5][HWY_MAX_BYTES / sizeof(double)];
+  for (std::size_t i = 0; i < lanes; ++i) {
+    const std::size_t j = begin + (i < count ? i : 0);
+    for (int k = 0; k < 3; ++k) buffer[k][i] = a.tip[k][j];
+    buffer[3][i] = a.start_height[j];
+    buffer[4][i] = a.tip_length[j];
+  }
+  for (int k = 0; k < 3; ++k) l.tip[k] = hn::Load(d, buffer[k]);
+  l.start = hn::Load(d, buffer[3]);
+  l.tip_length = hn::Load(d, buffer[4]);
+  return l;
+}
+
+// The cones indices[0 .. count) of `a`, count <= lanes; missing lanes repeat the first cone.
+HWY_INLINE ConeLanes gather_cones(D d, const ConeArrays& a, const std::uint32_t* indices,
+                                  std::size_t count) {
+  const std::size_t lanes = hn::Lanes(d);
+  HWY_ALIGN double buffer[5][HWY_MAX_BYTES / sizeof(double)];
+  for (std::size_t i = 0; i < lanes; ++i) {
+    const std::size_t j = indices[i < count ? i : 0];
+    for (int k = 0; k < 3; ++k) buffer[k][i] = a.tip[k][j];
+    buffer[3][i] = a.start_height[j];
+    buffer[4][i] = a.tip_length[j];
+  }
+  ConeLanes l;
+  for (int k = 0; k < 3; ++k) l.tip[k] = hn::Load(d, buffer[k]);
+  l.start = hn::Load(d, buffer[3]);
+  l.tip_length = hn::Load(d, buffer[4]);
+  return l;
+}
+
+// may_shadow for the first `count` cones of l: bit i for lane i.
+HWY_INLINE std::uint64_t may_shadow_lanes(D d, const ConeLanes& l, std::size_t count,
+                                          const SunLanes& sun, const BoundTerms& t) {
   const V zero = hn::Zero(d);
   V bound_a[3], bound_b[3], middle[3];
   for (int k = 0; k < 3; ++k) {
@@ -357,12 +370,61 @@ HWY_INLINE std::uint64_t may_shadow_lanes(D d, const ConeArrays& a, std::size_t 
       result = hn::Or(result, hn::And(alive, last));
     }
   }
-  result = hn::And(result, hn::FirstN(d, count));
-  std::uint8_t bytes[8] = {};
-  hn::StoreMaskBits(d, result, bytes);
-  std::uint64_t bits = 0;
-  std::memcpy(&bits, bytes, sizeof bits);
-  return bits;
+  return mask_bits(d, hn::And(result, hn::FirstN(d, count)));
+}
+
+// Bit i set where node begin + i of `level` (count <= lanes) may have a triangle below it whose
+// may_shadow is true for the bound; clear where every one provably answers false. A triangle's
+// cone_i lies inside the node's cone G and |x - tip_i| <= |x - tip_G| + spread, so its gap at any
+// x and radius r, dist(cone_i, x) - r - 1e-9 (|x - tip_i| + r), is at least G's minus 1e-9
+// spread (G's tip is rounded by ulps of |tip_G|, far inside these slacks). Hence:
+// - the sphere the triangle tests first (the sphere bound, or the capsule's enclosing sphere):
+//   G's computed gap > 2e-9 (|tip_G| + magnitude + spread + r) >= 2e-9 (|x - tip_G| + spread + r)
+//   leaves the triangle's gap > 0 with room for every rounding, and it answers false;
+// - a capsule: a triangle answers false once its exact minimum over s exceeds 1e-7 L + err_i (see
+//   may_shadow_lanes), err_i <= err_max = 1e-12 (|tip_G| + spread + magnitude); so G's certified
+//   minimum above 1e-7 L + 2 err_max + 2e-9 spread decides it.
+HWY_INLINE std::uint64_t open_nodes(D d, const ConeGroups& level, std::size_t begin,
+                                    std::size_t count, const SunLanes& sun, const BoundTerms& t) {
+  const std::size_t lanes = hn::Lanes(d);
+  HWY_ALIGN double buffer[6][HWY_MAX_BYTES / sizeof(double)];
+  for (std::size_t i = 0; i < lanes; ++i) {
+    const std::size_t j = begin + (i < count ? i : 0);
+    for (int k = 0; k < 3; ++k) buffer[k][i] = level.tip[k][j];
+    buffer[3][i] = level.tip_length[j];
+    buffer[4][i] = level.spread[j];
+    buffer[5][i] = level.skippable[j] ? 1.0 : 0.0;
+  }
+  ConeLanes l;
+  for (int k = 0; k < 3; ++k) l.tip[k] = hn::Load(d, buffer[k]);
+  l.tip_length = hn::Load(d, buffer[3]);
+  l.start = hn::Zero(d);  // unused: truncation is left to the triangles
+  const V spread = hn::Load(d, buffer[4]);
+  const V zero = hn::Zero(d);
+  const M skippable = hn::Gt(hn::Load(d, buffer[5]), zero);
+  V centre[3];
+  for (int k = 0; k < 3; ++k) centre[k] = hn::Set(d, t.capsule ? t.middle[k] : t.a[k]);
+  const V radius = hn::Set(d, t.capsule ? t.enclosing : t.ra);
+  const V magnitude = hn::Set(d, t.magnitude);
+  const V sphere_limit =
+      hn::Mul(hn::Set(d, 2.0 * relative_margin),
+              hn::Add(hn::Add(hn::Add(l.tip_length, magnitude), spread), radius));
+  M closed = hn::And(skippable, hn::Gt(gap(d, l, sun, centre, radius), sphere_limit));
+  const M open = hn::AndNot(closed, hn::And(skippable, hn::FirstN(d, count)));
+  if (t.capsule && !hn::AllFalse(d, open)) {
+    const V err_max = hn::Mul(hn::Set(d, 1e-12), hn::Add(hn::Add(l.tip_length, spread), magnitude));
+    const V above_limit =
+        hn::Add(hn::Add(hn::Set(d, 1e-7 * t.lipschitz), hn::Add(err_max, err_max)),
+                hn::Mul(hn::Set(d, 2.0 * relative_margin), spread));
+    const V g0 = capsule_gap(d, l, sun, t, zero), g1 = capsule_gap(d, l, sun, t, hn::Set(d, 1.0));
+    const M tried = hn::And(open, hn::And(hn::Gt(g0, above_limit), hn::Gt(g1, above_limit)));
+    if (!hn::AllFalse(d, tried))
+      closed =
+          hn::Or(closed, certify_capsule_minimum(d, l, sun, t, g0, g1, tried, gap_error(d, l, t),
+                                                 above_limit, hn::Set(d, -HUGE_VAL))
+                             .above);
+  }
+  return mask_bits(d, hn::AndNot(closed, hn::FirstN(d, count)));
 }
 
 void CullCandidates(const GatheredCones& cones, const shadowcts::softtile::TileBound& bound,
@@ -378,47 +440,59 @@ void CullCandidates(const GatheredCones& cones, const shadowcts::softtile::TileB
   sun.c = hn::Set(d, cones.cos_radius);
   sun.s = hn::Set(d, cones.sin_radius);
   candidates.clear();
-  const std::size_t clusters = cones.first.size();
-  // The sphere the reference's first cone test rejects with: the bound itself, or the capsule's
-  // enclosing sphere.
-  const glm::dvec3 test_centre = t.capsule ? glm::dvec3(t.middle[0], t.middle[1], t.middle[2])
-                                           : glm::dvec3(t.a[0], t.a[1], t.a[2]);
-  const double test_radius = t.capsule ? t.enclosing : t.ra;
-  for (std::size_t g0 = 0; g0 < clusters; g0 += cluster_group) {
-    if (g0 % cluster_super_group == 0 &&
-        detail::group_outside(cones, cones.cluster_super_groups, g0 / cluster_super_group,
-                              test_centre, test_radius)) {
-      g0 += cluster_super_group - cluster_group;  // the loop adds the last group
-      continue;
-    }
-    if (detail::group_outside(cones, cones.cluster_groups, g0 / cluster_group, test_centre,
-                              test_radius))
-      continue;
-    const std::size_t group_end = std::min(clusters, g0 + cluster_group);
-    for (std::size_t c0 = g0; c0 < group_end; c0 += lanes) {
-      const std::size_t n = std::min(lanes, group_end - c0);
-      std::uint64_t kept = may_shadow_lanes(d, cones.clusters, c0, n, sun, t);
-      while (kept != 0) {
-        const std::size_t cluster = c0 + std::size_t(__builtin_ctzll(kept));
-        kept &= kept - 1;
-        const std::size_t first = cones.first[cluster], end = first + cones.count[cluster];
-        std::size_t group = cones.first_triangle_group[cluster];
-        for (std::size_t t0 = first; t0 < end; t0 += triangle_group, ++group) {
-          if (detail::group_outside(cones, cones.triangle_groups, group, test_centre, test_radius))
-            continue;
-          const std::size_t t_end = std::min(end, t0 + triangle_group);
-          for (std::size_t k0 = t0; k0 < t_end; k0 += lanes) {
-            const std::size_t m = std::min(lanes, t_end - k0);
-            std::uint64_t bits = may_shadow_lanes(d, cones.triangles, k0, m, sun, t);
-            while (bits != 0) {
-              candidates.push_back(std::uint32_t(k0 + std::size_t(__builtin_ctzll(bits))));
-              bits &= bits - 1;
-            }
-          }
-        }
+  const ConeTree& tree = cones.tree;
+  if (tree.levels.empty()) return;
+  // Depth first from the top level: (level, first node, node count) of child runs to test.
+  struct Run {
+    std::size_t level, first, count;
+  };
+  std::vector<Run> stack;
+  const std::size_t top = tree.levels.size() - 1;
+  for (std::size_t n0 = 0; n0 < tree.levels[top].spread.size(); n0 += lanes)
+    stack.push_back({top, n0, std::min(lanes, tree.levels[top].spread.size() - n0)});
+  while (!stack.empty()) {
+    const Run run = stack.back();
+    stack.pop_back();
+    std::uint64_t open = open_nodes(d, tree.levels[run.level], run.first, run.count, sun, t);
+    for (; open != 0; open &= open - 1) {
+      const std::size_t node = run.first + std::size_t(__builtin_ctzll(open));
+      const std::size_t first = node * tree_arity;
+      if (run.level > 0) {
+        const std::size_t end =
+            std::min(tree.levels[run.level - 1].spread.size(), first + tree_arity);
+        for (std::size_t c0 = first; c0 < end; c0 += lanes)
+          stack.push_back({run.level - 1, c0, std::min(lanes, end - c0)});
+        continue;
+      }
+      const std::size_t end = std::min(tree.index.size(), first + tree_arity);
+      for (std::size_t k0 = first; k0 < end; k0 += lanes) {
+        const std::size_t m = std::min(lanes, end - k0);
+        for (std::uint64_t bits =
+                 may_shadow_lanes(d, load_cones(d, tree.triangles, k0, m), m, sun, t);
+             bits != 0; bits &= bits - 1)
+          candidates.push_back(tree.index[k0 + std::size_t(__builtin_ctzll(bits))]);
       }
     }
   }
+  // Gathered order, then only the triangles whose cluster's cone may shadow the bound too.
+  std::sort(candidates.begin(), candidates.end());
+  std::vector<std::uint32_t> clusters;
+  for (const std::uint32_t k : candidates)
+    if (clusters.empty() || clusters.back() != cones.cluster_of[k])
+      clusters.push_back(cones.cluster_of[k]);
+  std::vector<std::uint8_t> kept(clusters.size());
+  for (std::size_t c0 = 0; c0 < clusters.size(); c0 += lanes) {
+    const std::size_t n = std::min(lanes, clusters.size() - c0);
+    const std::uint64_t bits =
+        may_shadow_lanes(d, gather_cones(d, cones.clusters, clusters.data() + c0, n), n, sun, t);
+    for (std::size_t i = 0; i < n; ++i) kept[c0 + i] = (bits >> i) & 1u;
+  }
+  std::size_t out = 0, c = 0;
+  for (const std::uint32_t k : candidates) {
+    while (clusters[c] != cones.cluster_of[k]) ++c;
+    if (kept[c]) candidates[out++] = k;
+  }
+  candidates.resize(out);
 }
 
 }  // namespace HWY_NAMESPACE
@@ -438,22 +512,21 @@ void append(ConeArrays& arrays, const shadowcts::softtile::ShadowCone& cone) {
   arrays.tip_length.push_back(glm::length(cone.tip));
 }
 
-}  // namespace
-
-// A sphere (centre c, radius R) around the members' tips lies inside the cone of half-angle a
-// whose tip is R / sin(a) above c (as shadow_cone() places a cone around a caster's sphere;
-// widened by 1e-9 against rounding); the members' cones, translates of it by points inside it,
-// lie inside it too.
-void ConeGroups::add(const ConeArrays& cones, std::size_t begin, std::size_t end,
-                     const double direction[3], double sin_radius) {
-  const auto tip_of = [&](std::size_t i) {
-    return glm::dvec3(cones.tip[0][i], cones.tip[1][i], cones.tip[2][i]);
-  };
+// One node over members [begin, end) with tips tip_of(i), spreads spread_of(i) (0 for a
+// triangle) and skippable_of(i). A sphere (centre c, radius R) around the members' tips lies
+// inside the cone of half-angle a whose tip is R / sin(a) above c (as shadow_cone() places a cone
+// around a caster's sphere; widened by 1e-9 against rounding); the members' cones, translates of
+// it by points inside it, lie inside it too, and so do the cones below them.
+template <class Tip, class Spread, class Skippable>
+void add_node(ConeGroups& level, std::size_t begin, std::size_t end, const Tip& tip_of,
+              const Spread& spread_of, const Skippable& skippable_of, const glm::dvec3& direction,
+              double sin_radius) {
   glm::dvec3 lo = tip_of(begin), hi = lo;
-  bool finite = true;
+  bool skippable = true;
   for (std::size_t i = begin; i < end; ++i) {
     const glm::dvec3 t = tip_of(i);
-    finite = finite && std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.z);
+    skippable = skippable && skippable_of(i) && std::isfinite(t.x) && std::isfinite(t.y) &&
+                std::isfinite(t.z);
     lo = glm::min(lo, t);
     hi = glm::max(hi, t);
   }
@@ -462,46 +535,115 @@ void ConeGroups::add(const ConeArrays& cones, std::size_t begin, std::size_t end
   for (std::size_t i = begin; i < end; ++i)
     radius = std::max(radius, glm::length(tip_of(i) - centre));
   radius = radius * (1.0 + 1e-9) + 1e-300;
-  const glm::dvec3 d(direction[0], direction[1], direction[2]);
-  const glm::dvec3 group_tip = centre + d * (radius * (1.0 + 1e-9) / sin_radius);
-  double largest = 0.0;
+  const glm::dvec3 node_tip = centre + direction * (radius * (1.0 + 1e-9) / sin_radius);
+  double spread = 0.0;
   for (std::size_t i = begin; i < end; ++i)
-    largest = std::max(largest, glm::length(tip_of(i) - group_tip));
-  for (int k = 0; k < 3; ++k) tip[k].push_back(group_tip[k]);
-  spread.push_back(largest * (1.0 + 1e-9));
-  finite = finite && std::isfinite(group_tip.x) && std::isfinite(group_tip.y) &&
-           std::isfinite(group_tip.z) && std::isfinite(largest);
-  skippable.push_back(finite ? 1 : 0);
+    spread = std::max(spread, glm::length(tip_of(i) - node_tip) + spread_of(i));
+  spread *= 1.0 + 1e-9;
+  for (int k = 0; k < 3; ++k) level.tip[k].push_back(node_tip[k]);
+  level.tip_length.push_back(glm::length(node_tip));
+  level.spread.push_back(spread);
+  skippable = skippable && std::isfinite(node_tip.x) && std::isfinite(node_tip.y) &&
+              std::isfinite(node_tip.z) && std::isfinite(spread);
+  level.skippable.push_back(skippable ? 1 : 0);
 }
+
+// Interleaves the low 21 bits of x, y, z.
+std::uint64_t morton3(std::uint64_t x, std::uint64_t y, std::uint64_t z) {
+  const auto spread_bits = [](std::uint64_t v) {
+    v &= 0x1fffffull;
+    v = (v | v << 32) & 0x1f00000000ffffull;
+    v = (v | v << 16) & 0x1f0000ff0000ffull;
+    v = (v | v << 8) & 0x100f00f00f00f00full;
+    v = (v | v << 4) & 0x10c30c30c30c30c3ull;
+    v = (v | v << 2) & 0x1249249249249249ull;
+    return v;
+  };
+  return spread_bits(x) | spread_bits(y) << 1 | spread_bits(z) << 2;
+}
+
+ConeTree cone_tree(const shadowcts::softtile::Gathered& gathered, const glm::dvec3& direction,
+                   double sin_radius) {
+  const std::size_t n = gathered.triangles.size();
+  const auto finite = [](const glm::dvec3& p) {
+    return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+  };
+  glm::dvec3 lo(HUGE_VAL), hi(-HUGE_VAL);
+  for (const shadowcts::softtile::GatheredTriangle& t : gathered.triangles)
+    if (finite(t.cone.tip)) {
+      lo = glm::min(lo, t.cone.tip);
+      hi = glm::max(hi, t.cone.tip);
+    }
+  // Keys: the Morton code of the tip in 21 bits per axis over the finite tips' box (non-finite
+  // tips after every finite one), then the index: unique, so the order is deterministic.
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> keys(n);
+  tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
+    const glm::dvec3 tip = gathered.triangles[i].cone.tip;
+    std::uint64_t code = ~std::uint64_t(0);
+    if (finite(tip)) {
+      std::uint64_t q[3];
+      for (int k = 0; k < 3; ++k) {
+        const double extent = hi[k] - lo[k];
+        const double unit = extent > 0.0 ? (tip[k] - lo[k]) / extent : 0.0;
+        q[k] = std::uint64_t(std::clamp(unit, 0.0, 1.0) * double((1u << 21) - 1));
+      }
+      code = morton3(q[0], q[1], q[2]);
+    }
+    keys[i] = {code, std::uint32_t(i)};
+  });
+  tbb::parallel_sort(keys.begin(), keys.end());
+  ConeTree tree;
+  for (const auto& [code, i] : keys) {
+    append(tree.triangles, gathered.triangles[i].cone);
+    tree.index.push_back(i);
+  }
+  const ConeArrays& leaves = tree.triangles;
+  std::size_t count = n;
+  while (count > 0 && (tree.levels.empty() || count > tree_arity)) {
+    ConeGroups level;
+    const bool over_triangles = tree.levels.empty();
+    for (std::size_t first = 0; first < count; first += tree_arity) {
+      const std::size_t end = std::min(count, first + tree_arity);
+      if (over_triangles) {
+        add_node(
+            level, first, end,
+            [&](std::size_t i) {
+              return glm::dvec3(leaves.tip[0][i], leaves.tip[1][i], leaves.tip[2][i]);
+            },
+            [](std::size_t) { return 0.0; }, [](std::size_t) { return true; }, direction,
+            sin_radius);
+      } else {
+        const ConeGroups& below = tree.levels.back();
+        add_node(
+            level, first, end,
+            [&](std::size_t i) {
+              return glm::dvec3(below.tip[0][i], below.tip[1][i], below.tip[2][i]);
+            },
+            [&](std::size_t i) { return below.spread[i]; },
+            [&](std::size_t i) { return below.skippable[i] != 0; }, direction, sin_radius);
+      }
+    }
+    count = level.spread.size();
+    tree.levels.push_back(std::move(level));
+  }
+  return tree;
+}
+
+}  // namespace
 
 GatheredCones gathered_cones(const shadowcts::softtile::Gathered& gathered) {
   GatheredCones cones;
-  for (const shadowcts::softtile::GatheredCluster& cluster : gathered.clusters) {
+  cones.cluster_of.resize(gathered.triangles.size());
+  for (std::size_t c = 0; c < gathered.clusters.size(); ++c) {
+    const shadowcts::softtile::GatheredCluster& cluster = gathered.clusters[c];
     append(cones.clusters, cluster.cone);
-    cones.first.push_back(cluster.first);
-    cones.count.push_back(cluster.count);
+    std::fill_n(cones.cluster_of.begin() + cluster.first, cluster.count, std::uint32_t(c));
   }
-  for (const shadowcts::softtile::GatheredTriangle& t : gathered.triangles)
-    append(cones.triangles, t.cone);
   for (int k = 0; k < 3; ++k) cones.direction[k] = gathered.sun.direction[k];
   // distance_to_cone's std::cos / std::sin of the half-angle, the same value every call.
   cones.cos_radius = std::cos(gathered.sun.angular_radius);
   cones.sin_radius = std::sin(gathered.sun.angular_radius);
-  for (std::size_t g0 = 0; g0 < gathered.clusters.size(); g0 += cluster_super_group)
-    cones.cluster_super_groups.add(cones.clusters, g0,
-                                   std::min(gathered.clusters.size(), g0 + cluster_super_group),
-                                   cones.direction, cones.sin_radius);
-  for (std::size_t g0 = 0; g0 < gathered.clusters.size(); g0 += cluster_group)
-    cones.cluster_groups.add(cones.clusters, g0,
-                             std::min(gathered.clusters.size(), g0 + cluster_group),
-                             cones.direction, cones.sin_radius);
-  for (const shadowcts::softtile::GatheredCluster& cluster : gathered.clusters) {
-    cones.first_triangle_group.push_back(std::uint32_t(cones.triangle_groups.spread.size()));
-    const std::size_t end = std::size_t(cluster.first) + cluster.count;
-    for (std::size_t t0 = cluster.first; t0 < end; t0 += triangle_group)
-      cones.triangle_groups.add(cones.triangles, t0, std::min(end, t0 + triangle_group),
-                                cones.direction, cones.sin_radius);
-  }
+  cones.tree = cone_tree(gathered, gathered.sun.direction, cones.sin_radius);
   return cones;
 }
 

@@ -17,35 +17,36 @@ struct ConeArrays {
   std::vector<double> tip_length;  // glm::length(tip), as the reference's height slack takes it
 };
 
-// Consecutive clusters per group. A group's cone (same axis and angle, its tip placed so that the
-// cone holds every member's tip, hence every member's cone) lets a tile skip all of them when its
-// bound lies farther outside the group's cone than every member's slack plus rounding: then each
-// member's may_shadow is provably false (see gathered_cones).
-inline constexpr std::size_t cluster_group = 16;
-// Groups of cluster_group groups (256 clusters), tested first.
-inline constexpr std::size_t cluster_super_group = 16 * cluster_group;
-// Consecutive triangles of one cluster per group, the same way.
-inline constexpr std::size_t triangle_group = 8;
+// Nodes of the cone tree hold this many triangles (leaves) or child nodes.
+inline constexpr std::size_t tree_arity = 8;
 
+// Nodes of one level of the cone tree. A node's cone (same axis and angle as the members', its tip
+// placed so that it holds every member's tip, hence every member's cone) lets a tile skip all the
+// triangles below it when its bound lies farther outside the node's cone than every member's slack
+// plus rounding allows: then each one's may_shadow is provably false (see cull_candidates).
 struct ConeGroups {
-  // Per group: the group cone's tip, the largest distance from it to a member's tip, and whether
-  // the group may be skipped at all (every member's tip finite).
-  std::vector<double> tip[3], spread;
+  // Per node: its cone's tip and |tip|, the largest distance from it to a triangle's tip below it,
+  // and whether it may be skipped at all (every tip below it finite).
+  std::vector<double> tip[3], tip_length, spread;
   std::vector<std::uint8_t> skippable;
+};
 
-  // Adds the group of cones [begin, end) of `cones`.
-  void add(const ConeArrays& cones, std::size_t begin, std::size_t end, const double direction[3],
-           double sin_radius);
+// The gathered triangles' cones in the Morton order of their tips (non-finite tips last), under a
+// tree_arity-ary tree of group cones: levels[0] has a node per tree_arity consecutive triangles,
+// levels[k + 1] one per tree_arity consecutive nodes of levels[k], the last level at most
+// tree_arity nodes. A tile walks it from the top, so that it tests the cones of the triangles near
+// its bound, not those of every triangle of every cluster near it.
+struct ConeTree {
+  ConeArrays triangles;              // in tree order
+  std::vector<std::uint32_t> index;  // tree order -> index into Gathered::triangles
+  std::vector<ConeGroups> levels;
 };
 
 // The gathered cones as structure of arrays, and the sun.
 struct GatheredCones {
-  ConeArrays clusters, triangles;
-  std::vector<std::uint32_t> first, count;  // per cluster: its range of triangles
-  ConeGroups cluster_super_groups;          // of cluster_super_group clusters
-  ConeGroups cluster_groups;                // of cluster_group clusters
-  ConeGroups triangle_groups;  // of triangle_group triangles, from each cluster's first
-  std::vector<std::uint32_t> first_triangle_group;  // per cluster
+  ConeArrays clusters;
+  std::vector<std::uint32_t> cluster_of;  // per gathered triangle, its cluster
+  ConeTree tree;
   double direction[3] = {0, 0, 1};
   double cos_radius = 1.0, sin_radius = 0.0;
 };
