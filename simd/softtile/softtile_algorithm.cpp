@@ -34,36 +34,29 @@ void rasterize_tile(const ViewSamples& samples, const ref::Gathered& gathered,
   scratch.accepted.resize(scratch.fragments.words());
   scratch.lane_edges.resize(9 * stride);
   scratch.per_pixel.resize(std::max(scratch.per_pixel.size(), n));
-  std::vector<std::uint64_t> rasterized(n, 0);
-  // Batches of candidates: each triangle set up for every fragment in lanes, then each pixel's
-  // accepted triangles rasterized into its mask with the rows in lanes. The masks persist across
-  // batches, as across the reference's softtile_tile_triangle_limit batches.
-  constexpr std::size_t batch = 16;
-  for (std::size_t begin = 0; begin < tile.candidates.size(); begin += batch) {
-    const std::size_t end = std::min(tile.candidates.size(), begin + batch);
-    for (std::size_t j = 0; j < n; ++j) scratch.per_pixel[j].clear();
-    for (std::size_t k = begin; k < end; ++k) {
-      const ref::GatheredTriangle& t = gathered.triangles[tile.candidates[k]];
-      out.tests += triangle_edges(scratch.fragments, t.light_space, t.triangle,
-                                  scratch.accepted.data(), scratch.lane_edges.data(), stride);
-      for (std::size_t w = 0; w < scratch.accepted.size(); ++w)
-        for (std::uint64_t bits = scratch.accepted[w]; bits != 0; bits &= bits - 1) {
-          const std::size_t j = 64 * w + std::size_t(std::countr_zero(bits));
-          const float* e = scratch.lane_edges.data() + j;
-          for (int i = 0; i < 3; ++i)
-            scratch.per_pixel[j].emplace_back(e[(3 * i) * stride], e[(3 * i + 1) * stride],
-                                              e[(3 * i + 2) * stride]);
-        }
-    }
-    for (std::size_t j = 0; j < n; ++j) {
-      const std::size_t triangles = scratch.per_pixel[j].size() / 3;
-      raster.clear_triangles(scratch.per_pixel[j].data(), triangles, out.masks[j]);
-      rasterized[j] += triangles;
-    }
+  for (std::size_t j = 0; j < n; ++j) scratch.per_pixel[j].clear();
+  // Each candidate set up for every fragment in lanes, its edge functions kept for the pixels that
+  // accept it; then each pixel's triangles cleared from its mask in one pass, with the rows in
+  // lanes. The masks are ANDs of per-triangle masks, so the order and the reference's batches of
+  // softtile_tile_triangle_limit candidates do not change them.
+  for (const std::uint32_t candidate : tile.candidates) {
+    const ref::GatheredTriangle& t = gathered.triangles[candidate];
+    out.tests += triangle_edges(scratch.fragments, t.light_space, t.triangle,
+                                scratch.accepted.data(), scratch.lane_edges.data(), stride);
+    for (std::size_t w = 0; w < scratch.accepted.size(); ++w)
+      for (std::uint64_t bits = scratch.accepted[w]; bits != 0; bits &= bits - 1) {
+        const std::size_t j = 64 * w + std::size_t(std::countr_zero(bits));
+        const float* e = scratch.lane_edges.data() + j;
+        for (int i = 0; i < 3; ++i)
+          scratch.per_pixel[j].emplace_back(e[(3 * i) * stride], e[(3 * i + 1) * stride],
+                                            e[(3 * i + 2) * stride]);
+      }
   }
   for (std::size_t j = 0; j < n; ++j) {
-    out.rasterized += rasterized[j];
-    out.rasterized_max = std::max(out.rasterized_max, rasterized[j]);
+    const std::uint64_t triangles = scratch.per_pixel[j].size() / 3;
+    raster.clear_triangles(scratch.per_pixel[j].data(), triangles, out.masks[j]);
+    out.rasterized += triangles;
+    out.rasterized_max = std::max(out.rasterized_max, triangles);
   }
 }
 
