@@ -37,13 +37,15 @@ class DiskRaster {
   // edges[3 i + 1], edges[3 i + 2] (as DiskBitmask::clear_triangle, one after the other).
   void clear_triangles(const glm::vec3* edges, std::size_t count, DiskRows& mask) const;
 
-  // For the kernel.
+  // For the kernels (disk_bitmask-inl.h).
   struct Setup {
     alignas(64) float y[padded_rows];  // scanline centres, the reference's float expression
     std::uint32_t full_row;
     int rows, columns;
     float half_columns;
   };
+
+  const Setup& setup() const { return setup_; }
 
  private:
   int rows_, columns_, disk_cells_;

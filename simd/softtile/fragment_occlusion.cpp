@@ -5,8 +5,10 @@
 #include <hwy/highway.h>
 
 #include <algorithm>
+#include <cstring>
 #include <limits>
 
+#include "simd/softtile/disk_bitmask-inl.h"
 #include "simd/softtile/fragment_occlusion.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -34,70 +36,118 @@ HWY_INLINE V dot(const V3& a, const V3& b) {
   return hn::Add(hn::Add(hn::Mul(a.x, b.x), hn::Mul(a.y, b.y)), hn::Mul(a.z, b.z));
 }
 
+// One vector of fragments against a triangle: where it is accepted (the fragment's receiver is
+// not the triangle and the reference's triangle_edges() returns true) and its edge functions.
+struct VectorEdges {
+  M tested;    // the fragment's receiver is not the triangle
+  M accepted;  // and triangle_edges() returns true
+  V3 e[3];     // valid where accepted
+};
+
+HWY_INLINE VectorEdges vector_edges(D d, const FragmentArrays& f, std::size_t j,
+                                    const std::array<glm::vec3, 3>& light_space,
+                                    std::uint32_t triangle) {
+  const hn::RebindToUnsigned<D> du;
+  const V zero = hn::Zero(d);
+  const V inverse_scale = hn::Set(d, f.inverse_scale);
+  VectorEdges out;
+  out.tested = hn::And(
+      hn::FirstN(d, f.size - j),
+      hn::RebindMask(d, hn::Ne(hn::LoadU(du, f.receiver.data() + j), hn::Set(du, triangle))));
+  out.accepted = out.tested;
+  if (hn::AllFalse(d, out.tested)) return out;
+  const V px = hn::LoadU(d, f.x.data() + j), py = hn::LoadU(d, f.y.data() + j),
+          pz = hn::LoadU(d, f.z.data() + j);
+  const V c = hn::LoadU(d, f.cos_rotation.data() + j), s = hn::LoadU(d, f.sin_rotation.data() + j);
+  V3 h[3];
+  M any_front = hn::Lt(zero, zero);  // all false
+  for (int i = 0; i < 3; ++i) {
+    const V tx = hn::Sub(hn::Set(d, light_space[i].x), px);
+    const V ty = hn::Sub(hn::Set(d, light_space[i].y), py);
+    const V tz = hn::Sub(hn::Set(d, light_space[i].z), pz);
+    const V x = hn::Mul(tx, inverse_scale), y = hn::Mul(ty, inverse_scale);
+    // Rotating the triangle by the angle rotates the grid by its opposite: the disk is round.
+    h[i] = {hn::Sub(hn::Mul(c, x), hn::Mul(s, y)), hn::Add(hn::Mul(s, x), hn::Mul(c, y)), tz};
+    any_front = hn::Or(any_front, hn::Gt(tz, zero));
+  }
+  const V det = dot(h[0], cross(h[1], h[2]));
+  // det != 0 and finite: |det| < inf is false for NaN and for infinities.
+  out.accepted =
+      hn::And(hn::And(out.tested, any_front),
+              hn::And(hn::Ne(det, zero),
+                      hn::Lt(hn::Abs(det), hn::Set(d, std::numeric_limits<float>::infinity()))));
+  if (hn::AllFalse(d, out.accepted)) return out;
+  const V sign = hn::IfThenElse(hn::Gt(det, zero), hn::Set(d, 1.0f), hn::Set(d, -1.0f));
+  for (int i = 0; i < 3; ++i) {
+    const V3 edge = cross(h[i], h[(i + 1) % 3]);
+    out.e[i] = {hn::Mul(sign, edge.x), hn::Mul(sign, edge.y), hn::Mul(sign, edge.z)};
+    // The disk lies entirely outside this edge.
+    const M outside =
+        hn::And(hn::Lt(out.e[i].z, zero),
+                hn::Gt(hn::Mul(out.e[i].z, out.e[i].z),
+                       hn::Add(hn::Mul(out.e[i].x, out.e[i].x), hn::Mul(out.e[i].y, out.e[i].y))));
+    out.accepted = hn::AndNot(outside, out.accepted);
+  }
+  return out;
+}
+
 std::size_t TriangleEdges(const FragmentArrays& f, const std::array<glm::vec3, 3>& light_space,
                           std::uint32_t triangle, std::uint64_t* accepted, float* edges,
                           std::size_t stride) {
   const D d;
-  const hn::RebindToUnsigned<D> du;
   const std::size_t lanes = hn::Lanes(d);
-  const V zero = hn::Zero(d);
-  const V inverse_scale = hn::Set(d, f.inverse_scale);
-  const auto receiver_id = hn::Set(du, triangle);
   // Lanes fill whole bytes of the bit rows (at least 8 float lanes on every target but SCALAR,
   // whose single lane writes one bit of a byte at a time).
   auto* bytes = reinterpret_cast<std::uint8_t*>(accepted);
   std::fill(bytes, bytes + 8 * f.words(), std::uint8_t(0));
   std::size_t tests = 0;
   for (std::size_t j = 0; j < f.size; j += lanes) {
-    const M tested =
-        hn::And(hn::FirstN(d, f.size - j),
-                hn::RebindMask(d, hn::Ne(hn::LoadU(du, f.receiver.data() + j), receiver_id)));
-    tests += hn::CountTrue(d, tested);
-    const V px = hn::LoadU(d, f.x.data() + j), py = hn::LoadU(d, f.y.data() + j),
-            pz = hn::LoadU(d, f.z.data() + j);
-    const V c = hn::LoadU(d, f.cos_rotation.data() + j),
-            s = hn::LoadU(d, f.sin_rotation.data() + j);
-    V3 h[3];
-    M any_front = hn::Lt(zero, zero);  // all false
+    const VectorEdges v = vector_edges(d, f, j, light_space, triangle);
+    tests += hn::CountTrue(d, v.tested);
+    if (hn::AllFalse(d, v.accepted)) continue;
     for (int i = 0; i < 3; ++i) {
-      const V tx = hn::Sub(hn::Set(d, light_space[i].x), px);
-      const V ty = hn::Sub(hn::Set(d, light_space[i].y), py);
-      const V tz = hn::Sub(hn::Set(d, light_space[i].z), pz);
-      const V x = hn::Mul(tx, inverse_scale), y = hn::Mul(ty, inverse_scale);
-      // Rotating the triangle by the angle rotates the grid by its opposite: the disk is round.
-      h[i] = {hn::Sub(hn::Mul(c, x), hn::Mul(s, y)), hn::Add(hn::Mul(s, x), hn::Mul(c, y)), tz};
-      any_front = hn::Or(any_front, hn::Gt(tz, zero));
-    }
-    const V det = dot(h[0], cross(h[1], h[2]));
-    // det != 0 and finite: |det| < inf is false for NaN and for infinities.
-    M ok =
-        hn::And(hn::And(tested, any_front),
-                hn::And(hn::Ne(det, zero),
-                        hn::Lt(hn::Abs(det), hn::Set(d, std::numeric_limits<float>::infinity()))));
-    if (hn::AllFalse(d, ok)) continue;
-    const V sign = hn::IfThenElse(hn::Gt(det, zero), hn::Set(d, 1.0f), hn::Set(d, -1.0f));
-    V3 e[3];
-    for (int i = 0; i < 3; ++i) {
-      const V3 edge = cross(h[i], h[(i + 1) % 3]);
-      e[i] = {hn::Mul(sign, edge.x), hn::Mul(sign, edge.y), hn::Mul(sign, edge.z)};
-      // The disk lies entirely outside this edge.
-      const M outside = hn::And(hn::Lt(e[i].z, zero),
-                                hn::Gt(hn::Mul(e[i].z, e[i].z),
-                                       hn::Add(hn::Mul(e[i].x, e[i].x), hn::Mul(e[i].y, e[i].y))));
-      ok = hn::AndNot(outside, ok);
-    }
-    if (hn::AllFalse(d, ok)) continue;
-    for (int i = 0; i < 3; ++i) {
-      hn::StoreU(e[i].x, d, edges + (3 * i + 0) * stride + j);
-      hn::StoreU(e[i].y, d, edges + (3 * i + 1) * stride + j);
-      hn::StoreU(e[i].z, d, edges + (3 * i + 2) * stride + j);
+      hn::StoreU(v.e[i].x, d, edges + (3 * i + 0) * stride + j);
+      hn::StoreU(v.e[i].y, d, edges + (3 * i + 1) * stride + j);
+      hn::StoreU(v.e[i].z, d, edges + (3 * i + 2) * stride + j);
     }
     if (lanes >= 8) {
-      hn::StoreMaskBits(d, ok, bytes + j / 8);
+      hn::StoreMaskBits(d, v.accepted, bytes + j / 8);
     } else {
       std::uint8_t bits = 0;
-      hn::StoreMaskBits(d, ok, &bits);
+      hn::StoreMaskBits(d, v.accepted, &bits);
       bytes[j / 8] |= std::uint8_t(bits << (j % 8));
+    }
+  }
+  return tests;
+}
+
+std::size_t OccludeFragments(const FragmentArrays& f, const std::array<glm::vec3, 3>& light_space,
+                             std::uint32_t triangle, const DiskRaster::Setup& raster,
+                             DiskRows* masks, std::uint64_t* rasterized) {
+  const D d;
+  const std::size_t lanes = hn::Lanes(d);
+  std::size_t tests = 0;
+  HWY_ALIGN float lane_edges[9][HWY_MAX_BYTES / sizeof(float)];
+  for (std::size_t j = 0; j < f.size; j += lanes) {
+    const VectorEdges v = vector_edges(d, f, j, light_space, triangle);
+    tests += hn::CountTrue(d, v.tested);
+    if (hn::AllFalse(d, v.accepted)) continue;
+    for (int i = 0; i < 3; ++i) {
+      hn::Store(v.e[i].x, d, lane_edges[3 * i + 0]);
+      hn::Store(v.e[i].y, d, lane_edges[3 * i + 1]);
+      hn::Store(v.e[i].z, d, lane_edges[3 * i + 2]);
+    }
+    std::uint8_t bytes[8] = {};
+    hn::StoreMaskBits(d, v.accepted, bytes);
+    std::uint64_t bits = 0;
+    std::memcpy(&bits, bytes, sizeof bits);
+    for (; bits != 0; bits &= bits - 1) {
+      const std::size_t lane = std::size_t(__builtin_ctzll(bits));
+      glm::vec3 e[3];
+      for (int i = 0; i < 3; ++i)
+        e[i] = {lane_edges[3 * i][lane], lane_edges[3 * i + 1][lane], lane_edges[3 * i + 2][lane]};
+      ClearTriangleRows(raster, e, 1, masks[j + lane].bits.data());
+      ++rasterized[j + lane];
     }
   }
   return tests;
@@ -111,6 +161,7 @@ HWY_AFTER_NAMESPACE();
 namespace shadowcts::simd::softtile {
 
 HWY_EXPORT(TriangleEdges);
+HWY_EXPORT(OccludeFragments);
 
 void FragmentArrays::assign(const std::vector<shadowcts::softtile::FragmentSetup>& fragments,
                             const std::vector<std::uint32_t>& receivers) {
@@ -134,6 +185,14 @@ std::size_t triangle_edges(const FragmentArrays& fragments,
                            std::uint64_t* accepted, float* edges, std::size_t stride) {
   return HWY_DYNAMIC_DISPATCH(TriangleEdges)(fragments, light_space, triangle, accepted, edges,
                                              stride);
+}
+
+std::size_t occlude_fragments(const FragmentArrays& fragments,
+                              const std::array<glm::vec3, 3>& light_space, std::uint32_t triangle,
+                              const DiskRaster& raster, DiskRows* masks,
+                              std::uint64_t* rasterized) {
+  return HWY_DYNAMIC_DISPATCH(OccludeFragments)(fragments, light_space, triangle, raster.setup(),
+                                                masks, rasterized);
 }
 
 }  // namespace shadowcts::simd::softtile

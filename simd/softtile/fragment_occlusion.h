@@ -12,6 +12,7 @@
 #include <glm/vec3.hpp>
 
 #include "reference/softtile/fragment_occlusion.h"
+#include "simd/softtile/disk_bitmask.h"
 
 namespace shadowcts::simd::softtile {
 
@@ -37,6 +38,13 @@ struct FragmentArrays {
 std::size_t triangle_edges(const FragmentArrays& fragments,
                            const std::array<glm::vec3, 3>& light_space, std::uint32_t triangle,
                            std::uint64_t* accepted, float* edges, std::size_t stride);
+
+// The triangle (light-space vertices, its id `triangle`) cleared from masks[j] of every fragment j
+// that accepts it, as triangle_edges() and then DiskRaster::clear_triangles() would, and counted
+// in rasterized[j]; returns triangle_edges()'s count of tests.
+std::size_t occlude_fragments(const FragmentArrays& fragments,
+                              const std::array<glm::vec3, 3>& light_space, std::uint32_t triangle,
+                              const DiskRaster& raster, DiskRows* masks, std::uint64_t* rasterized);
 
 // The padding FragmentArrays::assign uses: sizes are rounded up to a multiple of this.
 inline constexpr std::size_t fragment_padding = 64;

@@ -30,31 +30,16 @@ void rasterize_tile(const ViewSamples& samples, const ref::Gathered& gathered,
   for (std::size_t j = 0; j < n; ++j)
     scratch.receivers[j] = samples.samples[tile.pixels[j]].receiver;
   scratch.fragments.assign(tile.fragments, scratch.receivers);
-  const std::size_t stride = scratch.fragments.x.size();
-  scratch.accepted.resize(scratch.fragments.words());
-  scratch.lane_edges.resize(9 * stride);
-  scratch.per_pixel.resize(std::max(scratch.per_pixel.size(), n));
-  for (std::size_t j = 0; j < n; ++j) scratch.per_pixel[j].clear();
-  // Each candidate set up for every fragment in lanes, its edge functions kept for the pixels that
-  // accept it; then each pixel's triangles cleared from its mask in one pass, with the rows in
-  // lanes. The masks are ANDs of per-triangle masks, so the order and the reference's batches of
-  // softtile_tile_triangle_limit candidates do not change them.
+  scratch.rasterized.assign(n, 0);
+  // Each candidate set up for every fragment in lanes, and cleared from the mask of each fragment
+  // that accepts it, with the rows in lanes. The masks are ANDs of per-triangle masks, so neither
+  // the order nor the reference's batches of softtile_tile_triangle_limit candidates change them.
   for (const std::uint32_t candidate : tile.candidates) {
     const ref::GatheredTriangle& t = gathered.triangles[candidate];
-    out.tests += triangle_edges(scratch.fragments, t.light_space, t.triangle,
-                                scratch.accepted.data(), scratch.lane_edges.data(), stride);
-    for (std::size_t w = 0; w < scratch.accepted.size(); ++w)
-      for (std::uint64_t bits = scratch.accepted[w]; bits != 0; bits &= bits - 1) {
-        const std::size_t j = 64 * w + std::size_t(std::countr_zero(bits));
-        const float* e = scratch.lane_edges.data() + j;
-        for (int i = 0; i < 3; ++i)
-          scratch.per_pixel[j].emplace_back(e[(3 * i) * stride], e[(3 * i + 1) * stride],
-                                            e[(3 * i + 2) * stride]);
-      }
+    out.tests += occlude_fragments(scratch.fragments, t.light_space, t.triangle, raster,
+                                   out.masks.data(), scratch.rasterized.data());
   }
-  for (std::size_t j = 0; j < n; ++j) {
-    const std::uint64_t triangles = scratch.per_pixel[j].size() / 3;
-    raster.clear_triangles(scratch.per_pixel[j].data(), triangles, out.masks[j]);
+  for (const std::uint64_t triangles : scratch.rasterized) {
     out.rasterized += triangles;
     out.rasterized_max = std::max(out.rasterized_max, triangles);
   }

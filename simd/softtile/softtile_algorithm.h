@@ -31,10 +31,8 @@ struct TileRaster {
 // Scratch reused across the tiles of one thread.
 struct TileScratch {
   FragmentArrays fragments;
-  std::vector<std::uint64_t> accepted;  // bit rows of accepted fragments
   std::vector<std::uint32_t> receivers;
-  std::vector<float> lane_edges;                  // 9 rows of the padded fragment count
-  std::vector<std::vector<glm::vec3>> per_pixel;  // each pixel's accepted edge functions
+  std::vector<std::uint64_t> rasterized;  // per pixel
 };
 
 void rasterize_tile(const ViewSamples& samples, const shadowcts::softtile::Gathered& gathered,
