@@ -34,8 +34,11 @@ void rasterize_tile(const ViewSamples& samples, const ref::Gathered& gathered,
   // Each candidate set up for every fragment in lanes, and cleared from the mask of each fragment
   // that accepts it, with the rows in lanes. The masks are ANDs of per-triangle masks, so neither
   // the order nor the reference's batches of softtile_tile_triangle_limit candidates change them.
-  for (const std::uint32_t candidate : tile.candidates) {
-    const ref::GatheredTriangle& t = gathered.triangles[candidate];
+  const std::vector<std::uint32_t>& candidates = tile.candidates;
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    // The candidates are scattered over the gathered triangles: fetch ahead.
+    if (k + 8 < candidates.size()) __builtin_prefetch(&gathered.triangles[candidates[k + 8]]);
+    const ref::GatheredTriangle& t = gathered.triangles[candidates[k]];
     out.tests += occlude_fragments(scratch.fragments, t.light_space, t.triangle, raster,
                                    out.masks.data(), scratch.rasterized.data());
   }
