@@ -387,21 +387,26 @@ HWY_INLINE std::uint64_t may_shadow_lanes(D d, const ConeLanes& l, std::size_t c
 HWY_INLINE std::uint64_t open_nodes(D d, const ConeGroups& level, std::size_t begin,
                                     std::size_t count, const SunLanes& sun, const BoundTerms& t) {
   const std::size_t lanes = hn::Lanes(d);
-  HWY_ALIGN double buffer[6][HWY_MAX_BYTES / sizeof(double)];
-  for (std::size_t i = 0; i < lanes; ++i) {
-    const std::size_t j = begin + (i < count ? i : 0);
-    for (int k = 0; k < 3; ++k) buffer[k][i] = level.tip[k][j];
-    buffer[3][i] = level.tip_length[j];
-    buffer[4][i] = level.spread[j];
-    buffer[5][i] = level.skippable[j] ? 1.0 : 0.0;
-  }
   ConeLanes l;
-  for (int k = 0; k < 3; ++k) l.tip[k] = hn::Load(d, buffer[k]);
-  l.tip_length = hn::Load(d, buffer[3]);
+  V spread;
+  if (count == lanes) {
+    for (int k = 0; k < 3; ++k) l.tip[k] = hn::LoadU(d, level.tip[k].data() + begin);
+    l.tip_length = hn::LoadU(d, level.tip_length.data() + begin);
+    spread = hn::LoadU(d, level.spread.data() + begin);
+  } else {
+    HWY_ALIGN double buffer[5][HWY_MAX_BYTES / sizeof(double)];
+    for (std::size_t i = 0; i < lanes; ++i) {
+      const std::size_t j = begin + (i < count ? i : 0);
+      for (int k = 0; k < 3; ++k) buffer[k][i] = level.tip[k][j];
+      buffer[3][i] = level.tip_length[j];
+      buffer[4][i] = level.spread[j];
+    }
+    for (int k = 0; k < 3; ++k) l.tip[k] = hn::Load(d, buffer[k]);
+    l.tip_length = hn::Load(d, buffer[3]);
+    spread = hn::Load(d, buffer[4]);
+  }
   l.start = hn::Zero(d);  // unused: truncation is left to the triangles
-  const V spread = hn::Load(d, buffer[4]);
   const V zero = hn::Zero(d);
-  const M skippable = hn::Gt(hn::Load(d, buffer[5]), zero);
   V centre[3];
   for (int k = 0; k < 3; ++k) centre[k] = hn::Set(d, t.capsule ? t.middle[k] : t.a[k]);
   const V radius = hn::Set(d, t.capsule ? t.enclosing : t.ra);
@@ -409,8 +414,9 @@ HWY_INLINE std::uint64_t open_nodes(D d, const ConeGroups& level, std::size_t be
   const V sphere_limit =
       hn::Mul(hn::Set(d, 2.0 * relative_margin),
               hn::Add(hn::Add(hn::Add(l.tip_length, magnitude), spread), radius));
-  M closed = hn::And(skippable, hn::Gt(gap(d, l, sun, centre, radius), sphere_limit));
-  const M open = hn::AndNot(closed, hn::And(skippable, hn::FirstN(d, count)));
+  // An infinite spread (a non-finite tip below) or a NaN never closes a node.
+  M closed = hn::Gt(gap(d, l, sun, centre, radius), sphere_limit);
+  const M open = hn::AndNot(closed, hn::FirstN(d, count));
   if (t.capsule && !hn::AllFalse(d, open)) {
     const V err_max = hn::Mul(hn::Set(d, 1e-12), hn::Add(hn::Add(l.tip_length, spread), magnitude));
     const V above_limit =
@@ -512,21 +518,21 @@ void append(ConeArrays& arrays, const shadowcts::softtile::ShadowCone& cone) {
   arrays.tip_length.push_back(glm::length(cone.tip));
 }
 
-// One node over members [begin, end) with tips tip_of(i), spreads spread_of(i) (0 for a
-// triangle) and skippable_of(i). A sphere (centre c, radius R) around the members' tips lies
+// One node over members [begin, end) with tips tip_of(i) and spreads spread_of(i) (0 for a
+// triangle; infinite where a non-finite tip lies below, which makes every node above it
+// unskippable). A sphere (centre c, radius R) around the members' tips lies
 // inside the cone of half-angle a whose tip is R / sin(a) above c (as shadow_cone() places a cone
 // around a caster's sphere; widened by 1e-9 against rounding); the members' cones, translates of
 // it by points inside it, lie inside it too, and so do the cones below them.
-template <class Tip, class Spread, class Skippable>
+template <class Tip, class Spread>
 void add_node(ConeGroups& level, std::size_t begin, std::size_t end, const Tip& tip_of,
-              const Spread& spread_of, const Skippable& skippable_of, const glm::dvec3& direction,
-              double sin_radius) {
+              const Spread& spread_of, const glm::dvec3& direction, double sin_radius) {
   glm::dvec3 lo = tip_of(begin), hi = lo;
   bool skippable = true;
   for (std::size_t i = begin; i < end; ++i) {
     const glm::dvec3 t = tip_of(i);
-    skippable = skippable && skippable_of(i) && std::isfinite(t.x) && std::isfinite(t.y) &&
-                std::isfinite(t.z);
+    skippable = skippable && std::isfinite(spread_of(i)) && std::isfinite(t.x) &&
+                std::isfinite(t.y) && std::isfinite(t.z);
     lo = glm::min(lo, t);
     hi = glm::max(hi, t);
   }
@@ -540,12 +546,11 @@ void add_node(ConeGroups& level, std::size_t begin, std::size_t end, const Tip& 
   for (std::size_t i = begin; i < end; ++i)
     spread = std::max(spread, glm::length(tip_of(i) - node_tip) + spread_of(i));
   spread *= 1.0 + 1e-9;
-  for (int k = 0; k < 3; ++k) level.tip[k].push_back(node_tip[k]);
-  level.tip_length.push_back(glm::length(node_tip));
-  level.spread.push_back(spread);
   skippable = skippable && std::isfinite(node_tip.x) && std::isfinite(node_tip.y) &&
               std::isfinite(node_tip.z) && std::isfinite(spread);
-  level.skippable.push_back(skippable ? 1 : 0);
+  for (int k = 0; k < 3; ++k) level.tip[k].push_back(node_tip[k]);
+  level.tip_length.push_back(glm::length(node_tip));
+  level.spread.push_back(skippable ? spread : HUGE_VAL);
 }
 
 // Interleaves the low 21 bits of x, y, z.
@@ -610,8 +615,7 @@ ConeTree cone_tree(const shadowcts::softtile::Gathered& gathered, const glm::dve
             [&](std::size_t i) {
               return glm::dvec3(leaves.tip[0][i], leaves.tip[1][i], leaves.tip[2][i]);
             },
-            [](std::size_t) { return 0.0; }, [](std::size_t) { return true; }, direction,
-            sin_radius);
+            [](std::size_t) { return 0.0; }, direction, sin_radius);
       } else {
         const ConeGroups& below = tree.levels.back();
         add_node(
@@ -619,8 +623,7 @@ ConeTree cone_tree(const shadowcts::softtile::Gathered& gathered, const glm::dve
             [&](std::size_t i) {
               return glm::dvec3(below.tip[0][i], below.tip[1][i], below.tip[2][i]);
             },
-            [&](std::size_t i) { return below.spread[i]; },
-            [&](std::size_t i) { return below.skippable[i] != 0; }, direction, sin_radius);
+            [&](std::size_t i) { return below.spread[i]; }, direction, sin_radius);
       }
     }
     count = level.spread.size();

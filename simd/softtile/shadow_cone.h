@@ -25,10 +25,9 @@ inline constexpr std::size_t tree_arity = 8;
 // triangles below it when its bound lies farther outside the node's cone than every member's slack
 // plus rounding allows: then each one's may_shadow is provably false (see cull_candidates).
 struct ConeGroups {
-  // Per node: its cone's tip and |tip|, the largest distance from it to a triangle's tip below it,
-  // and whether it may be skipped at all (every tip below it finite).
+  // Per node: its cone's tip and |tip|, and the largest distance from it to a triangle's tip below
+  // it (infinite where a tip below is not finite: such a node is never skipped).
   std::vector<double> tip[3], tip_length, spread;
-  std::vector<std::uint8_t> skippable;
 };
 
 // The gathered triangles' cones in the Morton order of their tips (non-finite tips last), under a
