@@ -57,6 +57,11 @@ void run_timed(benchmark::State& state, const Algorithm& algorithm, const std::s
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
   for (const auto& [name, ms] : output.phase_ms) state.counters[name + "_ms"] = ms;
+  // The work behind the time: candidates per tile, tests and rasterized triangles per pixel.
+  for (const auto& [name, value] : output.counters)
+    if (name == "tile_candidates_total" || name == "pixel_triangle_tests" ||
+        name == "triangles_rasterized")
+      state.counters[name] = double(value);
   state.SetLabel(algorithm.info().backend + " " + variant);
 }
 
