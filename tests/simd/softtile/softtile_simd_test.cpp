@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 #include <hwy/targets.h>
 #include <tbb/global_control.h>
+#include <glm/geometric.hpp>
 
 #include "reference/softtile/disk_bitmask.h"
 #include "reference/softtile/fragment_occlusion.h"
@@ -206,6 +207,102 @@ void expect_tiles_match(const Case& c, const ViewSamples& samples, const std::st
   }
   EXPECT_GT(compared, 500u);
   EXPECT_GT(capsules, 0u);
+}
+
+// The cone culling's certificates and tree skips against the reference's may_shadow, cone by
+// cone, where they are hardest: random capsule and sphere bounds, and triangle cones placed on
+// either side of each bound's boundary at distances from 2^-10 down to 2^-48 of its size (found
+// by bisecting the reference's own answer along a random line), plus cones with non-finite tips.
+TEST(SimdSofttile, ConeCullingEqualsTheReferenceNearTheBoundary) {
+  std::mt19937_64 random(20261203);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const auto random_vector = [&](double scale) {
+    return glm::dvec3(unit(random), unit(random), unit(random)) * scale;
+  };
+  std::size_t kept = 0, dropped = 0;
+  for (int trial = 0; trial < 24; ++trial) {
+    SCOPED_TRACE("trial " + std::to_string(trial));
+    ref::Gathered gathered;
+    gathered.sun.direction = glm::normalize(glm::dvec3(unit(random), unit(random), 2.0));
+    gathered.sun.angular_radius = (trial % 3 == 0 ? 0.2 : 2.0) * 3.14159265358979 / 180.0;
+    const double scale = std::ldexp(1.0, int(trial % 5) * 4 - 4);
+    ref::TileBound bound;
+    bound.capsule = trial % 4 != 0;
+    bound.a = random_vector(scale);
+    bound.b = bound.capsule ? bound.a + random_vector(4.0 * scale) : bound.a;
+    bound.radius_a = 0.01 * scale * (1.0 + unit(random));
+    bound.radius_b = bound.capsule ? 0.05 * scale * (1.0 + unit(random)) : bound.radius_a;
+    // Caster spheres along random lines through the bound's neighbourhood, each line bisected to
+    // the reference's boundary between shadowing and not.
+    std::vector<ref::ShadowCone> cones;
+    const auto cone_at = [&](const glm::dvec3& centre, double radius) {
+      return ref::shadow_cone(gathered.sun, centre, radius,
+                              glm::dot(centre, gathered.sun.direction) + radius);
+    };
+    for (int line = 0; line < 60; ++line) {
+      const double radius = 0.002 * scale * (1.0 + unit(random));
+      // From above a point of the bound (shadowing), to anywhere around it (mostly not).
+      const glm::dvec3 from = bound.a + 0.5 * (1.0 + unit(random)) * (bound.b - bound.a) +
+                              gathered.sun.direction * (scale * (1.1 + unit(random)));
+      const glm::dvec3 to = from + random_vector(6.0 * scale);
+      const auto shadows = [&](double t) {
+        return ref::may_shadow(gathered.sun, cone_at(from + t * (to - from), radius), bound);
+      };
+      if (shadows(0.0) == shadows(1.0)) {
+        cones.push_back(cone_at(to, radius));
+        continue;
+      }
+      double lo = 0.0, hi = 1.0;
+      for (int i = 0; i < 60; ++i)
+        ((shadows(0.5 * (lo + hi)) == shadows(0.0)) ? lo : hi) = 0.5 * (lo + hi);
+      // One side of the boundary per line, so that whole tree nodes hold near-misses only (or
+      // near-hits only); on every other line so close together that their node's cone is barely
+      // wider than theirs.
+      const bool inside = line % 2 == 0;
+      const int coarsest = line % 4 < 2 ? -10 : -34;
+      for (int k = 0; k < 16; ++k) {
+        const double offset =
+            k == 15 ? 0.0 : std::ldexp(1.0, coarsest - (coarsest == -10 ? 2 : 1) * k);
+        cones.push_back(cone_at(from + (inside ? lo - offset : hi + offset) * (to - from), radius));
+      }
+    }
+    for (int i = 0; i < 3; ++i) {
+      ref::ShadowCone broken = cone_at(bound.a, 0.001 * scale);
+      broken.tip[i] = i == 0 ? std::numeric_limits<double>::quiet_NaN()
+                             : std::numeric_limits<double>::infinity();
+      cones.push_back(broken);
+    }
+    // Clusters of up to 64 triangles under a cone that holds them all: the list is then decided
+    // by the triangles' cones.
+    for (std::size_t first = 0; first < cones.size(); first += 64) {
+      ref::GatheredCluster cluster;
+      cluster.first = std::uint32_t(first);
+      cluster.count = std::uint32_t(std::min<std::size_t>(64, cones.size() - first));
+      cluster.cone = cone_at(glm::dvec3(0.0), 100.0 * scale);
+      cluster.cone.start_height = -std::numeric_limits<double>::infinity();
+      gathered.clusters.push_back(cluster);
+    }
+    for (const ref::ShadowCone& cone : cones) {
+      ref::GatheredTriangle t;
+      t.triangle = std::uint32_t(gathered.triangles.size());
+      t.cone = cone;
+      gathered.triangles.push_back(t);
+    }
+    ref::Tile tile;
+    tile.bound = bound;
+    ref::cull_candidates(gathered, tile);
+    kept += tile.candidates.size();
+    dropped += cones.size() - tile.candidates.size();
+    const port::GatheredCones ported = port::gathered_cones(gathered);
+    for_each_target([&] {
+      std::vector<std::uint32_t> list;
+      port::cull_candidates(ported, bound, list);
+      ASSERT_EQ(first_list_difference(tile.candidates, list), "");
+    });
+  }
+  // Both answers occur in numbers.
+  EXPECT_GT(kept, 2000u);
+  EXPECT_GT(dropped, 2000u);
 }
 
 TEST(SimdSofttile, PerPixelBitmasksEqualTheReferenceOnEveryTile) {
