@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <numbers>
 #include <optional>
@@ -45,6 +46,18 @@ inline float float_above(double x) {
 inline float cone_window(double decision_window) {
   return float(std::max(0x1p-16, 2.0 * decision_window));
 }
+// How far outside a cluster's plane bounds (NodeCluster::plane_low, plane_high) a directional
+// light's line must pass to miss every triangle of the cluster certainly: 2^-14 of the case's
+// scale, eight times the rounding of the ray-space vertices (lanes_missing_cluster).
+inline double cluster_miss_margin(double scale) {
+  return 0x1p-14 * scale;
+}
+// The float bounds of x, y, x + y and x - y of a cluster's vertices in the light's plane, before
+// NodeCluster's widening (ClusterPlaneBounds); finite = 0 where some value is not finite.
+struct PlaneBounds {
+  float low[4], high[4];
+  bool finite;
+};
 }  // namespace shadowcts::simd::metric
 #endif
 
@@ -69,6 +82,9 @@ struct Packet {
   static constexpr std::size_t float_lanes = P < max_float_lanes ? max_float_lanes : P;
   alignas(64) float fx[float_lanes], fy[float_lanes], fz[float_lanes];
   alignas(64) float qlo[float_lanes], qhi[float_lanes];
+  // Lanes whose sample lies within the case's scale (LightFrame::scale) on every axis: the
+  // directional cluster test (lanes_missing_cluster) is certain only for those.
+  std::uint64_t within_scale = 0;
   std::uint32_t sample_index[P];  // the view sample's (ViewSamples::samples) index
   const ViewSample* sample[P];
   std::uint32_t receiver[P];
@@ -578,11 +594,53 @@ std::uint64_t triangles_to_decide(const TriangleGroup* groups, std::uint32_t cou
   return count >= 64 ? decide : decide & ((std::uint64_t(1) << count) - 1);
 }
 
+// Directional light: the lanes of `visit` whose line towards the light certainly misses every
+// triangle of the cluster, so that the reference's triangle_blocks_sample answers "passes" for
+// each: their point in the light's plane lies outside the cluster's plane bounds. Why that is
+// certain: the bounds hold every vertex, widened by the margin M = 2^-14 S (S the case's scale;
+// 2M along the diagonals, a distance of sqrt(2) M), so the exact line passes at a distance above
+// M from each triangle's projection along the light. The ray space of the watertight test
+// projects along the light onto an axis plane: an oblique projection, which never shortens a
+// distance orthogonal to the light, so the exact ray-space origin lies above M from each exact
+// ray-space triangle. Each rounded ray-space coordinate lies within 5 u n of its exact value
+// (edge_proximity.h; u = 2^-24, n = |x| + |y| + |v_z - o_z| <= 10 S with sample and vertices
+// within S on every axis, as `within_scale` asks), under 2^-17 S per vertex: the rounded
+// vertices' triangle still leaves the origin out, so the float test misses, and the exact line
+// misses, so whatever ray_near_triangle_edge says, the exact decision passes too. The lane's float
+// plane coordinates and their sum and difference are within 2^-20 S of the exact ones; the bounds
+// are rounded outwards; the frame's axes are orthonormal and orthogonal to the light up to a few
+// 2^-53.
+template <std::size_t P>
+LaneMask lanes_missing_cluster(const NodeCluster& cluster, const Packet<P>& pk, LaneMask visit) {
+  const hn::ScalableTag<float> d;
+  using V = hn::Vec<decltype(d)>;
+  const std::size_t N = std::min(hn::Lanes(d), max_float_lanes);
+  const LaneMask chunk = (LaneMask(1) << N) - 1;
+  V low[4], high[4];
+  for (int k = 0; k < 4; ++k) {
+    low[k] = hn::Set(d, cluster.plane_low[k]);
+    high[k] = hn::Set(d, cluster.plane_high[k]);
+  }
+  LaneMask missing = 0;
+  for (std::size_t j = 0; j < P; j += N) {
+    const LaneMask here = (visit >> j) & chunk;
+    if (here == 0) continue;
+    const V x = hn::Load(d, pk.fx + j), y = hn::Load(d, pk.fy + j);
+    const V along[4] = {x, y, hn::Add(x, y), hn::Sub(x, y)};
+    auto outside = hn::Lt(along[0], low[0]);
+    for (int k = 0; k < 4; ++k)
+      outside = hn::Or(outside, hn::Or(hn::Lt(along[k], low[k]), hn::Gt(along[k], high[k])));
+    missing |= (float_lane_bits(d, outside) & here) << j;
+  }
+  return missing & pk.within_scale;
+}
+
 // Step 2 for one lane: the slabs, then the pivot cluster's triangles in cluster order with the
-// reference's counters and decisions.
+// reference's counters and decisions. `misses_cluster`: the lane's line certainly misses every
+// triangle of the cluster (lanes_missing_cluster); the tests are counted, none is made.
 template <std::size_t P>
 bool cluster_blocks(const PacketTraversal& traversal, Packet<P>& pk, int l,
-                    const NodeCluster& cluster, TraversalCounters& counters) {
+                    const NodeCluster& cluster, bool misses_cluster, TraversalCounters& counters) {
   const TraversalScene& scene = *traversal.scene;
   // segment_meets_slabs, on the node's copy of the slabs (the same operations).
   const double s_from = glm::dot(cluster.slab_normal, pk.from[l]);
@@ -593,6 +651,12 @@ bool cluster_blocks(const PacketTraversal& traversal, Packet<P>& pk, int l,
   // The slot of the receiver, which is never tested nor counted (at most one per cluster).
   const std::uint32_t receiver_at = pk.receiver_slot[l];
   const std::uint32_t end = cluster.end;
+  if (misses_cluster) {
+    const std::uint32_t count = end - cluster.begin;
+    counters.triangle_tests += count - (receiver_at - cluster.begin < count ? 1 : 0);
+    ++counters.clusters_tested_without_hit;
+    return false;
+  }
   for (std::uint32_t begin = cluster.begin; begin < end; begin += 64) {
     const std::uint32_t count = std::min<std::uint32_t>(64, end - begin);
     const std::uint64_t decide = triangles_to_decide(
@@ -627,6 +691,7 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
   const Case& c = *scene.c;
   const PreparedScene& prepared = *traversal.prepared;
   LaneMask active = 0;
+  pk.within_scale = 0;
   for (std::uint32_t l = 0; l < P; ++l) {
     pk.ux[l] = pk.uy[l] = pk.uz[l] = pk.qld[l] = 0.0;
     pk.fx[l] = pk.fy[l] = pk.fz[l] = pk.qlo[l] = pk.qhi[l] = 0.0f;
@@ -659,6 +724,10 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
     pk.uy[l] = pk.query[l].position.y;
     pk.uz[l] = pk.query[l].position.z;
     pk.qld[l] = pk.query[l].light_distance;
+    const float scale = float(frame.scale);  // a float maximum (Case::scale)
+    if (std::fabs(position.x) <= scale && std::fabs(position.y) <= scale &&
+        std::fabs(position.z) <= scale)
+      pk.within_scale |= LaneMask(1) << l;
     pk.fx[l] = float(pk.ux[l]);
     pk.fy[l] = float(pk.uy[l]);
     pk.fz[l] = float(pk.uz[l]);
@@ -712,9 +781,15 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
     } else {
       decisions = evaluate_node(traversal, nodes[index], pk, lanes);
     }
-    for (LaneMask visit = decisions.inside & decisions.deep; visit != 0; visit &= visit - 1) {
+    const LaneMask visiting = decisions.inside & decisions.deep;
+    // A directional light's lines are parallel: most lanes that visit a cluster pass beside all of
+    // its triangles, which the plane bounds tell for many lanes at once.
+    const LaneMask missing = visiting != 0 && frame.directional
+                                 ? lanes_missing_cluster(clusters[index], pk, visiting)
+                                 : 0;
+    for (LaneMask visit = visiting; visit != 0; visit &= visit - 1) {
       const int l = std::countr_zero(visit);
-      if (cluster_blocks(traversal, pk, l, clusters[index], counters)) {
+      if (cluster_blocks(traversal, pk, l, clusters[index], (missing >> l & 1) != 0, counters)) {
         shadowed[pk.sample_index[l]] = 1;
         active &= ~(LaneMask(1) << l);
       }
@@ -759,6 +834,51 @@ void TraverseTiles(const PacketTraversal& traversal, std::size_t tile_begin, std
     traverse_tiles_of<64>(traversal, tile_begin, tile_end, shadowed, counters);
 }
 
+// Per cluster [cluster_begin, cluster_end): PlaneBounds of its vertices, x = v . plane_x and y = v
+// . plane_y in float lanes, 16 slots of a group at once.
+void ClusterPlaneBounds(const LightFrame& frame, const shadowcts::metric::Clustering& clustering,
+                        const ClusterTriangles& triangles, const std::uint32_t* first_group,
+                        std::size_t cluster_begin, std::size_t cluster_end, PlaneBounds* out) {
+  const hn::ScalableTag<float> d;
+  using V = hn::Vec<decltype(d)>;
+  const std::size_t N = std::min(hn::Lanes(d), max_float_lanes);
+  const V xx = hn::Set(d, float(frame.plane_x.x)), xy = hn::Set(d, float(frame.plane_x.y)),
+          xz = hn::Set(d, float(frame.plane_x.z));
+  const V yx = hn::Set(d, float(frame.plane_y.x)), yy = hn::Set(d, float(frame.plane_y.y)),
+          yz = hn::Set(d, float(frame.plane_y.z));
+  const V infinity = hn::Set(d, std::numeric_limits<float>::infinity());
+  for (std::size_t c = cluster_begin; c != cluster_end; ++c) {
+    V low[4], high[4];
+    for (int a = 0; a < 4; ++a) low[a] = infinity, high[a] = hn::Neg(infinity);
+    auto finite = hn::Eq(infinity, infinity);  // all true
+    const std::uint32_t size = clustering.size(c);
+    for (std::uint32_t j = 0; j < size; j += std::uint32_t(N)) {
+      const TriangleGroup& group = triangles.groups[first_group[c] + j / 16];
+      const std::uint32_t lane = j % 16;
+      const auto valid = hn::FirstN(d, size - j);
+      for (int k = 0; k < 3; ++k) {
+        const V vx = hn::Load(d, group.xyz[0][k] + lane), vy = hn::Load(d, group.xyz[1][k] + lane),
+                vz = hn::Load(d, group.xyz[2][k] + lane);
+        const V x = hn::Add(hn::Add(hn::Mul(vx, xx), hn::Mul(vy, xy)), hn::Mul(vz, xz));
+        const V y = hn::Add(hn::Add(hn::Mul(vx, yx), hn::Mul(vy, yy)), hn::Mul(vz, yz));
+        const V along[4] = {x, y, hn::Add(x, y), hn::Sub(x, y)};
+        for (int a = 0; a < 4; ++a) {
+          // A NaN or infinite value fails Lt(|v|, inf); Min and Max then never read it.
+          finite = hn::And(finite, hn::Or(hn::Not(valid), hn::Lt(hn::Abs(along[a]), infinity)));
+          low[a] = hn::IfThenElse(valid, hn::Min(low[a], along[a]), low[a]);
+          high[a] = hn::IfThenElse(valid, hn::Max(high[a], along[a]), high[a]);
+        }
+      }
+    }
+    PlaneBounds& b = out[c];
+    for (int a = 0; a < 4; ++a) {
+      b.low[a] = hn::GetLane(hn::MinOfLanes(d, low[a]));
+      b.high[a] = hn::GetLane(hn::MaxOfLanes(d, high[a]));
+    }
+    b.finite = hn::AllTrue(d, finite);
+  }
+}
+
 std::int64_t TraversalTarget() {
   return HWY_TARGET;
 }
@@ -771,6 +891,7 @@ namespace shadowcts::simd::metric {
 
 HWY_EXPORT(TraverseTiles);
 HWY_EXPORT(TraversalTarget);
+HWY_EXPORT(ClusterPlaneBounds);
 
 std::int64_t traversal_target() {
   return HWY_DYNAMIC_DISPATCH(TraversalTarget)();
@@ -809,7 +930,42 @@ ClusterTriangles cluster_triangles_soa(const CasterArrays& casters,
   return out;
 }
 
-PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene, double decision_window) {
+namespace {
+// Per cluster, NodeCluster::plane_low and plane_high: the bounds of x, y, x + y and x - y of its
+// vertices in the plane of a directional light, widened by cluster_miss_margin (twice that along
+// the diagonals, where a distance moves x + y by up to sqrt(2) times it) and by 2^-19 S for the
+// float evaluation (the axes rounded to float and three roundings, on coordinates within S: under
+// 2^-20 S per value), then rounded outwards. (-inf, +inf), never outside, for a point light or a
+// cluster with a value that is not finite.
+std::vector<PlaneBounds> cluster_plane_bounds(const shadowcts::metric::LightFrame& frame,
+                                              const shadowcts::metric::Clustering& clustering,
+                                              const ClusterTriangles& triangles) {
+  constexpr float infinity = std::numeric_limits<float>::infinity();
+  const std::size_t clusters = clustering.cluster_begin.size() - 1;
+  std::vector<PlaneBounds> out(clusters);
+  if (frame.directional) {
+    const std::vector<std::uint32_t> first = first_groups(clustering);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, clusters, 1024),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        HWY_DYNAMIC_DISPATCH(ClusterPlaneBounds)
+                        (frame, clustering, triangles, first.data(), range.begin(), range.end(),
+                         out.data());
+                      });
+  }
+  const double margin = cluster_miss_margin(frame.scale), rounding = 0x1p-19 * frame.scale;
+  for (PlaneBounds& b : out)
+    for (int a = 0; a < 4; ++a) {
+      const double widen = (a < 2 ? margin : 2.0 * margin) + rounding;
+      const bool usable = frame.directional && b.finite;
+      b.low[a] = usable ? float_below(double(b.low[a]) - widen) : -infinity;
+      b.high[a] = usable ? float_above(double(b.high[a]) + widen) : infinity;
+    }
+  return out;
+}
+}  // namespace
+
+PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene,
+                         const ClusterTriangles& triangles, double decision_window) {
   using shadowcts::metric::CentreKind;
   using shadowcts::metric::no_node;
   using shadowcts::metric::TreeChild;
@@ -839,6 +995,8 @@ PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene, double 
   const std::vector<shadowcts::metric::LightSpaceElement>& elements = *scene.elements;
   const std::vector<shadowcts::metric::ClusterVolume>& volumes = *scene.volumes;
   const std::vector<std::uint32_t> first_group = first_groups(*scene.clustering);
+  const std::vector<PlaneBounds> plane_bounds =
+      cluster_plane_bounds(frame, *scene.clustering, triangles);
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, order.size(), 512),
       [&](const tbb::blocked_range<std::size_t>& range) {
@@ -976,6 +1134,10 @@ PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene, double 
           record.begin = scene.clustering->cluster_begin[cluster];
           record.end = scene.clustering->cluster_begin[cluster + 1];
           record.group = first_group[cluster];
+          for (int k = 0; k < 4; ++k) {
+            record.plane_low[k] = plane_bounds[cluster].low[k];
+            record.plane_high[k] = plane_bounds[cluster].high[k];
+          }
         }
       });
   return out;
