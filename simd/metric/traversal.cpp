@@ -91,7 +91,8 @@ struct Packet {
   std::uint32_t receiver_slot[P];  // the receiver's slot in cluster order, or ~0u
   LightSpaceQuery query[P];
   RaySpace ray[P];
-  glm::dvec3 from[P], to[P];
+  // The ends of the segment the slabs are tested against (segment_meets_slabs), by coordinate.
+  alignas(64) double from_x[P], from_y[P], from_z[P], to_x[P], to_y[P], to_z[P];
   std::optional<geometry::ReceiverHalfSpace> half_space[P];
 };
 
@@ -635,28 +636,53 @@ LaneMask lanes_missing_cluster(const NodeCluster& cluster, const Packet<P>& pk, 
   return missing & pk.within_scale;
 }
 
+// The lanes of `visit` whose segment meets the cluster's slabs: segment_meets_slabs on the node's
+// copy of the slabs, in its operations (glm::dot's (x + y) + z, std::max and std::min as
+// comparisons, so that NaNs go the same way), 8 lanes per vector of doubles.
+template <std::size_t P>
+LaneMask lanes_meeting_slabs(const NodeCluster& cluster, const Packet<P>& pk, LaneMask visit) {
+  const hn::ScalableTag<double> d;
+  using V = hn::Vec<decltype(d)>;
+  constexpr std::size_t max_lanes = 8;
+  const std::size_t N = std::min(hn::Lanes(d), max_lanes);
+  const LaneMask chunk = (LaneMask(1) << N) - 1;
+  const V nx = hn::Set(d, cluster.slab_normal.x), ny = hn::Set(d, cluster.slab_normal.y),
+          nz = hn::Set(d, cluster.slab_normal.z);
+  const V low = hn::Set(d, cluster.low), high = hn::Set(d, cluster.high);
+  LaneMask meets = 0;
+  for (std::size_t j = 0; j < P; j += N) {
+    const LaneMask here = (visit >> j) & chunk;
+    if (here == 0) continue;
+    const V s_from = hn::Add(
+        hn::Add(hn::Mul(nx, hn::Load(d, pk.from_x + j)), hn::Mul(ny, hn::Load(d, pk.from_y + j))),
+        hn::Mul(nz, hn::Load(d, pk.from_z + j)));
+    const V s_to = hn::Add(
+        hn::Add(hn::Mul(nx, hn::Load(d, pk.to_x + j)), hn::Mul(ny, hn::Load(d, pk.to_y + j))),
+        hn::Mul(nz, hn::Load(d, pk.to_z + j)));
+    // std::max(a, b) is a < b ? b : a; std::min(a, b) is b < a ? b : a.
+    const V larger = hn::IfThenElse(hn::Lt(s_from, s_to), s_to, s_from);
+    const V smaller = hn::IfThenElse(hn::Lt(s_to, s_from), s_to, s_from);
+    meets |= (lane_bits(d, hn::And(hn::Ge(larger, low), hn::Le(smaller, high))) & here) << j;
+  }
+  return meets;
+}
+
 // Step 2 for one lane: the slabs, then the pivot cluster's triangles in cluster order with the
-// reference's counters and decisions. `misses_cluster`: the lane's line certainly misses every
-// triangle of the cluster (lanes_missing_cluster); the tests are counted, none is made.
+// reference's counters and decisions.
 template <std::size_t P>
 bool cluster_blocks(const PacketTraversal& traversal, Packet<P>& pk, int l,
-                    const NodeCluster& cluster, bool misses_cluster, TraversalCounters& counters) {
+                    const NodeCluster& cluster, TraversalCounters& counters) {
   const TraversalScene& scene = *traversal.scene;
   // segment_meets_slabs, on the node's copy of the slabs (the same operations).
-  const double s_from = glm::dot(cluster.slab_normal, pk.from[l]);
-  const double s_to = glm::dot(cluster.slab_normal, pk.to[l]);
+  const double s_from =
+      glm::dot(cluster.slab_normal, glm::dvec3(pk.from_x[l], pk.from_y[l], pk.from_z[l]));
+  const double s_to = glm::dot(cluster.slab_normal, glm::dvec3(pk.to_x[l], pk.to_y[l], pk.to_z[l]));
   if (!(std::max(s_from, s_to) >= cluster.low && std::min(s_from, s_to) <= cluster.high))
     return false;
   const shadowcts::metric::Clustering& clustering = *scene.clustering;
   // The slot of the receiver, which is never tested nor counted (at most one per cluster).
   const std::uint32_t receiver_at = pk.receiver_slot[l];
   const std::uint32_t end = cluster.end;
-  if (misses_cluster) {
-    const std::uint32_t count = end - cluster.begin;
-    counters.triangle_tests += count - (receiver_at - cluster.begin < count ? 1 : 0);
-    ++counters.clusters_tested_without_hit;
-    return false;
-  }
   for (std::uint32_t begin = cluster.begin; begin < end; begin += 64) {
     const std::uint32_t count = std::min<std::uint32_t>(64, end - begin);
     const std::uint64_t decide = triangles_to_decide(
@@ -694,6 +720,7 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
   pk.within_scale = 0;
   for (std::uint32_t l = 0; l < P; ++l) {
     pk.ux[l] = pk.uy[l] = pk.uz[l] = pk.qld[l] = 0.0;
+    pk.from_x[l] = pk.from_y[l] = pk.from_z[l] = pk.to_x[l] = pk.to_y[l] = pk.to_z[l] = 0.0;
     pk.fx[l] = pk.fy[l] = pk.fz[l] = pk.qlo[l] = pk.qhi[l] = 0.0f;
     if (l >= count) continue;
     const std::uint32_t i = members[l];
@@ -716,9 +743,10 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
     const ShadowRay ray = frame.directional ? ray_to_directional_light(position, c.light->direction)
                                             : segment_to_point_light(position, c.light->position);
     ::new (static_cast<void*>(&pk.ray[l])) RaySpace(make_ray_space(ray));
-    pk.from[l] = p;
-    pk.to[l] =
+    const glm::dvec3 to =
         frame.directional ? p + scene.ray_length * frame.towards_light : frame.light_position;
+    pk.from_x[l] = p.x, pk.from_y[l] = p.y, pk.from_z[l] = p.z;
+    pk.to_x[l] = to.x, pk.to_y[l] = to.y, pk.to_z[l] = to.z;
     pk.half_space[l].reset();
     pk.ux[l] = pk.query[l].position.x;
     pk.uy[l] = pk.query[l].position.y;
@@ -782,16 +810,29 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
       decisions = evaluate_node(traversal, nodes[index], pk, lanes);
     }
     const LaneMask visiting = decisions.inside & decisions.deep;
-    // A directional light's lines are parallel: most lanes that visit a cluster pass beside all of
-    // its triangles, which the plane bounds tell for many lanes at once.
-    const LaneMask missing = visiting != 0 && frame.directional
-                                 ? lanes_missing_cluster(clusters[index], pk, visiting)
-                                 : 0;
-    for (LaneMask visit = visiting; visit != 0; visit &= visit - 1) {
-      const int l = std::countr_zero(visit);
-      if (cluster_blocks(traversal, pk, l, clusters[index], (missing >> l & 1) != 0, counters)) {
-        shadowed[pk.sample_index[l]] = 1;
-        active &= ~(LaneMask(1) << l);
+    if (visiting != 0) {
+      const NodeCluster& cluster = clusters[index];
+      // A directional light's lines are parallel: most lanes that visit a cluster pass beside
+      // all of its triangles, which the plane bounds tell for many lanes at once. Where their
+      // segments meet the slabs, their tests are counted in bulk, none is made.
+      const LaneMask beside =
+          frame.directional ? lanes_missing_cluster(cluster, pk, visiting) : LaneMask(0);
+      const LaneMask missing = beside != 0 ? lanes_meeting_slabs(cluster, pk, beside) : 0;
+      if (missing != 0) {
+        const std::uint32_t size = cluster.end - cluster.begin;
+        std::uint64_t receivers_inside = 0;
+        for (LaneMask rest = missing; rest != 0; rest &= rest - 1)
+          receivers_inside += pk.receiver_slot[std::countr_zero(rest)] - cluster.begin < size;
+        const std::uint64_t lanes_missing = std::uint64_t(std::popcount(missing));
+        counters.triangle_tests += lanes_missing * size - receivers_inside;
+        counters.clusters_tested_without_hit += lanes_missing;
+      }
+      for (LaneMask visit = visiting & ~beside; visit != 0; visit &= visit - 1) {
+        const int l = std::countr_zero(visit);
+        if (cluster_blocks(traversal, pk, l, cluster, counters)) {
+          shadowed[pk.sample_index[l]] = 1;
+          active &= ~(LaneMask(1) << l);
+        }
       }
     }
     const LaneMask going = decisions.reached & active;
