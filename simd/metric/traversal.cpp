@@ -89,7 +89,6 @@ struct Packet {
   const ViewSample* sample[P];
   std::uint32_t receiver[P];
   std::uint32_t receiver_slot[P];  // the receiver's slot in cluster order, or ~0u
-  LightSpaceQuery query[P];
   RaySpace ray[P];
   // The ends of the segment the slabs are tested against (segment_meets_slabs), by coordinate.
   alignas(64) double from_x[P], from_y[P], from_z[P], to_x[P], to_y[P], to_z[P];
@@ -287,8 +286,12 @@ NodeDecisions evaluate_node(const PacketTraversal& traversal, const PacketNode& 
   for (LaneMask rest = unsure; rest != 0; rest &= rest - 1) {
     const int l = std::countr_zero(rest);
     const LaneMask bit = LaneMask(1) << l;
+    // The lane's query, as make_light_space_query made it (a lane at the light is never walked).
+    LightSpaceQuery query;
+    query.position = glm::dvec3(pk.ux[l], pk.uy[l], pk.uz[l]);
+    query.light_distance = pk.qld[l];
     const double distance =
-        shadowcts::metric::pivot_distance(frame, (*scene.elements)[n.pivot], pk.query[l]);
+        shadowcts::metric::pivot_distance(frame, (*scene.elements)[n.pivot], query);
     out.inside = (out.inside & ~bit) | (distance <= n.threshold[inside] ? bit : 0);
     out.overlap =
         (out.overlap & ~bit) |
@@ -718,6 +721,11 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
   const PreparedScene& prepared = *traversal.prepared;
   LaneMask active = 0;
   pk.within_scale = 0;
+  // A directional light's ray space is the same for every sample but its origin: made once.
+  const RaySpace directional_space =
+      frame.directional
+          ? make_ray_space(ray_to_directional_light(glm::vec3(0.0f), c.light->direction))
+          : RaySpace();
   for (std::uint32_t l = 0; l < P; ++l) {
     pk.ux[l] = pk.uy[l] = pk.uz[l] = pk.qld[l] = 0.0;
     pk.from_x[l] = pk.from_y[l] = pk.from_z[l] = pk.to_x[l] = pk.to_y[l] = pk.to_z[l] = 0.0;
@@ -732,35 +740,54 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
     pk.receiver_slot[l] = pk.receiver[l] < slot_of.size() ? slot_of[pk.receiver[l]] : ~0u;
     pk.sample_index[l] = prepared.samples.index[i];
     shadowed[prepared.samples.index[i]] = 0;
-    const glm::vec3 position(prepared.samples.px[i], prepared.samples.py[i],
-                             prepared.samples.pz[i]);
-    const glm::dvec3 p(position);
-    // Constructed in place by placement new (guaranteed elision; construct_at would copy a
-    // temporary, with wide loads of narrow stores).
-    ::new (static_cast<void*>(&pk.query[l]))
-        LightSpaceQuery(shadowcts::metric::make_light_space_query(frame, p));
-    if (pk.query[l].at_light) continue;  // the segment is a point: nothing hits it
-    const ShadowRay ray = frame.directional ? ray_to_directional_light(position, c.light->direction)
-                                            : segment_to_point_light(position, c.light->position);
-    ::new (static_cast<void*>(&pk.ray[l])) RaySpace(make_ray_space(ray));
-    const glm::dvec3 to =
-        frame.directional ? p + scene.ray_length * frame.towards_light : frame.light_position;
+    const float px = prepared.samples.px[i], py = prepared.samples.py[i],
+                pz = prepared.samples.pz[i];
+    const glm::dvec3 p(px, py, pz);
+    double ux, uy, uz, qld;
+    glm::dvec3 to;
+    if (frame.directional) {
+      // make_light_space_query's directional case (in_plane and directional_light_distance, the
+      // same glm::dot operations) inline, and the ray space's origin written as three floats:
+      // around the call and through the copies of whole vectors, the sample's coordinates were
+      // stored narrow and loaded wide, and each lane waited for a failed store forward.
+      ux = glm::dot(p, frame.plane_x);
+      uy = glm::dot(p, frame.plane_y);
+      uz = 0.0;
+      qld = -glm::dot(p, frame.towards_light);
+      RaySpace& ray = pk.ray[l];
+      ray = directional_space;
+      ray.origin.x = px;
+      ray.origin.y = py;
+      ray.origin.z = pz;
+      to = p + scene.ray_length * frame.towards_light;
+    } else {
+      const LightSpaceQuery query = shadowcts::metric::make_light_space_query(frame, p);
+      if (query.at_light) continue;  // the segment is a point: nothing hits it
+      // Constructed in place by placement new (guaranteed elision; construct_at would copy a
+      // temporary, with wide loads of narrow stores).
+      ::new (static_cast<void*>(&pk.ray[l])) RaySpace(
+          make_ray_space(segment_to_point_light(glm::vec3(px, py, pz), c.light->position)));
+      ux = query.position.x;
+      uy = query.position.y;
+      uz = query.position.z;
+      qld = query.light_distance;
+      to = frame.light_position;
+    }
     pk.from_x[l] = p.x, pk.from_y[l] = p.y, pk.from_z[l] = p.z;
     pk.to_x[l] = to.x, pk.to_y[l] = to.y, pk.to_z[l] = to.z;
     pk.half_space[l].reset();
-    pk.ux[l] = pk.query[l].position.x;
-    pk.uy[l] = pk.query[l].position.y;
-    pk.uz[l] = pk.query[l].position.z;
-    pk.qld[l] = pk.query[l].light_distance;
+    pk.ux[l] = ux;
+    pk.uy[l] = uy;
+    pk.uz[l] = uz;
+    pk.qld[l] = qld;
     const float scale = float(frame.scale);  // a float maximum (Case::scale)
-    if (std::fabs(position.x) <= scale && std::fabs(position.y) <= scale &&
-        std::fabs(position.z) <= scale)
+    if (std::fabs(px) <= scale && std::fabs(py) <= scale && std::fabs(pz) <= scale)
       pk.within_scale |= LaneMask(1) << l;
-    pk.fx[l] = float(pk.ux[l]);
-    pk.fy[l] = float(pk.uy[l]);
-    pk.fz[l] = float(pk.uz[l]);
-    pk.qlo[l] = float_below(pk.qld[l]);
-    pk.qhi[l] = float_above(pk.qld[l]);
+    pk.fx[l] = float(ux);
+    pk.fy[l] = float(uy);
+    pk.fz[l] = float(uz);
+    pk.qlo[l] = float_below(qld);
+    pk.qhi[l] = float_above(qld);
     active |= LaneMask(1) << l;
   }
   const FilledArray<PacketNode>& nodes = traversal.nodes->nodes;
