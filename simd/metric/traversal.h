@@ -15,7 +15,9 @@
 // filtered in float lanes: a triangle is skipped only where the line of the ray certainly misses it
 // (two float edge functions of the reference's own float ray-space vertices certainly of opposite
 // signs, beyond the rounding of the transform); every other one is decided by the reference's own
-// triangle_blocks_sample.
+// triangle_blocks_sample. A directional light's lanes whose line passes outside a cluster's plane
+// bounds (NodeCluster::plane_low, plane_high) by the margin skip its triangles altogether, their
+// tests counted as the reference counts them.
 #include <cstdint>
 #include <new>
 #include <type_traits>
