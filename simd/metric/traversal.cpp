@@ -53,7 +53,7 @@ inline double cluster_miss_margin(double scale) {
   return 0x1p-14 * scale;
 }
 // The float bounds of x, y, x + y and x - y of a cluster's vertices in the light's plane, before
-// NodeCluster's widening (ClusterPlaneBounds); finite = 0 where some value is not finite.
+// NodeCluster's widening (ClusterPlaneBounds); finite = 0 where some coordinate is NaN.
 struct PlaneBounds {
   float low[4], high[4];
   bool finite;
@@ -902,11 +902,12 @@ void TraverseTiles(const PacketTraversal& traversal, std::size_t tile_begin, std
     traverse_tiles_of<64>(traversal, tile_begin, tile_end, shadowed, counters);
 }
 
-// Per cluster [cluster_begin, cluster_end): PlaneBounds of its vertices, x = v . plane_x and y = v
-// . plane_y in float lanes, 16 slots of a group at once.
+// Per cluster of the elements [element_begin, element_end): PlaneBounds of its vertices, x = v .
+// plane_x and y = v . plane_y in float lanes, 16 slots of a group at once.
 void ClusterPlaneBounds(const LightFrame& frame, const shadowcts::metric::Clustering& clustering,
                         const ClusterTriangles& triangles, const std::uint32_t* first_group,
-                        std::size_t cluster_begin, std::size_t cluster_end, PlaneBounds* out) {
+                        const shadowcts::metric::LightSpaceElement* elements,
+                        std::size_t element_begin, std::size_t element_end, PlaneBounds* out) {
   const hn::ScalableTag<float> d;
   using V = hn::Vec<decltype(d)>;
   const std::size_t N = std::min(hn::Lanes(d), max_float_lanes);
@@ -915,26 +916,37 @@ void ClusterPlaneBounds(const LightFrame& frame, const shadowcts::metric::Cluste
   const V yx = hn::Set(d, float(frame.plane_y.x)), yy = hn::Set(d, float(frame.plane_y.y)),
           yz = hn::Set(d, float(frame.plane_y.z));
   const V infinity = hn::Set(d, std::numeric_limits<float>::infinity());
-  for (std::size_t c = cluster_begin; c != cluster_end; ++c) {
+  for (std::size_t e = element_begin; e != element_end; ++e) {
+    const std::uint32_t c = elements[e].cluster;
     V low[4], high[4];
     for (int a = 0; a < 4; ++a) low[a] = infinity, high[a] = hn::Neg(infinity);
-    auto finite = hn::Eq(infinity, infinity);  // all true
+    auto numbers = hn::Eq(infinity, infinity);  // all true
     const std::uint32_t size = clustering.size(c);
     for (std::uint32_t j = 0; j < size; j += std::uint32_t(N)) {
       const TriangleGroup& group = triangles.groups[first_group[c] + j / 16];
       const std::uint32_t lane = j % 16;
-      const auto valid = hn::FirstN(d, size - j);
+      V v[3][3];  // [axis][corner]
+      for (int axis = 0; axis < 3; ++axis)
+        for (int k = 0; k < 3; ++k) v[axis][k] = hn::Load(d, group.xyz[axis][k] + lane);
+      if (size - j < N) {
+        // The last, partial vector: its padding lanes repeat the first lane's vertex, so that
+        // Min and Max need no mask.
+        const auto valid = hn::FirstN(d, size - j);
+        for (int axis = 0; axis < 3; ++axis)
+          for (int k = 0; k < 3; ++k)
+            v[axis][k] = hn::IfThenElse(valid, v[axis][k], hn::Set(d, hn::GetLane(v[axis][k])));
+      }
+      for (int axis = 0; axis < 3; ++axis)
+        for (int k = 0; k < 3; ++k) numbers = hn::And(numbers, hn::Eq(v[axis][k], v[axis][k]));
       for (int k = 0; k < 3; ++k) {
-        const V vx = hn::Load(d, group.xyz[0][k] + lane), vy = hn::Load(d, group.xyz[1][k] + lane),
-                vz = hn::Load(d, group.xyz[2][k] + lane);
-        const V x = hn::Add(hn::Add(hn::Mul(vx, xx), hn::Mul(vy, xy)), hn::Mul(vz, xz));
-        const V y = hn::Add(hn::Add(hn::Mul(vx, yx), hn::Mul(vy, yy)), hn::Mul(vz, yz));
+        const V x =
+            hn::Add(hn::Add(hn::Mul(v[0][k], xx), hn::Mul(v[1][k], xy)), hn::Mul(v[2][k], xz));
+        const V y =
+            hn::Add(hn::Add(hn::Mul(v[0][k], yx), hn::Mul(v[1][k], yy)), hn::Mul(v[2][k], yz));
         const V along[4] = {x, y, hn::Add(x, y), hn::Sub(x, y)};
         for (int a = 0; a < 4; ++a) {
-          // A NaN or infinite value fails Lt(|v|, inf); Min and Max then never read it.
-          finite = hn::And(finite, hn::Or(hn::Not(valid), hn::Lt(hn::Abs(along[a]), infinity)));
-          low[a] = hn::IfThenElse(valid, hn::Min(low[a], along[a]), low[a]);
-          high[a] = hn::IfThenElse(valid, hn::Max(high[a], along[a]), high[a]);
+          low[a] = hn::Min(low[a], along[a]);
+          high[a] = hn::Max(high[a], along[a]);
         }
       }
     }
@@ -943,7 +955,9 @@ void ClusterPlaneBounds(const LightFrame& frame, const shadowcts::metric::Cluste
       b.low[a] = hn::GetLane(hn::MinOfLanes(d, low[a]));
       b.high[a] = hn::GetLane(hn::MaxOfLanes(d, high[a]));
     }
-    b.finite = hn::AllTrue(d, finite);
+    // No NaN coordinate: with the case's scale finite and far below float's range (asked by
+    // cluster_plane_bounds), every value above is then finite and Min and Max saw them all.
+    b.finite = hn::AllTrue(d, numbers);
   }
 }
 
@@ -1005,29 +1019,42 @@ namespace {
 // float evaluation (the axes rounded to float and three roundings, on coordinates within S: under
 // 2^-20 S per value), then rounded outwards. (-inf, +inf), never outside, for a point light or a
 // cluster with a value that is not finite.
-std::vector<PlaneBounds> cluster_plane_bounds(const shadowcts::metric::LightFrame& frame,
-                                              const shadowcts::metric::Clustering& clustering,
-                                              const ClusterTriangles& triangles) {
+// Only the clusters of the light's elements (the tree's pivots) are read: a third of the clusters
+// face away from the light on a closed mesh, and reading every cluster's triangles was most of
+// this function's time.
+std::vector<PlaneBounds> cluster_plane_bounds(
+    const shadowcts::metric::LightFrame& frame, const shadowcts::metric::Clustering& clustering,
+    const ClusterTriangles& triangles,
+    const std::vector<shadowcts::metric::LightSpaceElement>& elements) {
   constexpr float infinity = std::numeric_limits<float>::infinity();
   const std::size_t clusters = clustering.cluster_begin.size() - 1;
   std::vector<PlaneBounds> out(clusters);
-  if (frame.directional) {
-    const std::vector<std::uint32_t> first = first_groups(clustering);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, clusters, 1024),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                        HWY_DYNAMIC_DISPATCH(ClusterPlaneBounds)
-                        (frame, clustering, triangles, first.data(), range.begin(), range.end(),
-                         out.data());
-                      });
-  }
-  const double margin = cluster_miss_margin(frame.scale), rounding = 0x1p-19 * frame.scale;
-  for (PlaneBounds& b : out)
-    for (int a = 0; a < 4; ++a) {
-      const double widen = (a < 2 ? margin : 2.0 * margin) + rounding;
-      const bool usable = frame.directional && b.finite;
-      b.low[a] = usable ? float_below(double(b.low[a]) - widen) : -infinity;
-      b.high[a] = usable ? float_above(double(b.high[a]) + widen) : infinity;
+  if (!frame.directional) {
+    for (const shadowcts::metric::LightSpaceElement& e : elements) {
+      PlaneBounds& b = out[e.cluster];
+      for (int a = 0; a < 4; ++a) b.low[a] = -infinity, b.high[a] = infinity;
     }
+    return out;
+  }
+  const std::vector<std::uint32_t> first = first_groups(clustering);
+  const double margin = cluster_miss_margin(frame.scale), rounding = 0x1p-19 * frame.scale;
+  // Every coordinate within S <= 2^100: sums of three products of them stay finite in float.
+  const bool in_range = frame.scale <= 0x1p100;
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, elements.size(), 1024),
+      [&](const tbb::blocked_range<std::size_t>& range) {
+        HWY_DYNAMIC_DISPATCH(ClusterPlaneBounds)
+        (frame, clustering, triangles, first.data(), elements.data(), range.begin(), range.end(),
+         out.data());
+        for (std::size_t e = range.begin(); e != range.end(); ++e) {
+          PlaneBounds& b = out[elements[e].cluster];
+          for (int a = 0; a < 4; ++a) {
+            const double widen = (a < 2 ? margin : 2.0 * margin) + rounding;
+            b.low[a] = in_range && b.finite ? float_below(double(b.low[a]) - widen) : -infinity;
+            b.high[a] = in_range && b.finite ? float_above(double(b.high[a]) + widen) : infinity;
+          }
+        }
+      });
   return out;
 }
 }  // namespace
@@ -1064,7 +1091,7 @@ PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene,
   const std::vector<shadowcts::metric::ClusterVolume>& volumes = *scene.volumes;
   const std::vector<std::uint32_t> first_group = first_groups(*scene.clustering);
   const std::vector<PlaneBounds> plane_bounds =
-      cluster_plane_bounds(frame, *scene.clustering, triangles);
+      cluster_plane_bounds(frame, *scene.clustering, triangles, *scene.elements);
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, order.size(), 512),
       [&](const tbb::blocked_range<std::size_t>& range) {
