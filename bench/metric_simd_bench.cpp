@@ -160,7 +160,7 @@ void BM_MetricSimdQueryOnly(benchmark::State& state, const std::string& generato
   traversal_scene.tree = &structure.tree;
   traversal_scene.frame = structure.frame;
   traversal_scene.ray_length = 4.0 * structure.frame.scale;
-  const simd::metric::PacketNodes nodes = simd::metric::packet_nodes(traversal_scene);
+  const simd::metric::PacketNodes nodes = simd::metric::packet_nodes(traversal_scene, triangles);
   const simd::metric::SampleTiles tiles =
       simd::metric::sample_tiles(scene.samples, scene.view_samples.width, options.packet);
   simd::metric::PacketTraversal traversal;
@@ -188,6 +188,8 @@ void BM_MetricSimdBuildOnly(benchmark::State& state, const std::string& generato
   const simd::metric::SimdMetricOptions options =
       simd::metric::parse_simd_metric_variant("capsules16");
   const metric::ClusteredScene clustered = metric::cluster_scene(f.c, options.metric);
+  const simd::metric::ClusterTriangles triangles =
+      simd::metric::cluster_triangles_soa(scene.casters, clustered.clustering);
   double structure_cpu = 0, nodes_cpu = 0, reference_cpu = 0;
   for (auto _ : state) {
     double start = process_cpu_seconds();
@@ -202,7 +204,7 @@ void BM_MetricSimdBuildOnly(benchmark::State& state, const std::string& generato
     traversal_scene.tree = &structure.tree;
     traversal_scene.frame = structure.frame;
     start = process_cpu_seconds();
-    const simd::metric::PacketNodes nodes = simd::metric::packet_nodes(traversal_scene);
+    const simd::metric::PacketNodes nodes = simd::metric::packet_nodes(traversal_scene, triangles);
     nodes_cpu += process_cpu_seconds() - start;
     benchmark::DoNotOptimize(nodes.fast.data());
     start = process_cpu_seconds();

@@ -211,7 +211,7 @@ SimdMetricRun run_metric(const PreparedScene& scene, const SimdMetricOptions& op
   traversal_scene.tree = &structure.tree;
   traversal_scene.frame = structure.frame;
   traversal_scene.ray_length = 4.0 * structure.frame.scale;  // as the reference
-  const PacketNodes nodes = packet_nodes(traversal_scene, options.decision_window);
+  const PacketNodes nodes = packet_nodes(traversal_scene, triangles, options.decision_window);
   run.build_seconds = seconds_since(start);
   run.build_cpu_seconds = process_cpu_seconds() - cpu_start;
 

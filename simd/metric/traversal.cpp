@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <numbers>
 #include <optional>
@@ -45,6 +46,18 @@ inline float float_above(double x) {
 inline float cone_window(double decision_window) {
   return float(std::max(0x1p-16, 2.0 * decision_window));
 }
+// How far outside a cluster's plane bounds (NodeCluster::plane_low, plane_high) a directional
+// light's line must pass to miss every triangle of the cluster certainly: 2^-14 of the case's
+// scale, eight times the rounding of the ray-space vertices (lanes_missing_cluster).
+inline double cluster_miss_margin(double scale) {
+  return 0x1p-14 * scale;
+}
+// The float bounds of x, y, x + y and x - y of a cluster's vertices in the light's plane, before
+// NodeCluster's widening (ClusterPlaneBounds); finite = 0 where some coordinate is NaN.
+struct PlaneBounds {
+  float low[4], high[4];
+  bool finite;
+};
 }  // namespace shadowcts::simd::metric
 #endif
 
@@ -69,13 +82,16 @@ struct Packet {
   static constexpr std::size_t float_lanes = P < max_float_lanes ? max_float_lanes : P;
   alignas(64) float fx[float_lanes], fy[float_lanes], fz[float_lanes];
   alignas(64) float qlo[float_lanes], qhi[float_lanes];
+  // Lanes whose sample lies within the case's scale (LightFrame::scale) on every axis: the
+  // directional cluster test (lanes_missing_cluster) is certain only for those.
+  std::uint64_t within_scale = 0;
   std::uint32_t sample_index[P];  // the view sample's (ViewSamples::samples) index
   const ViewSample* sample[P];
   std::uint32_t receiver[P];
   std::uint32_t receiver_slot[P];  // the receiver's slot in cluster order, or ~0u
-  LightSpaceQuery query[P];
   RaySpace ray[P];
-  glm::dvec3 from[P], to[P];
+  // The ends of the segment the slabs are tested against (segment_meets_slabs), by coordinate.
+  alignas(64) double from_x[P], from_y[P], from_z[P], to_x[P], to_y[P], to_z[P];
   std::optional<geometry::ReceiverHalfSpace> half_space[P];
 };
 
@@ -270,8 +286,12 @@ NodeDecisions evaluate_node(const PacketTraversal& traversal, const PacketNode& 
   for (LaneMask rest = unsure; rest != 0; rest &= rest - 1) {
     const int l = std::countr_zero(rest);
     const LaneMask bit = LaneMask(1) << l;
+    // The lane's query, as make_light_space_query made it (a lane at the light is never walked).
+    LightSpaceQuery query;
+    query.position = glm::dvec3(pk.ux[l], pk.uy[l], pk.uz[l]);
+    query.light_distance = pk.qld[l];
     const double distance =
-        shadowcts::metric::pivot_distance(frame, (*scene.elements)[n.pivot], pk.query[l]);
+        shadowcts::metric::pivot_distance(frame, (*scene.elements)[n.pivot], query);
     out.inside = (out.inside & ~bit) | (distance <= n.threshold[inside] ? bit : 0);
     out.overlap =
         (out.overlap & ~bit) |
@@ -578,6 +598,78 @@ std::uint64_t triangles_to_decide(const TriangleGroup* groups, std::uint32_t cou
   return count >= 64 ? decide : decide & ((std::uint64_t(1) << count) - 1);
 }
 
+// Directional light: the lanes of `visit` whose line towards the light certainly misses every
+// triangle of the cluster, so that the reference's triangle_blocks_sample answers "passes" for
+// each: their point in the light's plane lies outside the cluster's plane bounds. Why that is
+// certain: the bounds hold every vertex, widened by the margin M = 2^-14 S (S the case's scale;
+// 2M along the diagonals, a distance of sqrt(2) M), so the exact line passes at a distance above
+// M from each triangle's projection along the light. The ray space of the watertight test
+// projects along the light onto an axis plane: an oblique projection, which never shortens a
+// distance orthogonal to the light, so the exact ray-space origin lies above M from each exact
+// ray-space triangle. Each rounded ray-space coordinate lies within 5 u n of its exact value
+// (edge_proximity.h; u = 2^-24, n = |x| + |y| + |v_z - o_z| <= 10 S with sample and vertices
+// within S on every axis, as `within_scale` asks), under 2^-17 S per vertex: the rounded
+// vertices' triangle still leaves the origin out, so the float test misses, and the exact line
+// misses, so whatever ray_near_triangle_edge says, the exact decision passes too. The lane's float
+// plane coordinates and their sum and difference are within 2^-20 S of the exact ones; the bounds
+// are rounded outwards; the frame's axes are orthonormal and orthogonal to the light up to a few
+// 2^-53.
+template <std::size_t P>
+LaneMask lanes_missing_cluster(const NodeCluster& cluster, const Packet<P>& pk, LaneMask visit) {
+  const hn::ScalableTag<float> d;
+  using V = hn::Vec<decltype(d)>;
+  const std::size_t N = std::min(hn::Lanes(d), max_float_lanes);
+  const LaneMask chunk = (LaneMask(1) << N) - 1;
+  V low[4], high[4];
+  for (int k = 0; k < 4; ++k) {
+    low[k] = hn::Set(d, cluster.plane_low[k]);
+    high[k] = hn::Set(d, cluster.plane_high[k]);
+  }
+  LaneMask missing = 0;
+  for (std::size_t j = 0; j < P; j += N) {
+    const LaneMask here = (visit >> j) & chunk;
+    if (here == 0) continue;
+    const V x = hn::Load(d, pk.fx + j), y = hn::Load(d, pk.fy + j);
+    const V along[4] = {x, y, hn::Add(x, y), hn::Sub(x, y)};
+    auto outside = hn::Lt(along[0], low[0]);
+    for (int k = 0; k < 4; ++k)
+      outside = hn::Or(outside, hn::Or(hn::Lt(along[k], low[k]), hn::Gt(along[k], high[k])));
+    missing |= (float_lane_bits(d, outside) & here) << j;
+  }
+  return missing & pk.within_scale;
+}
+
+// The lanes of `visit` whose segment meets the cluster's slabs: segment_meets_slabs on the node's
+// copy of the slabs, in its operations (glm::dot's (x + y) + z, std::max and std::min as
+// comparisons, so that NaNs go the same way), 8 lanes per vector of doubles.
+template <std::size_t P>
+LaneMask lanes_meeting_slabs(const NodeCluster& cluster, const Packet<P>& pk, LaneMask visit) {
+  const hn::ScalableTag<double> d;
+  using V = hn::Vec<decltype(d)>;
+  constexpr std::size_t max_lanes = 8;
+  const std::size_t N = std::min(hn::Lanes(d), max_lanes);
+  const LaneMask chunk = (LaneMask(1) << N) - 1;
+  const V nx = hn::Set(d, cluster.slab_normal.x), ny = hn::Set(d, cluster.slab_normal.y),
+          nz = hn::Set(d, cluster.slab_normal.z);
+  const V low = hn::Set(d, cluster.low), high = hn::Set(d, cluster.high);
+  LaneMask meets = 0;
+  for (std::size_t j = 0; j < P; j += N) {
+    const LaneMask here = (visit >> j) & chunk;
+    if (here == 0) continue;
+    const V s_from = hn::Add(
+        hn::Add(hn::Mul(nx, hn::Load(d, pk.from_x + j)), hn::Mul(ny, hn::Load(d, pk.from_y + j))),
+        hn::Mul(nz, hn::Load(d, pk.from_z + j)));
+    const V s_to = hn::Add(
+        hn::Add(hn::Mul(nx, hn::Load(d, pk.to_x + j)), hn::Mul(ny, hn::Load(d, pk.to_y + j))),
+        hn::Mul(nz, hn::Load(d, pk.to_z + j)));
+    // std::max(a, b) is a < b ? b : a; std::min(a, b) is b < a ? b : a.
+    const V larger = hn::IfThenElse(hn::Lt(s_from, s_to), s_to, s_from);
+    const V smaller = hn::IfThenElse(hn::Lt(s_to, s_from), s_to, s_from);
+    meets |= (lane_bits(d, hn::And(hn::Ge(larger, low), hn::Le(smaller, high))) & here) << j;
+  }
+  return meets;
+}
+
 // Step 2 for one lane: the slabs, then the pivot cluster's triangles in cluster order with the
 // reference's counters and decisions.
 template <std::size_t P>
@@ -585,8 +677,9 @@ bool cluster_blocks(const PacketTraversal& traversal, Packet<P>& pk, int l,
                     const NodeCluster& cluster, TraversalCounters& counters) {
   const TraversalScene& scene = *traversal.scene;
   // segment_meets_slabs, on the node's copy of the slabs (the same operations).
-  const double s_from = glm::dot(cluster.slab_normal, pk.from[l]);
-  const double s_to = glm::dot(cluster.slab_normal, pk.to[l]);
+  const double s_from =
+      glm::dot(cluster.slab_normal, glm::dvec3(pk.from_x[l], pk.from_y[l], pk.from_z[l]));
+  const double s_to = glm::dot(cluster.slab_normal, glm::dvec3(pk.to_x[l], pk.to_y[l], pk.to_z[l]));
   if (!(std::max(s_from, s_to) >= cluster.low && std::min(s_from, s_to) <= cluster.high))
     return false;
   const shadowcts::metric::Clustering& clustering = *scene.clustering;
@@ -627,8 +720,15 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
   const Case& c = *scene.c;
   const PreparedScene& prepared = *traversal.prepared;
   LaneMask active = 0;
+  pk.within_scale = 0;
+  // A directional light's ray space is the same for every sample but its origin: made once.
+  const RaySpace directional_space =
+      frame.directional
+          ? make_ray_space(ray_to_directional_light(glm::vec3(0.0f), c.light->direction))
+          : RaySpace();
   for (std::uint32_t l = 0; l < P; ++l) {
     pk.ux[l] = pk.uy[l] = pk.uz[l] = pk.qld[l] = 0.0;
+    pk.from_x[l] = pk.from_y[l] = pk.from_z[l] = pk.to_x[l] = pk.to_y[l] = pk.to_z[l] = 0.0;
     pk.fx[l] = pk.fy[l] = pk.fz[l] = pk.qlo[l] = pk.qhi[l] = 0.0f;
     if (l >= count) continue;
     const std::uint32_t i = members[l];
@@ -640,30 +740,54 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
     pk.receiver_slot[l] = pk.receiver[l] < slot_of.size() ? slot_of[pk.receiver[l]] : ~0u;
     pk.sample_index[l] = prepared.samples.index[i];
     shadowed[prepared.samples.index[i]] = 0;
-    const glm::vec3 position(prepared.samples.px[i], prepared.samples.py[i],
-                             prepared.samples.pz[i]);
-    const glm::dvec3 p(position);
-    // Constructed in place by placement new (guaranteed elision; construct_at would copy a
-    // temporary, with wide loads of narrow stores).
-    ::new (static_cast<void*>(&pk.query[l]))
-        LightSpaceQuery(shadowcts::metric::make_light_space_query(frame, p));
-    if (pk.query[l].at_light) continue;  // the segment is a point: nothing hits it
-    const ShadowRay ray = frame.directional ? ray_to_directional_light(position, c.light->direction)
-                                            : segment_to_point_light(position, c.light->position);
-    ::new (static_cast<void*>(&pk.ray[l])) RaySpace(make_ray_space(ray));
-    pk.from[l] = p;
-    pk.to[l] =
-        frame.directional ? p + scene.ray_length * frame.towards_light : frame.light_position;
+    const float px = prepared.samples.px[i], py = prepared.samples.py[i],
+                pz = prepared.samples.pz[i];
+    const glm::dvec3 p(px, py, pz);
+    double ux, uy, uz, qld;
+    glm::dvec3 to;
+    if (frame.directional) {
+      // make_light_space_query's directional case (in_plane and directional_light_distance, the
+      // same glm::dot operations) inline, and the ray space's origin written as three floats:
+      // around the call and through the copies of whole vectors, the sample's coordinates were
+      // stored narrow and loaded wide, and each lane waited for a failed store forward.
+      ux = glm::dot(p, frame.plane_x);
+      uy = glm::dot(p, frame.plane_y);
+      uz = 0.0;
+      qld = -glm::dot(p, frame.towards_light);
+      RaySpace& ray = pk.ray[l];
+      ray = directional_space;
+      ray.origin.x = px;
+      ray.origin.y = py;
+      ray.origin.z = pz;
+      to = p + scene.ray_length * frame.towards_light;
+    } else {
+      const LightSpaceQuery query = shadowcts::metric::make_light_space_query(frame, p);
+      if (query.at_light) continue;  // the segment is a point: nothing hits it
+      // Constructed in place by placement new (guaranteed elision; construct_at would copy a
+      // temporary, with wide loads of narrow stores).
+      ::new (static_cast<void*>(&pk.ray[l])) RaySpace(
+          make_ray_space(segment_to_point_light(glm::vec3(px, py, pz), c.light->position)));
+      ux = query.position.x;
+      uy = query.position.y;
+      uz = query.position.z;
+      qld = query.light_distance;
+      to = frame.light_position;
+    }
+    pk.from_x[l] = p.x, pk.from_y[l] = p.y, pk.from_z[l] = p.z;
+    pk.to_x[l] = to.x, pk.to_y[l] = to.y, pk.to_z[l] = to.z;
     pk.half_space[l].reset();
-    pk.ux[l] = pk.query[l].position.x;
-    pk.uy[l] = pk.query[l].position.y;
-    pk.uz[l] = pk.query[l].position.z;
-    pk.qld[l] = pk.query[l].light_distance;
-    pk.fx[l] = float(pk.ux[l]);
-    pk.fy[l] = float(pk.uy[l]);
-    pk.fz[l] = float(pk.uz[l]);
-    pk.qlo[l] = float_below(pk.qld[l]);
-    pk.qhi[l] = float_above(pk.qld[l]);
+    pk.ux[l] = ux;
+    pk.uy[l] = uy;
+    pk.uz[l] = uz;
+    pk.qld[l] = qld;
+    const float scale = float(frame.scale);  // a float maximum (Case::scale)
+    if (std::fabs(px) <= scale && std::fabs(py) <= scale && std::fabs(pz) <= scale)
+      pk.within_scale |= LaneMask(1) << l;
+    pk.fx[l] = float(ux);
+    pk.fy[l] = float(uy);
+    pk.fz[l] = float(uz);
+    pk.qlo[l] = float_below(qld);
+    pk.qhi[l] = float_above(qld);
     active |= LaneMask(1) << l;
   }
   const FilledArray<PacketNode>& nodes = traversal.nodes->nodes;
@@ -712,11 +836,30 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
     } else {
       decisions = evaluate_node(traversal, nodes[index], pk, lanes);
     }
-    for (LaneMask visit = decisions.inside & decisions.deep; visit != 0; visit &= visit - 1) {
-      const int l = std::countr_zero(visit);
-      if (cluster_blocks(traversal, pk, l, clusters[index], counters)) {
-        shadowed[pk.sample_index[l]] = 1;
-        active &= ~(LaneMask(1) << l);
+    const LaneMask visiting = decisions.inside & decisions.deep;
+    if (visiting != 0) {
+      const NodeCluster& cluster = clusters[index];
+      // A directional light's lines are parallel: most lanes that visit a cluster pass beside
+      // all of its triangles, which the plane bounds tell for many lanes at once. Where their
+      // segments meet the slabs, their tests are counted in bulk, none is made.
+      const LaneMask beside =
+          frame.directional ? lanes_missing_cluster(cluster, pk, visiting) : LaneMask(0);
+      const LaneMask missing = beside != 0 ? lanes_meeting_slabs(cluster, pk, beside) : 0;
+      if (missing != 0) {
+        const std::uint32_t size = cluster.end - cluster.begin;
+        std::uint64_t receivers_inside = 0;
+        for (LaneMask rest = missing; rest != 0; rest &= rest - 1)
+          receivers_inside += pk.receiver_slot[std::countr_zero(rest)] - cluster.begin < size;
+        const std::uint64_t lanes_missing = std::uint64_t(std::popcount(missing));
+        counters.triangle_tests += lanes_missing * size - receivers_inside;
+        counters.clusters_tested_without_hit += lanes_missing;
+      }
+      for (LaneMask visit = visiting & ~beside; visit != 0; visit &= visit - 1) {
+        const int l = std::countr_zero(visit);
+        if (cluster_blocks(traversal, pk, l, cluster, counters)) {
+          shadowed[pk.sample_index[l]] = 1;
+          active &= ~(LaneMask(1) << l);
+        }
       }
     }
     const LaneMask going = decisions.reached & active;
@@ -759,6 +902,65 @@ void TraverseTiles(const PacketTraversal& traversal, std::size_t tile_begin, std
     traverse_tiles_of<64>(traversal, tile_begin, tile_end, shadowed, counters);
 }
 
+// Per cluster of the elements [element_begin, element_end): PlaneBounds of its vertices, x = v .
+// plane_x and y = v . plane_y in float lanes, 16 slots of a group at once.
+void ClusterPlaneBounds(const LightFrame& frame, const shadowcts::metric::Clustering& clustering,
+                        const ClusterTriangles& triangles, const std::uint32_t* first_group,
+                        const shadowcts::metric::LightSpaceElement* elements,
+                        std::size_t element_begin, std::size_t element_end, PlaneBounds* out) {
+  const hn::ScalableTag<float> d;
+  using V = hn::Vec<decltype(d)>;
+  const std::size_t N = std::min(hn::Lanes(d), max_float_lanes);
+  const V xx = hn::Set(d, float(frame.plane_x.x)), xy = hn::Set(d, float(frame.plane_x.y)),
+          xz = hn::Set(d, float(frame.plane_x.z));
+  const V yx = hn::Set(d, float(frame.plane_y.x)), yy = hn::Set(d, float(frame.plane_y.y)),
+          yz = hn::Set(d, float(frame.plane_y.z));
+  const V infinity = hn::Set(d, std::numeric_limits<float>::infinity());
+  for (std::size_t e = element_begin; e != element_end; ++e) {
+    const std::uint32_t c = elements[e].cluster;
+    V low[4], high[4];
+    for (int a = 0; a < 4; ++a) low[a] = infinity, high[a] = hn::Neg(infinity);
+    auto numbers = hn::Eq(infinity, infinity);  // all true
+    const std::uint32_t size = clustering.size(c);
+    for (std::uint32_t j = 0; j < size; j += std::uint32_t(N)) {
+      const TriangleGroup& group = triangles.groups[first_group[c] + j / 16];
+      const std::uint32_t lane = j % 16;
+      V v[3][3];  // [axis][corner]
+      for (int axis = 0; axis < 3; ++axis)
+        for (int k = 0; k < 3; ++k) v[axis][k] = hn::Load(d, group.xyz[axis][k] + lane);
+      if (size - j < N) {
+        // The last, partial vector: its padding lanes repeat the first lane's vertex, so that
+        // Min and Max need no mask.
+        const auto valid = hn::FirstN(d, size - j);
+        for (int axis = 0; axis < 3; ++axis)
+          for (int k = 0; k < 3; ++k)
+            v[axis][k] = hn::IfThenElse(valid, v[axis][k], hn::Set(d, hn::GetLane(v[axis][k])));
+      }
+      for (int axis = 0; axis < 3; ++axis)
+        for (int k = 0; k < 3; ++k) numbers = hn::And(numbers, hn::Eq(v[axis][k], v[axis][k]));
+      for (int k = 0; k < 3; ++k) {
+        const V x =
+            hn::Add(hn::Add(hn::Mul(v[0][k], xx), hn::Mul(v[1][k], xy)), hn::Mul(v[2][k], xz));
+        const V y =
+            hn::Add(hn::Add(hn::Mul(v[0][k], yx), hn::Mul(v[1][k], yy)), hn::Mul(v[2][k], yz));
+        const V along[4] = {x, y, hn::Add(x, y), hn::Sub(x, y)};
+        for (int a = 0; a < 4; ++a) {
+          low[a] = hn::Min(low[a], along[a]);
+          high[a] = hn::Max(high[a], along[a]);
+        }
+      }
+    }
+    PlaneBounds& b = out[c];
+    for (int a = 0; a < 4; ++a) {
+      b.low[a] = hn::GetLane(hn::MinOfLanes(d, low[a]));
+      b.high[a] = hn::GetLane(hn::MaxOfLanes(d, high[a]));
+    }
+    // No NaN coordinate: with the case's scale finite and far below float's range (asked by
+    // cluster_plane_bounds), every value above is then finite and Min and Max saw them all.
+    b.finite = hn::AllTrue(d, numbers);
+  }
+}
+
 std::int64_t TraversalTarget() {
   return HWY_TARGET;
 }
@@ -771,6 +973,7 @@ namespace shadowcts::simd::metric {
 
 HWY_EXPORT(TraverseTiles);
 HWY_EXPORT(TraversalTarget);
+HWY_EXPORT(ClusterPlaneBounds);
 
 std::int64_t traversal_target() {
   return HWY_DYNAMIC_DISPATCH(TraversalTarget)();
@@ -809,7 +1012,55 @@ ClusterTriangles cluster_triangles_soa(const CasterArrays& casters,
   return out;
 }
 
-PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene, double decision_window) {
+namespace {
+// Per cluster, NodeCluster::plane_low and plane_high: the bounds of x, y, x + y and x - y of its
+// vertices in the plane of a directional light, widened by cluster_miss_margin (twice that along
+// the diagonals, where a distance moves x + y by up to sqrt(2) times it) and by 2^-19 S for the
+// float evaluation (the axes rounded to float and three roundings, on coordinates within S: under
+// 2^-20 S per value), then rounded outwards. (-inf, +inf), never outside, for a point light or a
+// cluster with a value that is not finite.
+// Only the clusters of the light's elements (the tree's pivots) are read: a third of the clusters
+// face away from the light on a closed mesh, and reading every cluster's triangles was most of
+// this function's time.
+std::vector<PlaneBounds> cluster_plane_bounds(
+    const shadowcts::metric::LightFrame& frame, const shadowcts::metric::Clustering& clustering,
+    const ClusterTriangles& triangles,
+    const std::vector<shadowcts::metric::LightSpaceElement>& elements) {
+  constexpr float infinity = std::numeric_limits<float>::infinity();
+  const std::size_t clusters = clustering.cluster_begin.size() - 1;
+  std::vector<PlaneBounds> out(clusters);
+  if (!frame.directional) {
+    for (const shadowcts::metric::LightSpaceElement& e : elements) {
+      PlaneBounds& b = out[e.cluster];
+      for (int a = 0; a < 4; ++a) b.low[a] = -infinity, b.high[a] = infinity;
+    }
+    return out;
+  }
+  const std::vector<std::uint32_t> first = first_groups(clustering);
+  const double margin = cluster_miss_margin(frame.scale), rounding = 0x1p-19 * frame.scale;
+  // Every coordinate within S <= 2^100: sums of three products of them stay finite in float.
+  const bool in_range = frame.scale <= 0x1p100;
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, elements.size(), 1024),
+      [&](const tbb::blocked_range<std::size_t>& range) {
+        HWY_DYNAMIC_DISPATCH(ClusterPlaneBounds)
+        (frame, clustering, triangles, first.data(), elements.data(), range.begin(), range.end(),
+         out.data());
+        for (std::size_t e = range.begin(); e != range.end(); ++e) {
+          PlaneBounds& b = out[elements[e].cluster];
+          for (int a = 0; a < 4; ++a) {
+            const double widen = (a < 2 ? margin : 2.0 * margin) + rounding;
+            b.low[a] = in_range && b.finite ? float_below(double(b.low[a]) - widen) : -infinity;
+            b.high[a] = in_range && b.finite ? float_above(double(b.high[a]) + widen) : infinity;
+          }
+        }
+      });
+  return out;
+}
+}  // namespace
+
+PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene,
+                         const ClusterTriangles& triangles, double decision_window) {
   using shadowcts::metric::CentreKind;
   using shadowcts::metric::no_node;
   using shadowcts::metric::TreeChild;
@@ -839,6 +1090,8 @@ PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene, double 
   const std::vector<shadowcts::metric::LightSpaceElement>& elements = *scene.elements;
   const std::vector<shadowcts::metric::ClusterVolume>& volumes = *scene.volumes;
   const std::vector<std::uint32_t> first_group = first_groups(*scene.clustering);
+  const std::vector<PlaneBounds> plane_bounds =
+      cluster_plane_bounds(frame, *scene.clustering, triangles, *scene.elements);
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, order.size(), 512),
       [&](const tbb::blocked_range<std::size_t>& range) {
@@ -976,6 +1229,10 @@ PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene, double 
           record.begin = scene.clustering->cluster_begin[cluster];
           record.end = scene.clustering->cluster_begin[cluster + 1];
           record.group = first_group[cluster];
+          for (int k = 0; k < 4; ++k) {
+            record.plane_low[k] = plane_bounds[cluster].low[k];
+            record.plane_high[k] = plane_bounds[cluster].high[k];
+          }
         }
       });
   return out;

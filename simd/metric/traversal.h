@@ -15,7 +15,9 @@
 // filtered in float lanes: a triangle is skipped only where the line of the ray certainly misses it
 // (two float edge functions of the reference's own float ray-space vertices certainly of opposite
 // signs, beyond the rounding of the transform); every other one is decided by the reference's own
-// triangle_blocks_sample.
+// triangle_blocks_sample. A directional light's lanes whose line passes outside a cluster's plane
+// bounds (NodeCluster::plane_low, plane_high) by the margin skip its triangles altogether, their
+// tests counted as the reference counts them.
 #include <cstdint>
 #include <new>
 #include <type_traits>
@@ -113,7 +115,13 @@ static_assert(sizeof(FastNode) == 128, "two cache lines");
 
 // The pivot cluster of a node as section 5.4 step 2 reads it: its slots and its slabs, widened by
 // the margin exactly as segment_meets_slabs widens them.
-struct NodeCluster {
+struct alignas(32) NodeCluster {
+  // Directional light: where the cluster's caster triangles lie seen along the light, as bounds of
+  // x, y, x + y and x - y of their vertices in the light's plane (LightFrame::plane_x, plane_y),
+  // widened by cluster_miss_margin (twice that along the diagonals). A line towards the light
+  // from a point outside them misses every triangle (lanes_missing_cluster in traversal.cpp says
+  // why). (-inf, +inf) for a point light and where a vertex is not finite: never outside.
+  float plane_low[4] = {}, plane_high[4] = {};
   glm::dvec3 slab_normal{0.0};
   double low = 0.0, high = 0.0;
   std::uint32_t begin = 0, end = 0;  // slots in cluster order
@@ -169,7 +177,10 @@ struct PacketNodes {
   FilledArray<NodeCluster> clusters;
 };
 
+// The plane bounds of each node's cluster (NodeCluster::plane_low, plane_high) are taken from
+// `triangles`, the caster triangles of the same clustering.
 PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene,
+                         const ClusterTriangles& triangles,
                          double decision_window = default_decision_window);
 
 // The width in pixels of the image tiles of `packet` (8, 16 or 64) samples: 8 x 8 tiles for 64,
