@@ -1,9 +1,8 @@
 // The simd softtile against the reference and the Embree ray-sampling baseline (build + query) at
 // 1920 x 1080 on foliage at 100 k and 1 M triangles (the reference at 100 k only: at 1 M it takes
 // about 5 minutes on one thread; the runner times it, docs/soft-shadow-speed.md), in one run, one
-// timed iteration each (minutes per run). Each simd
-// output is checked to be the reference's (answers and counters): a port that differs is an error,
-// not a time.
+// timed iteration each (minutes per run). Each simd output is checked to be the reference's
+// (answers and counters): a port that differs is an error, not a time.
 //   build/bench/softtile_simd_bench [--benchmark_filter=foliage/100000]
 #include <benchmark/benchmark.h>
 
