@@ -34,7 +34,8 @@ struct FragmentArrays {
 // and triangle_edges() returns true, and then edges[(3 i + c) * stride + j] is component c (x, y,
 // z) of edge i (elsewhere edges holds anything). Returns how many fragments' receiver is not
 // `triangle` (the reference's pixel-triangle tests). stride >= the padded size of `fragments`;
-// accepted has fragments.words() words.
+// accepted has fragments.words() words. The intermediate result the port's test diffs against the
+// reference bit for bit; occlude_fragments() runs the same per-vector code.
 std::size_t triangle_edges(const FragmentArrays& fragments,
                            const std::array<glm::vec3, 3>& light_space, std::uint32_t triangle,
                            std::uint64_t* accepted, float* edges, std::size_t stride);
