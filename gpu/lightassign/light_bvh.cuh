@@ -21,6 +21,7 @@
 #include "gpu/lightassign/device_buffer.cuh"
 #include "gpu/lightassign/lightassign_kernels.h"
 #include "gpu/lightassign/view_frustum.cuh"
+#include "shadowcts/geometry/morton.h"
 
 namespace shadowcts::SHADOWCTS_KERNEL_NAMESPACE::lightassign {
 
@@ -42,17 +43,6 @@ __device__ inline bool overlap(const LightAssignBox& a, const LightAssignBox& b)
          a.min.z <= b.max.z && b.min.z <= a.max.z;
 }
 
-// Spreads the low 21 bits of x so that two zero bits follow each.
-__device__ inline std::uint64_t spread_bits(std::uint64_t x) {
-  x &= 0x1fffff;
-  x = (x | x << 32) & 0x1f00000000ffffull;
-  x = (x | x << 16) & 0x1f0000ff0000ffull;
-  x = (x | x << 8) & 0x100f00f00f00f00full;
-  x = (x | x << 4) & 0x10c30c30c30c30c3ull;
-  x = (x | x << 2) & 0x1249249249249249ull;
-  return x;
-}
-
 struct CentreCoordinate {
   int axis;
   __host__ __device__ double operator()(const LightAssignSphere& l) const {
@@ -69,7 +59,7 @@ __global__ void morton_codes(std::uint32_t n, const LightAssignSphere* lights, g
     const double t = rounded_sub(double(lights[i].centre[k]), low[k]) / extent[k];
     const double scaled = rounded_mul(t, 2097152.0);
     const double q = scaled < 0.0 ? 0.0 : 2097151.0 < scaled ? 2097151.0 : scaled;  // std::clamp
-    c |= spread_bits(std::uint64_t(q)) << (2 - k);
+    c |= shadowcts::geometry::spread_bits_21(std::uint64_t(q)) << (2 - k);
   }
   code[i] = c;
 }

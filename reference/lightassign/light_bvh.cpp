@@ -9,19 +9,10 @@
 #include <tbb/parallel_sort.h>
 #include <glm/common.hpp>
 
+#include "shadowcts/geometry/morton.h"
+
 namespace shadowcts {
 namespace {
-
-// Spreads the low 21 bits of x so that two zero bits follow each.
-std::uint64_t spread_bits(std::uint64_t x) {
-  x &= 0x1fffff;
-  x = (x | x << 32) & 0x1f00000000ffffull;
-  x = (x | x << 16) & 0x1f0000ff0000ffull;
-  x = (x | x << 8) & 0x100f00f00f00f00full;
-  x = (x | x << 4) & 0x10c30c30c30c30c3ull;
-  x = (x | x << 2) & 0x1249249249249249ull;
-  return x;
-}
 
 float round_down(double x) {
   float f = float(x);
@@ -55,7 +46,7 @@ LightBvh::LightBvh(const std::vector<RangedLight>& lights) {
       for (int k = 0; k < 3; ++k) {
         const double t = (double(lights[i].centre[k]) - low[k]) / extent[k];
         const auto q = std::uint64_t(std::clamp(t * 2097152.0, 0.0, 2097151.0));
-        code |= spread_bits(q) << (2 - k);
+        code |= geometry::spread_bits_21(q) << (2 - k);
       }
       keyed[i] = {code, std::uint32_t(i)};
     }

@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 
 #include "reference/metric/seeded_random.h"
+#include "shadowcts/geometry/morton.h"
 #include "shadowcts/hard_shadow_inputs.h"
 
 namespace shadowcts::metric {
@@ -22,27 +23,6 @@ glm::dvec3 representative_point(const Triangle& t) {
   const glm::dvec3 lo = glm::min(glm::min(glm::dvec3(t.v0), glm::dvec3(t.v1)), glm::dvec3(t.v2));
   const glm::dvec3 hi = glm::max(glm::max(glm::dvec3(t.v0), glm::dvec3(t.v1)), glm::dvec3(t.v2));
   return 0.5 * (lo + hi);
-}
-
-// Spreads the low 21 bits of x to every third bit.
-std::uint64_t spread_bits(std::uint64_t x) {
-  x &= 0x1FFFFFull;
-  x = (x | x << 32) & 0x1F00000000FFFFull;
-  x = (x | x << 16) & 0x1F0000FF0000FFull;
-  x = (x | x << 8) & 0x100F00F00F00F00Full;
-  x = (x | x << 4) & 0x10C30C30C30C30C3ull;
-  x = (x | x << 2) & 0x1249249249249249ull;
-  return x;
-}
-
-std::uint64_t morton_code(const glm::dvec3& point, const glm::dvec3& lo, const glm::dvec3& extent) {
-  std::uint64_t code = 0;
-  for (int axis = 0; axis < 3; ++axis) {
-    const double unit = extent[axis] > 0.0 ? (point[axis] - lo[axis]) / extent[axis] : 0.0;
-    const auto cell = std::uint64_t(std::clamp(unit, 0.0, 1.0) * double((1u << 21) - 1));
-    code |= spread_bits(cell) << axis;
-  }
-  return code;
 }
 
 double squared_distance(const glm::dvec3& a, const glm::dvec3& b) {
@@ -203,7 +183,7 @@ Clustering cluster_triangles(const Case& c, const ClusteringParameters& paramete
     }
     std::vector<std::pair<std::uint64_t, std::uint32_t>> order(ids.size());
     for (std::size_t i = 0; i < ids.size(); ++i)
-      order[i] = {morton_code(points[i], lo, hi - lo), std::uint32_t(i)};
+      order[i] = {geometry::morton_code_in_box(points[i], lo, hi - lo), std::uint32_t(i)};
     std::sort(order.begin(), order.end());  // ties broken by position: deterministic
     for (std::size_t start = 0; start < order.size(); start += parameters.chunk_size) {
       Chunk chunk;

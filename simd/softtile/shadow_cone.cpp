@@ -15,6 +15,7 @@
 #include <tbb/parallel_sort.h>
 #include <glm/geometric.hpp>
 
+#include "shadowcts/geometry/morton.h"
 #include "simd/softtile/shadow_cone.h"
 
 #ifndef SHADOWCTS_SIMD_SOFTTILE_BOUND_TERMS
@@ -553,20 +554,6 @@ void add_node(ConeGroups& level, std::size_t begin, std::size_t end, const Tip& 
   level.spread.push_back(skippable ? spread : HUGE_VAL);
 }
 
-// Interleaves the low 21 bits of x, y, z.
-std::uint64_t morton3(std::uint64_t x, std::uint64_t y, std::uint64_t z) {
-  const auto spread_bits = [](std::uint64_t v) {
-    v &= 0x1fffffull;
-    v = (v | v << 32) & 0x1f00000000ffffull;
-    v = (v | v << 16) & 0x1f0000ff0000ffull;
-    v = (v | v << 8) & 0x100f00f00f00f00full;
-    v = (v | v << 4) & 0x10c30c30c30c30c3ull;
-    v = (v | v << 2) & 0x1249249249249249ull;
-    return v;
-  };
-  return spread_bits(x) | spread_bits(y) << 1 | spread_bits(z) << 2;
-}
-
 ConeTree cone_tree(const shadowcts::softtile::Gathered& gathered, const glm::dvec3& direction,
                    double sin_radius) {
   const std::size_t n = gathered.triangles.size();
@@ -584,17 +571,8 @@ ConeTree cone_tree(const shadowcts::softtile::Gathered& gathered, const glm::dve
   std::vector<std::pair<std::uint64_t, std::uint32_t>> keys(n);
   tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
     const glm::dvec3 tip = gathered.triangles[i].cone.tip;
-    std::uint64_t code = ~std::uint64_t(0);
-    if (finite(tip)) {
-      std::uint64_t q[3];
-      for (int k = 0; k < 3; ++k) {
-        const double extent = hi[k] - lo[k];
-        const double unit = extent > 0.0 ? (tip[k] - lo[k]) / extent : 0.0;
-        q[k] = std::uint64_t(std::clamp(unit, 0.0, 1.0) * double((1u << 21) - 1));
-      }
-      code = morton3(q[0], q[1], q[2]);
-    }
-    keys[i] = {code, std::uint32_t(i)};
+    keys[i] = {finite(tip) ? geometry::morton_code_in_box(tip, lo, hi - lo) : ~std::uint64_t(0),
+               std::uint32_t(i)};
   });
   tbb::parallel_sort(keys.begin(), keys.end());
   ConeTree tree;
