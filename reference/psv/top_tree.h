@@ -15,6 +15,8 @@
 #include <limits>
 #include <vector>
 
+#include "shadowcts/huge_pages.h"
+
 namespace shadowcts::psv {
 
 inline constexpr std::uint32_t no_node = std::numeric_limits<std::uint32_t>::max();
@@ -45,7 +47,7 @@ struct VolumeSource {
 };
 
 struct TopTree {
-  std::vector<TopNode> nodes;         // volume v: nodes[4 v .. 4 v + 3]
+  HugePageVector<TopNode> nodes;      // volume v: nodes[4 v .. 4 v + 3]; 128 MB at 1M triangles
   std::vector<VolumeSource> sources;  // per volume
   std::uint32_t root = no_node;       // 0 once a volume exists
 };

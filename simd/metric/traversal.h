@@ -29,6 +29,7 @@
 #include "reference/metric/clustering.h"
 #include "reference/metric/counters.h"
 #include "reference/metric/traversal.h"
+#include "shadowcts/huge_pages.h"
 #include "shadowcts/prepared_scene.h"
 
 namespace shadowcts::simd::metric {
@@ -43,8 +44,8 @@ struct alignas(64) TriangleGroup {
 };
 
 struct ClusterTriangles {
-  std::vector<TriangleGroup> groups;   // cluster k's from first_groups(...)[k] on
-  std::vector<std::uint32_t> slot_of;  // per caster triangle: its slot (finds a receiver in O(1))
+  HugePageVector<TriangleGroup> groups;  // cluster k's from first_groups(...)[k] on
+  std::vector<std::uint32_t> slot_of;    // per caster triangle: its slot (finds a receiver in O(1))
 };
 
 // Per cluster, its first group in ClusterTriangles::groups; one more entry for the end.

@@ -21,6 +21,7 @@
 
 #include "reference/ptsv/node_test.h"
 #include "shadowcts/geometry/receiver_half_space.h"
+#include "shadowcts/huge_pages.h"
 #include "shadowcts/phase_progress.h"
 #include "simd/ptsv/traversal.h"
 
@@ -327,10 +328,10 @@ class Engine {
     }
     // Visitors of level 0: every volume, in order.
     std::vector<std::uint32_t> offsets = {0, std::uint32_t(vols_.order.size())};
-    std::vector<std::uint32_t> visitors = vols_.order;
+    HugePageVector<std::uint32_t> visitors(vols_.order.begin(), vols_.order.end());
     // Per visit of a level; reused from level to level (every entry is written before it is read).
-    std::vector<Verdicts> verdicts;
-    std::vector<std::uint32_t> remaining;
+    HugePageVector<Verdicts> verdicts;
+    HugePageVector<std::uint32_t> remaining;
     std::atomic<std::uint64_t> node_tests{0}, sample_tests{0}, accepts{0}, rejects{0}, culls{0};
     for (int l = 0; l <= leaves; ++l) {
       const Level& L = h_.levels[std::size_t(l)];
@@ -431,7 +432,7 @@ class Engine {
       std::vector<std::uint32_t> next_offsets(below.size() + 1, 0u);
       for (std::size_t c = 0; c < below.size(); ++c)
         next_offsets[c + 1] = next_offsets[c] + child_count[c];
-      std::vector<std::uint32_t> next_visitors(next_offsets.back());
+      HugePageVector<std::uint32_t> next_visitors(next_offsets.back());
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, L.size(), 16),
                         [&](const tbb::blocked_range<std::size_t>& r) {
                           for (std::size_t p = r.begin(); p != r.end(); ++p) {

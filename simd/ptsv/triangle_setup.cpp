@@ -31,6 +31,7 @@
 
 #include "shadowcts/errors.h"
 #include "shadowcts/geometry/camera_frame.h"
+#include "shadowcts/huge_pages.h"
 
 #include "simd/ptsv/triangle_setup.h"
 
@@ -230,16 +231,14 @@ bool holds_a_sample(const Hierarchy& h, const glm::vec3& lo, const glm::vec3& hi
 }
 
 PackedVolume* allocate_volumes(std::size_t n) {
-  void* p =
-      std::aligned_alloc(alignof(PackedVolume), std::max<std::size_t>(1, n) * sizeof(PackedVolume));
-  if (p == nullptr) throw std::bad_alloc();
-  return static_cast<PackedVolume*>(p);
+  return static_cast<PackedVolume*>(
+      allocate_large(n * sizeof(PackedVolume), alignof(PackedVolume)));
 }
 
 }  // namespace
 
 void FreeVolumes::operator()(PackedVolume* p) const {
-  std::free(p);
+  free_large(p);
 }
 
 std::vector<bool> front_face_culling_meshes(const PreparedScene& scene, const Hierarchy& h,
