@@ -252,26 +252,32 @@ HWY_INLINE std::uint64_t mask_bits(D d, M m) {
   return bits;
 }
 
-// The cones [begin, begin + count) of `a`, count <= lanes; missing lanes repeat the first cone.
-HWY_INLINE ConeLanes load_cones(D d, const ConeArrays& a, std::size_t begin, std::size_t count) {
+// Entries [begin, begin + count) of each of five arrays, count <= lanes; missing lanes repeat
+// entry `begin` (a full vector is one unaligned load per array).
+HWY_INLINE void load_five(D d, const double* const (&arrays)[5], std::size_t begin,
+                          std::size_t count, V (&out)[5]) {
   const std::size_t lanes = hn::Lanes(d);
-  ConeLanes l;
   if (count == lanes) {
-    for (int k = 0; k < 3; ++k) l.tip[k] = hn::LoadU(d, a.tip[k].data() + begin);
-    l.start = hn::LoadU(d, a.start_height.data() + begin);
-    l.tip_length = hn::LoadU(d, a.tip_length.data() + begin);
-    return l;
+    for (int k = 0; k < 5; ++k) out[k] = hn::LoadU(d, arrays[k] + begin);
+    return;
   }
   HWY_ALIGN double buffer[5][HWY_MAX_BYTES / sizeof(double)];
-  for (std::size_t i = 0; i < lanes; ++i) {
-    const std::size_t j = begin + (i < count ? i : 0);
-    for (int k = 0; k < 3; ++k) buffer[k][i] = a.tip[k][j];
-    buffer[3][i] = a.start_height[j];
-    buffer[4][i] = a.tip_length[j];
-  }
-  for (int k = 0; k < 3; ++k) l.tip[k] = hn::Load(d, buffer[k]);
-  l.start = hn::Load(d, buffer[3]);
-  l.tip_length = hn::Load(d, buffer[4]);
+  for (std::size_t i = 0; i < lanes; ++i)
+    for (int k = 0; k < 5; ++k) buffer[k][i] = arrays[k][begin + (i < count ? i : 0)];
+  for (int k = 0; k < 5; ++k) out[k] = hn::Load(d, buffer[k]);
+}
+
+// The cones [begin, begin + count) of `a`, count <= lanes; missing lanes repeat the first cone.
+HWY_INLINE ConeLanes load_cones(D d, const ConeArrays& a, std::size_t begin, std::size_t count) {
+  V v[5];
+  load_five(d,
+            {a.tip[0].data(), a.tip[1].data(), a.tip[2].data(), a.start_height.data(),
+             a.tip_length.data()},
+            begin, count, v);
+  ConeLanes l;
+  for (int k = 0; k < 3; ++k) l.tip[k] = v[k];
+  l.start = v[3];
+  l.tip_length = v[4];
   return l;
 }
 
@@ -387,25 +393,15 @@ HWY_INLINE std::uint64_t may_shadow_lanes(D d, const ConeLanes& l, std::size_t c
 //   minimum above 1e-7 L + 2 err_max + 2e-9 spread decides it.
 HWY_INLINE std::uint64_t open_nodes(D d, const ConeGroups& level, std::size_t begin,
                                     std::size_t count, const SunLanes& sun, const BoundTerms& t) {
-  const std::size_t lanes = hn::Lanes(d);
+  V v[5];
+  load_five(d,
+            {level.tip[0].data(), level.tip[1].data(), level.tip[2].data(), level.tip_length.data(),
+             level.spread.data()},
+            begin, count, v);
   ConeLanes l;
-  V spread;
-  if (count == lanes) {
-    for (int k = 0; k < 3; ++k) l.tip[k] = hn::LoadU(d, level.tip[k].data() + begin);
-    l.tip_length = hn::LoadU(d, level.tip_length.data() + begin);
-    spread = hn::LoadU(d, level.spread.data() + begin);
-  } else {
-    HWY_ALIGN double buffer[5][HWY_MAX_BYTES / sizeof(double)];
-    for (std::size_t i = 0; i < lanes; ++i) {
-      const std::size_t j = begin + (i < count ? i : 0);
-      for (int k = 0; k < 3; ++k) buffer[k][i] = level.tip[k][j];
-      buffer[3][i] = level.tip_length[j];
-      buffer[4][i] = level.spread[j];
-    }
-    for (int k = 0; k < 3; ++k) l.tip[k] = hn::Load(d, buffer[k]);
-    l.tip_length = hn::Load(d, buffer[3]);
-    spread = hn::Load(d, buffer[4]);
-  }
+  for (int k = 0; k < 3; ++k) l.tip[k] = v[k];
+  l.tip_length = v[3];
+  const V spread = v[4];
   l.start = hn::Zero(d);  // unused: truncation is left to the triangles
   const V zero = hn::Zero(d);
   V centre[3];
