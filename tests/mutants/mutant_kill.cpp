@@ -9,8 +9,17 @@
 // run, so the catalogue names its killing case.
 // A mutant the listed cases cannot kill is documented with --survives "<the case it would need>":
 // then surviving passes and being killed fails (the catalogue must be updated).
+// A mutant that plants its bug into a port of a kind this suite does not have (the edge order of a
+// port whose planes are float32) names that port's other bug as a mutant of its own, the control:
+// a record counts as a kill only where the control passes it too, so the kill is the mutant's own
+// bug and not the control's.
 //   mutant_kill --mutant NAME --unmutated PATH_TO_SHADOWCTS --algorithm ID[:VARIANT]
 //               (--fixture NAME | --suite stiff)... [--survives WHY]
+//               [--control NAME --control-program PATH_TO_ITS_MUTANT]
+// Every mutant executable also answers the subset of `shadowcts run` used below, so that it can
+// serve as another mutant's control:
+//   mutant_kill run --algorithm ID[:VARIANT] --repeat 1 --no-images --out DIR
+//               (--fixture NAME | --suite stiff)
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -36,9 +45,10 @@ struct Arguments {
   std::string mutant;
   std::string unmutated;  // the `shadowcts` program, built from the unmutated sources
   AlgorithmSelection algorithm;
-  std::string algorithm_text;         // ID[:VARIANT] as given
-  std::vector<std::string> fixtures;  // "suite:stiff" for the stiff suite
-  std::string survives;               // why the cases cannot kill it; empty: they must
+  std::string algorithm_text;            // ID[:VARIANT] as given
+  std::vector<std::string> fixtures;     // "suite:stiff" for the stiff suite
+  std::string survives;                  // why the cases cannot kill it; empty: they must
+  std::string control, control_program;  // the control mutant and its executable; or empty
 };
 
 Arguments parse(int argc, char** argv) {
@@ -60,15 +70,19 @@ Arguments parse(int argc, char** argv) {
       a.fixtures.push_back("suite:" + value);
     } else if (key == "--survives") {
       a.survives = value;
+    } else if (key == "--control") {
+      a.control = value;
+    } else if (key == "--control-program") {
+      a.control_program = value;
     } else {
       throw std::runtime_error("unknown argument " + key);
     }
   }
   if (argc % 2 != 1 || a.mutant.empty() || a.unmutated.empty() || a.algorithm.id.empty() ||
-      a.fixtures.empty())
+      a.fixtures.empty() || a.control.empty() != a.control_program.empty())
     throw std::runtime_error(
         "usage: mutant_kill --mutant NAME --unmutated SHADOWCTS --algorithm ID[:VARIANT] "
-        "(--fixture F | --suite S)...");
+        "(--fixture F | --suite S)... [--survives WHY] [--control NAME --control-program PATH]");
   return a;
 }
 
@@ -86,11 +100,13 @@ std::map<std::string, std::pair<std::string, std::string>> verdicts(const fs::pa
   return out;
 }
 
-// Runs the unmutated `shadowcts run` on the same case and selection; returns its exit status.
-int run_unmutated(const Arguments& args, const std::string& fixture, const fs::path& out_dir) {
-  std::vector<std::string> command = {args.unmutated,      "run",      "--algorithm",
-                                      args.algorithm_text, "--repeat", "1",
-                                      "--no-images",       "--out",    out_dir.string()};
+// Runs `program run` (the unmutated `shadowcts`, or a control mutant) on the same case and
+// selection; returns its exit status.
+int run_program(const std::string& program, const Arguments& args, const std::string& fixture,
+                const fs::path& out_dir) {
+  std::vector<std::string> command = {program,         "run", "--algorithm", args.algorithm_text,
+                                      "--repeat",      "1",   "--no-images", "--out",
+                                      out_dir.string()};
   if (fixture.rfind("suite:", 0) == 0) {
     command.insert(command.end(), {"--suite", fixture.substr(6)});
   } else {
@@ -113,9 +129,41 @@ int run_unmutated(const Arguments& args, const std::string& fixture, const fs::p
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
+// `run` mode: this mutant's verdicts on one case, written to DIR/results.json.
+int run_mode(int argc, char** argv) {
+  RunOptions options;
+  for (int i = 2; i < argc; ++i) {
+    const std::string key = argv[i];
+    if (key == "--no-images") {
+      options.images = false;
+      continue;
+    }
+    if (i + 1 == argc) throw std::runtime_error("run: " + key + " needs a value");
+    const std::string value = argv[++i];
+    if (key == "--algorithm") {
+      const auto colon = value.find(':');
+      options.algorithms = {
+          {value.substr(0, colon), colon == std::string::npos ? "" : value.substr(colon + 1)}};
+    } else if (key == "--repeat") {
+      options.repeats = std::uint32_t(std::stoul(value));
+    } else if (key == "--out") {
+      options.out_dir = value;
+    } else if (key == "--fixture") {
+      options.fixtures = {value};
+    } else if (key == "--suite") {
+      options.suite = value;
+    } else {
+      throw std::runtime_error("run: unknown argument " + key);
+    }
+  }
+  std::ostringstream log;
+  return run_suite(options, builtin_registry(), log, std::cerr);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) try {
+  if (argc > 1 && std::string(argv[1]) == "run") return run_mode(argc, argv);
   const Arguments args = parse(argc, argv);
   const fs::path out_root = fs::current_path() / ("mutant-" + args.mutant);
   for (const std::string& fixture : args.fixtures) {
@@ -139,13 +187,27 @@ int main(int argc, char** argv) try {
     if (code == exit_conformance_failure) {
       // Only now is the unmutated run needed: a case without a failed record cannot kill.
       const fs::path unmutated_dir = out_root / fixture / "unmutated";
-      const int unmutated_code = run_unmutated(args, fixture, unmutated_dir);
+      const int unmutated_code = run_program(args.unmutated, args, fixture, unmutated_dir);
       if (unmutated_code != exit_pass && unmutated_code != exit_conformance_failure) {
         std::cout << "ERROR unmutated " << args.unmutated << " on " << fixture << " (exit "
                   << unmutated_code << ")\n";
         return 1;
       }
       const auto unmutated = verdicts(unmutated_dir / "results.json", args.algorithm.id);
+      std::map<std::string, std::pair<std::string, std::string>> control;
+      if (!args.control.empty()) {
+        const fs::path control_dir = out_root / fixture / ("control-" + args.control);
+        const int control_code = run_program(args.control_program, args, fixture, control_dir);
+        if (control_code != exit_pass && control_code != exit_conformance_failure) {
+          std::cout << "ERROR control " << args.control << " on " << fixture << " (exit "
+                    << control_code << ")\n";
+          return 1;
+        }
+        control = verdicts(control_dir / "results.json", args.algorithm.id);
+      }
+      const auto passes = [](const std::string& verdict) {
+        return verdict == "Pass" || verdict == "QualityWarning";
+      };
       for (const auto& [name, verdict] :
            verdicts(fs::path(options.out_dir) / "results.json", args.algorithm.id)) {
         if (verdict.first != "Fail") continue;
@@ -154,12 +216,27 @@ int main(int argc, char** argv) try {
           std::cout << "ERROR the unmutated run has no record " << name << "\n";
           return 1;
         }
-        if (same->second.first == "Pass" || same->second.first == "QualityWarning")
-          kills.push_back(name + " Fail (unmutated: " + same->second.first +
-                          "): " + verdict.second);
-        else
+        if (!passes(same->second.first)) {
           std::cout << "  not a kill, fails unmutated too: " << name << " (" << same->second.first
                     << ")\n";
+          continue;
+        }
+        std::string control_verdict;
+        if (!args.control.empty()) {
+          const auto other = control.find(name);
+          if (other == control.end()) {
+            std::cout << "ERROR the control run has no record " << name << "\n";
+            return 1;
+          }
+          if (!passes(other->second.first)) {
+            std::cout << "  not a kill, the control " << args.control << " fails it too: " << name
+                      << " (" << other->second.first << ")\n";
+            continue;
+          }
+          control_verdict = ", control " + args.control + ": " + other->second.first;
+        }
+        kills.push_back(name + " Fail (unmutated: " + same->second.first + control_verdict +
+                        "): " + verdict.second);
       }
     }
     if (!kills.empty()) {
