@@ -72,6 +72,19 @@ CaseWithSamples permute_axes(const CaseWithSamples& in, const int axis[3], const
   return out;
 }
 
+CaseWithSamples turn_image_over(const CaseWithSamples& in, std::vector<std::size_t>& new_index) {
+  CaseWithSamples out = in;
+  const std::uint32_t width = in.samples.width;
+  new_index.assign(in.samples.samples.size(), 0);
+  for (std::size_t i = 0; i < in.samples.samples.size(); ++i) {
+    ViewSample s = in.samples.samples[i];
+    s.pixel_x = width - 1 - s.pixel_x;
+    new_index[i] = std::size_t(s.pixel_y) * width + s.pixel_x;
+    out.samples.samples[new_index[i]] = s;
+  }
+  return out;
+}
+
 CaseWithSamples rotate_vertex_order(const CaseWithSamples& in) {
   CaseWithSamples out = in;
   for (Triangle& t : out.c.triangles) t = {t.v1, t.v2, t.v0, t.mesh};

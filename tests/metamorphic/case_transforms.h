@@ -25,6 +25,12 @@ CaseWithSamples scale_by_power_of_two(const CaseWithSamples& in, int k);
 // meshes' outward orientation) is kept.
 CaseWithSamples permute_axes(const CaseWithSamples& in, const int axis[3], const float sign[3]);
 
+// After a mirroring permute_axes the camera's right vector (a cross product) turns round, so the
+// image turns over left to right: the sample seen at pixel (x, y) is now seen at (W - 1 - x, y).
+// Moves each sample to that pixel (the row-major order and pixel_x), as the camera would cast it;
+// `new_index` receives, per sample of the input, its index in the result.
+CaseWithSamples turn_image_over(const CaseWithSamples& in, std::vector<std::size_t>& new_index);
+
 // (v0, v1, v2) -> (v1, v2, v0): same triangle, same winding.
 CaseWithSamples rotate_vertex_order(const CaseWithSamples& in);
 

@@ -1,8 +1,7 @@
 // Metamorphic relations for the soft-shadow and light-assignment outputs (issue 25), in the style
 // of metamorphic_test.cpp: exact transforms of a case and of its view samples (scaling by 2^k,
-// axis permutations: rotations for light lists, a mirror too for soft shadows; triangle order,
-// light order) must not change what the exact oracles say, and must not change an algorithm's
-// answer beyond what the transform allows.
+// axis permutations, a rotation and a mirror; triangle order, light order) must not change what the
+// exact oracles say, and must not change an algorithm's answer beyond what the transform allows.
 //
 // - Light lists: the exact light sets and their band are invariant (each light renamed by the
 //   light order). Every registered light-assignment algorithm x variant x backend must list every
@@ -51,6 +50,10 @@ struct Transformed {
   CaseWithSamples after;
   // Per light of `after`, its index in the original (the identity unless lights are reordered).
   std::vector<std::uint32_t> old_light;
+  // Per sample of the original, its index in `after`; empty: the same index (the image turns
+  // over only under a mirror, and only where the samples are moved to their new pixels).
+  std::vector<std::size_t> new_sample;
+  std::size_t sample_after(std::size_t s) const { return new_sample.empty() ? s : new_sample[s]; }
 };
 
 struct OutputRelation {
@@ -70,39 +73,42 @@ std::vector<std::uint32_t> identity(std::size_t n) {
 std::vector<OutputRelation> relations(bool with_lights) {
   std::vector<OutputRelation> list;
   for (const int k : {-20, 7})
-    list.push_back(
-        {"scale_2pow" + std::string(k < 0 ? "m" : "") + std::to_string(std::abs(k)), true,
-         [k](const CaseWithSamples& in) {
-           return Transformed{scale_by_power_of_two(in, k), identity(in.c.ranged_lights.size())};
-         }});
+    list.push_back({"scale_2pow" + std::string(k < 0 ? "m" : "") + std::to_string(std::abs(k)),
+                    true, [k](const CaseWithSamples& in) {
+                      return Transformed{
+                          scale_by_power_of_two(in, k), identity(in.c.ranged_lights.size()), {}};
+                    }});
   list.push_back(
       {"permute_axes_zxy", false, [](const CaseWithSamples& in) {
          const int axis[3] = {2, 0, 1};
          const float sign[3] = {1.0f, 1.0f, 1.0f};
-         return Transformed{permute_axes(in, axis, sign), identity(in.c.ranged_lights.size())};
+         return Transformed{permute_axes(in, axis, sign), identity(in.c.ranged_lights.size()), {}};
        }});
   if (with_lights) {
-    // A mirror turns the camera's image over (its right vector is a cross product), so the
-    // transformed samples would keep pixels the camera no longer sees them at, and tiles and
-    // clusters are made of pixels: light lists get the proper rotation (x, y, z) -> (y, x, -z),
-    // a half turn about (1, 1, 0), which swaps two axes and flips one.
-    list.push_back(
-        {"swap_xy_flip_z", false, [](const CaseWithSamples& in) {
-           const int axis[3] = {1, 0, 2};
-           const float sign[3] = {1.0f, 1.0f, -1.0f};
-           return Transformed{permute_axes(in, axis, sign), identity(in.c.ranged_lights.size())};
-         }});
-  } else {
-    list.push_back(
-        {"mirror_x_swap_yz", false, [](const CaseWithSamples& in) {
-           const int axis[3] = {0, 2, 1};
-           const float sign[3] = {-1.0f, 1.0f, -1.0f};
-           return Transformed{permute_axes(in, axis, sign), identity(in.c.ranged_lights.size())};
-         }});
+    // The proper rotation (x, y, z) -> (y, x, -z), a half turn about (1, 1, 0), which swaps two
+    // axes and flips one.
+    list.push_back({"swap_xy_flip_z", false, [](const CaseWithSamples& in) {
+                      const int axis[3] = {1, 0, 2};
+                      const float sign[3] = {1.0f, 1.0f, -1.0f};
+                      return Transformed{
+                          permute_axes(in, axis, sign), identity(in.c.ranged_lights.size()), {}};
+                    }});
   }
+  // A mirror turns the camera's image over (its right vector is a cross product). Tiles and
+  // clusters are made of pixels, so for light lists each sample moves to the pixel the camera
+  // now sees it at (the tile grid maps onto itself: the widths here are multiples of the tile);
+  // soft shadows keep the samples where they were, which their budget absorbs.
+  list.push_back(
+      {"mirror_x_swap_yz", false, [with_lights](const CaseWithSamples& in) {
+         const int axis[3] = {0, 2, 1};
+         const float sign[3] = {-1.0f, 1.0f, -1.0f};
+         Transformed t{permute_axes(in, axis, sign), identity(in.c.ranged_lights.size()), {}};
+         if (with_lights) t.after = turn_image_over(t.after, t.new_sample);
+         return t;
+       }});
   list.push_back(
       {"shuffle_triangles", true, [](const CaseWithSamples& in) {
-         return Transformed{shuffle_triangles(in, 0x5eed), identity(in.c.ranged_lights.size())};
+         return Transformed{shuffle_triangles(in, 0x5eed), identity(in.c.ranged_lights.size()), {}};
        }});
   if (with_lights)
     list.push_back({"shuffle_lights", true, [](const CaseWithSamples& in) {
@@ -230,9 +236,10 @@ TEST_P(ExactLightOracleInvariance, SameSetsAndBandOnEverySample) {
     const LightAssignmentTruth &a = before.for_variant(normal_rule),
                                &b = p.after.for_variant(normal_rule);
     for (std::size_t s = 0; s < in.samples.samples.size(); ++s) {
-      const auto ra = robust_members(a, s, same), rb = robust_members(b, s, p.t.old_light);
+      const std::size_t t = p.t.sample_after(s);
+      const auto ra = robust_members(a, s, same), rb = robust_members(b, t, p.t.old_light);
       members += ra.size();
-      if (ra == rb && ambiguous(a, s, same) == ambiguous(b, s, p.t.old_light)) continue;
+      if (ra == rb && ambiguous(a, s, same) == ambiguous(b, t, p.t.old_light)) continue;
       if (++differences <= 5)
         ADD_FAILURE() << "sample " << s << (normal_rule ? " (normal rule)" : "") << ": "
                       << ra.size() << " -> " << rb.size() << " robust members";
@@ -312,10 +319,11 @@ TEST_P(LightListInvariance, SameListsAndEveryRobustMemberListed) {
       for (std::size_t s = 0; s < in.samples.samples.size(); ++s) {
         if (in.samples.samples[s].sample_class != SampleClass::regular) continue;
         ++compared;
+        const std::size_t t = p.t.sample_after(s);
         const auto a = listed(before.light_lists, s, same);
-        const auto b = listed(after.light_lists, s, p.t.old_light);
+        const auto b = listed(after.light_lists, t, p.t.old_light);
         listed_pairs += a.size();
-        for (const std::uint32_t l : robust_members(truth_after, s, p.t.old_light))
+        for (const std::uint32_t l : robust_members(truth_after, t, p.t.old_light))
           if (!std::binary_search(b.begin(), b.end(), l) && ++missing <= 3)
             ADD_FAILURE() << "sample " << s << ": robust member " << l << " not listed after";
         for (const std::uint32_t l : robust_members(truth_before, s, same))
