@@ -1,5 +1,6 @@
 #include "oracles/soft_shadow/band_sensitivity.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -24,6 +25,32 @@ double triangle_band_sensitivity(const SunDiskFrame& frame, const glm::dvec3& p,
   if (length == 0.0) return 0.0;
   const double bound = (2.0 * m * length + std::numbers::pi * m * m) / std::numbers::pi;
   return std::min(1.0, bound * (1.0 + 1e-6));  // covers the double rounding of the terms
+}
+
+double caster_band_sensitivity(const SunDiskFrame& frame, const glm::dvec3& p,
+                               const std::array<glm::dvec3, 3>& v, double angle, double move) {
+  const double distance = distance_to_triangle(p, v);
+  const double off_cone =
+      distance * std::sin(std::min(angle - frame.angular_radius, std::numbers::pi / 2));
+  if (!(off_cone <= move * (1.0 + 1e-9))) return 0.0;
+  return triangle_band_sensitivity(frame, p, v, distance, move);
+}
+
+double sample_band_sensitivity(const Case& c, const SunDiskFrame& frame,
+                               const LightConeBvh& casters, const ViewSample& sample, double move) {
+  const glm::dvec3 p(sample.position);
+  double sensitivity = 0.0;
+  casters.visit(
+      LightCone{p, frame.direction, frame.angular_radius}, move, [&](std::uint32_t index) {
+        if (index == sample.receiver || sensitivity >= 1.0) return;
+        const Triangle& t = c.triangles[index];
+        const std::array<glm::dvec3, 3> v{glm::dvec3(t.v0), glm::dvec3(t.v1), glm::dvec3(t.v2)};
+        const std::array<glm::dvec3, 3> w{v[0] - p, v[1] - p, v[2] - p};
+        sensitivity = std::min(
+            1.0, sensitivity + caster_band_sensitivity(
+                                   frame, p, v, angle_to_triangle(frame.direction, w), move));
+      });
+  return sensitivity;
 }
 
 }  // namespace shadowcts

@@ -14,7 +14,10 @@
 
 #include <glm/vec3.hpp>
 
+#include "oracles/soft_shadow/light_cone_bvh.h"
 #include "oracles/soft_shadow/sun_disk_projection.h"
+#include "shadowcts/case.h"
+#include "shadowcts/view_samples.h"
 
 namespace shadowcts {
 
@@ -23,5 +26,19 @@ namespace shadowcts {
 // (the triangle is within about `move` of p, or the bound exceeds 1).
 double triangle_band_sensitivity(const SunDiskFrame& frame, const glm::dvec3& p,
                                  const std::array<glm::dvec3, 3>& v, double distance, double move);
+
+// What caster triangle v adds to the band sensitivity of the sample at p: its
+// triangle_band_sensitivity where it comes within `move` of the light cone, else 0. angle: the
+// smallest angle between the cone's axis and a direction from p into the triangle
+// (angle_to_triangle).
+double caster_band_sensitivity(const SunDiskFrame& frame, const glm::dvec3& p,
+                               const std::array<glm::dvec3, 3>& v, double angle, double move);
+
+// The band sensitivity of one view sample: the sum over the casters near its light cone (all but
+// its receiver), at most 1. The exact oracle computes it in the pass that also gathers the
+// projections; the sampled oracle, whose rays cannot tell how close the answer is to changing,
+// calls this.
+double sample_band_sensitivity(const Case& c, const SunDiskFrame& frame,
+                               const LightConeBvh& casters, const ViewSample& sample, double move);
 
 }  // namespace shadowcts

@@ -43,12 +43,9 @@ SampleResult exact_sample(const Case& c, const SunDiskFrame& frame, const LightC
       const DiskPolygon projection = project_triangle(frame, p, v, FrontProjection::vertices, 2.0);
       if (projection.count > 0) projections.push_back(projection);
     }
-    const double distance = distance_to_triangle(p, v);
-    const double off_cone =
-        distance * std::sin(std::min(angle - frame.angular_radius, std::numbers::pi / 2));
-    if (off_cone <= move * (1.0 + 1e-9) && result.sensitivity < 1.0)
-      result.sensitivity = std::min(
-          1.0, result.sensitivity + triangle_band_sensitivity(frame, p, v, distance, move));
+    if (result.sensitivity < 1.0)
+      result.sensitivity =
+          std::min(1.0, result.sensitivity + caster_band_sensitivity(frame, p, v, angle, move));
   });
   result.candidates = std::uint32_t(projections.size());
   const CoveredDiskArea covered = covered_disk_area(projections);

@@ -1,5 +1,6 @@
 // The exact soft-shadow oracle against the sampled one on the soft-shadow fixtures: every compared
-// sample within the sampled oracle's stated bound, and far closer on average (stratification).
+// sample within the sampled oracle's stated bound, and far closer on average (stratification);
+// both call the same samples ambiguous.
 // Pixels are subsampled to keep CI time modest.
 #include <chrono>
 #include <cmath>
@@ -38,6 +39,9 @@ TEST_P(SoftFixtureAgreement, ExactWithinSampledBound) {
     if (!exact.compared[i]) continue;
     ++compared;
     robust += exact.robust[i];
+    // Both oracles classify by the same band sensitivity bound: ambiguous samples are the same.
+    EXPECT_EQ(sampled.band_sensitivity[i], exact.band_sensitivity[i]) << "sample " << i;
+    EXPECT_EQ(sampled.robust[i], exact.robust[i]) << "sample " << i;
     penumbra += exact.visible_fraction[i] > 0.0 && exact.visible_fraction[i] < 1.0;
     const double difference = std::fabs(exact.visible_fraction[i] - sampled.visible_fraction[i]);
     EXPECT_LE(difference, sampled.error_bound[i])
@@ -48,6 +52,9 @@ TEST_P(SoftFixtureAgreement, ExactWithinSampledBound) {
     worst = std::max(worst, difference);
   }
   ASSERT_GT(compared, 100u);
+  // Some samples are ambiguous (near a caster), or the classification is not tested.
+  EXPECT_LT(robust, compared);
+  EXPECT_GT(robust, compared / 2);
   // The fixture must exercise the penumbra, or the comparison tests little.
   EXPECT_GT(penumbra, compared / 20);
   // Stratified sampling: the mean difference is a small fraction of the worst-case bound.
