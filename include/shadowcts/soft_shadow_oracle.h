@@ -40,8 +40,8 @@ struct SoftShadowTruth {
   std::vector<double> error_bound;
   // Per sample: a certified upper bound on |f(p') - f(p)| over every move p' of the sample with
   // |p' - p|_inf <= tau (this contains the 14 band moves of DESIGN.md at every j); 1 where it
-  // cannot be bounded (a caster within about tau of the sample). Exact oracle only; the sampled
-  // oracle leaves it at 0 (it does not classify).
+  // cannot be bounded (a caster within about tau of the sample). Both oracles compute it the same
+  // way (from the casters near the sample's light cone), so they agree on which samples are robust.
   std::vector<double> band_sensitivity;
   // Per sample: compared (regular) and band_sensitivity <= soft_robust_sensitivity.
   std::vector<std::uint8_t> robust;
@@ -69,7 +69,8 @@ inline constexpr double sampled_oracle_failure_probability = 1e-9;
 // so every stratum has the same gnomonic area. The estimate is the fraction of unblocked rays.
 // error_bound = sqrt(ln(2 / delta) / (2 k^2)) with delta = sampled_oracle_failure_probability
 // (Hoeffding: the k^2 stratum indicators are independent), plus the float rounding of the ray
-// directions, which is far below it. exact = false; robust = compared; band_sensitivity = 0.
+// directions, which is far below it. exact = false; band_sensitivity and robust as the exact
+// oracle's.
 SoftShadowTruth sampled_soft_shadow_oracle(const Case& c, const ViewSamples& samples,
                                            std::uint32_t rays_per_sample);
 
