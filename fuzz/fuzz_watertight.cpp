@@ -1,6 +1,7 @@
 // libFuzzer target: shared-edge watertightness. The bytes drive the watertight generator
 // (fixtures/fuzz/watertight_generator.cpp): closed fans, bipyramids, tessellated boxes and
-// T-junctions with dyadic vertices, samples aimed exactly through shared edges and vertices.
+// T-junctions with dyadic vertices (one case in four rotated off the lattice), each triangle's
+// vertex list starting at another corner, samples aimed through shared edges and vertices.
 // Every registered algorithm must agree with the exact oracle on every robust sample, apart from
 // Embree's documented limits the generator reports (T-junctions, rays through shared vertices).
 // Violations are shrunk and written as reproducers (support/conformance_check.h).
