@@ -27,6 +27,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -51,6 +52,12 @@ struct Arguments {
   std::string control, control_program;  // the control mutant and its executable; or empty
 };
 
+// "ID[:VARIANT]" as a selection.
+AlgorithmSelection selection_of(const std::string& text) {
+  const auto colon = text.find(':');
+  return {text.substr(0, colon), colon == std::string::npos ? "" : text.substr(colon + 1)};
+}
+
 Arguments parse(int argc, char** argv) {
   Arguments a;
   for (int i = 1; i + 1 < argc; i += 2) {
@@ -60,9 +67,7 @@ Arguments parse(int argc, char** argv) {
     } else if (key == "--unmutated") {
       a.unmutated = value;
     } else if (key == "--algorithm") {
-      const auto colon = value.find(':');
-      a.algorithm = {value.substr(0, colon),
-                     colon == std::string::npos ? "" : value.substr(colon + 1)};
+      a.algorithm = selection_of(value);
       a.algorithm_text = value;
     } else if (key == "--fixture") {
       a.fixtures.push_back(value);
@@ -86,13 +91,15 @@ Arguments parse(int argc, char** argv) {
   return a;
 }
 
-// Record name -> {verdict, reason} for every record of `algorithm` in a results.json.
-std::map<std::string, std::pair<std::string, std::string>> verdicts(const fs::path& results,
-                                                                    const std::string& algorithm) {
+// Record name -> {verdict, reason}.
+using RecordVerdicts = std::map<std::string, std::pair<std::string, std::string>>;
+
+// Every record of `algorithm` in a results.json.
+RecordVerdicts verdicts(const fs::path& results, const std::string& algorithm) {
   std::ifstream in(results);
   if (!in) throw std::runtime_error("cannot read " + results.string());
   const nlohmann::json json = nlohmann::json::parse(in);
-  std::map<std::string, std::pair<std::string, std::string>> out;
+  RecordVerdicts out;
   for (const nlohmann::json& r : json.at("results"))
     if (r.at("algorithm") == algorithm)
       out[r.at("name").get<std::string>()] = {r.at("verdict").get<std::string>(),
@@ -129,6 +136,20 @@ int run_program(const std::string& program, const Arguments& args, const std::st
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
+// `program run` on the case, then its records; nullopt, after saying why, when it did not finish.
+// what: "unmutated" or "control NAME", for the message.
+std::optional<RecordVerdicts> verdicts_of_run(const std::string& what, const std::string& program,
+                                              const Arguments& args, const std::string& fixture,
+                                              const fs::path& out_dir) {
+  const int code = run_program(program, args, fixture, out_dir);
+  if (code != exit_pass && code != exit_conformance_failure) {
+    std::cout << "ERROR " << what << " " << program << " on " << fixture << " (exit " << code
+              << ")\n";
+    return std::nullopt;
+  }
+  return verdicts(out_dir / "results.json", args.algorithm.id);
+}
+
 // `run` mode: this mutant's verdicts on one case, written to DIR/results.json.
 int run_mode(int argc, char** argv) {
   RunOptions options;
@@ -141,9 +162,7 @@ int run_mode(int argc, char** argv) {
     if (i + 1 == argc) throw std::runtime_error("run: " + key + " needs a value");
     const std::string value = argv[++i];
     if (key == "--algorithm") {
-      const auto colon = value.find(':');
-      options.algorithms = {
-          {value.substr(0, colon), colon == std::string::npos ? "" : value.substr(colon + 1)}};
+      options.algorithms = {selection_of(value)};
     } else if (key == "--repeat") {
       options.repeats = std::uint32_t(std::stoul(value));
     } else if (key == "--out") {
@@ -186,24 +205,14 @@ int main(int argc, char** argv) try {
     std::vector<std::string> kills;
     if (code == exit_conformance_failure) {
       // Only now is the unmutated run needed: a case without a failed record cannot kill.
-      const fs::path unmutated_dir = out_root / fixture / "unmutated";
-      const int unmutated_code = run_program(args.unmutated, args, fixture, unmutated_dir);
-      if (unmutated_code != exit_pass && unmutated_code != exit_conformance_failure) {
-        std::cout << "ERROR unmutated " << args.unmutated << " on " << fixture << " (exit "
-                  << unmutated_code << ")\n";
-        return 1;
-      }
-      const auto unmutated = verdicts(unmutated_dir / "results.json", args.algorithm.id);
-      std::map<std::string, std::pair<std::string, std::string>> control;
+      const std::optional<RecordVerdicts> unmutated = verdicts_of_run(
+          "unmutated", args.unmutated, args, fixture, out_root / fixture / "unmutated");
+      if (!unmutated) return 1;
+      std::optional<RecordVerdicts> control;
       if (!args.control.empty()) {
-        const fs::path control_dir = out_root / fixture / ("control-" + args.control);
-        const int control_code = run_program(args.control_program, args, fixture, control_dir);
-        if (control_code != exit_pass && control_code != exit_conformance_failure) {
-          std::cout << "ERROR control " << args.control << " on " << fixture << " (exit "
-                    << control_code << ")\n";
-          return 1;
-        }
-        control = verdicts(control_dir / "results.json", args.algorithm.id);
+        control = verdicts_of_run("control " + args.control, args.control_program, args, fixture,
+                                  out_root / fixture / ("control-" + args.control));
+        if (!control) return 1;
       }
       const auto passes = [](const std::string& verdict) {
         return verdict == "Pass" || verdict == "QualityWarning";
@@ -211,8 +220,8 @@ int main(int argc, char** argv) try {
       for (const auto& [name, verdict] :
            verdicts(fs::path(options.out_dir) / "results.json", args.algorithm.id)) {
         if (verdict.first != "Fail") continue;
-        const auto same = unmutated.find(name);
-        if (same == unmutated.end()) {
+        const auto same = unmutated->find(name);
+        if (same == unmutated->end()) {
           std::cout << "ERROR the unmutated run has no record " << name << "\n";
           return 1;
         }
@@ -222,9 +231,9 @@ int main(int argc, char** argv) try {
           continue;
         }
         std::string control_verdict;
-        if (!args.control.empty()) {
-          const auto other = control.find(name);
-          if (other == control.end()) {
+        if (control) {
+          const auto other = control->find(name);
+          if (other == control->end()) {
             std::cout << "ERROR the control run has no record " << name << "\n";
             return 1;
           }
