@@ -41,7 +41,8 @@ class DeviceDescents final : public psv::DescentEngine {
       : c_(c), planes_(planes), session_(std::move(session)), exact_tests_(exact_tests) {}
 
   void descend_batch(const psv::TopTree& tree, const std::vector<std::uint32_t>& triangles,
-                     std::vector<psv::Descent>& out) override {
+                     std::vector<psv::Descent>& out,
+                     std::vector<psv::BatchVolume>& volumes) override {
     session_->descend(reinterpret_cast<const PsvDeviceNode*>(tree.nodes.data()),
                       reinterpret_cast<const PsvDeviceSource*>(tree.sources.data()),
                       tree.nodes.size(), tree.root, triangles, descents_);
@@ -50,6 +51,7 @@ class DeviceDescents final : public psv::DescentEngine {
       out[i] = {d.parent, d.ancestor, d.into_intersection != 0, d.dropped != 0};
     }
     exact_tests_ = session_->exact_plane_tests();
+    psv::make_batch_volumes(planes_, triangles, out, volumes);
   }
 
   void resume(const psv::TopTree& tree, std::uint32_t node, std::uint32_t triangle,

@@ -98,7 +98,7 @@ PsvBuild build_psv_in_batches(const Case& c, const ViewSamples& samples, std::ui
   PsvBuild build;
   const std::vector<std::uint32_t> order = prepare_build(c, samples, seed, build);
   const std::unique_ptr<DescentEngine> engine = make_engine(*build.planes);
-  build.tree = build_top_tree_in_batches(c, *build.planes, order, build.statistics, *engine, work);
+  build.tree = build_top_tree_in_batches(*build.planes, order, build.statistics, *engine, work);
   return build;
 }
 

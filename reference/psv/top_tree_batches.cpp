@@ -11,13 +11,6 @@
 namespace shadowcts::psv {
 namespace {
 
-// What a triangle of a batch brings to its commit, computed in parallel.
-struct Volume {
-  float depth = 0.0f;
-  TopNode nodes[nodes_per_volume];
-  VolumeSource source;
-};
-
 // The child a descent ended in: no_node while it is still empty.
 std::uint32_t slot_of(const TopTree& tree, const Descent& d) {
   if (d.parent == no_node) return tree.root;
@@ -89,24 +82,24 @@ void set_wedges(TopTree& tree, const PlaneSide& planes, const std::vector<float>
                     });
 }
 
-// Nodes on the longest root-to-leaf path, from the last volume to the first.
-std::uint64_t longest_path(const TopTree& tree) {
-  if (tree.root == no_node) return 0;
-  std::vector<std::uint32_t> height(tree.nodes.size(), 0);
-  const auto of = [&](std::uint32_t node) { return node == no_node ? 0u : height[node]; };
-  for (std::size_t i = tree.nodes.size(); i-- > 0;) {
-    const TopNode& n = tree.nodes[i];
-    std::uint32_t below = std::max(of(n.positive), of(n.intersection));
-    if (!is_capping_node(std::uint32_t(i))) below = std::max(below, height[i + 1]);
-    height[i] = below + 1;
-  }
-  return height[tree.root];
-}
-
 }  // namespace
 
-TopTree build_top_tree_in_batches(const Case& c, const PlaneSide& planes,
-                                  const std::vector<std::uint32_t>& order,
+void make_batch_volume(const PlaneSide& planes, std::uint32_t triangle, BatchVolume& volume) {
+  volume.depth = triangle_light_depth(planes.light(), planes.triangles()[triangle]);
+  planes.make_volume_planes(triangle, volume.nodes, volume.source);
+}
+
+void make_batch_volumes(const PlaneSide& planes, const std::vector<std::uint32_t>& triangles,
+                        const std::vector<Descent>& descents, std::vector<BatchVolume>& volumes) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), 256),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t j = range.begin(); j != range.end(); ++j)
+                        if (!descents[j].dropped)
+                          make_batch_volume(planes, triangles[j], volumes[j]);
+                    });
+}
+
+TopTree build_top_tree_in_batches(const PlaneSide& planes, const std::vector<std::uint32_t>& order,
                                   BuildStatistics& statistics, DescentEngine& engine,
                                   BatchWork& work) {
   TopTree tree;
@@ -114,31 +107,31 @@ TopTree build_top_tree_in_batches(const Case& c, const PlaneSide& planes,
   tree.sources.reserve(order.size());
   std::vector<float> own_depth;
   own_depth.reserve(order.size());
+  std::vector<std::uint32_t> first_level;  // per volume: nodes from the root to its first node
+  first_level.reserve(order.size());
+  statistics.height = 0;
 
   constexpr std::size_t largest_batch = std::size_t(1) << 15;
   std::vector<std::uint32_t> triangles;
   std::vector<Descent> descents;
-  std::vector<Volume> volumes;
+  std::vector<BatchVolume> volumes;
   for (std::size_t begin = 0; begin < order.size();) {
     const std::size_t size = std::min(
         {order.size() - begin, largest_batch, std::max<std::size_t>(1, own_depth.size() / 2)});
     triangles.assign(order.begin() + std::ptrdiff_t(begin),
                      order.begin() + std::ptrdiff_t(begin + size));
     descents.assign(size, Descent());
-    engine.descend_batch(tree, triangles, descents);
-    // The volumes of the triangles that may stay, in parallel.
     volumes.resize(size);
-    tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, size, 256),
-        [&](const tbb::blocked_range<std::size_t>& range) {
-          for (std::size_t j = range.begin(); j != range.end(); ++j) {
-            if (descents[j].dropped) continue;
-            volumes[j].depth = triangle_light_depth(planes.light(), c.triangles[triangles[j]]);
-            planes.make_volume_planes(triangles[j], volumes[j].nodes, volumes[j].source);
-          }
-        });
+    engine.descend_batch(tree, triangles, descents, volumes);
     // Commit in insertion order.
     for (std::size_t j = 0; j < size; ++j) {
+      // The parents lie anywhere in the tree: fetch ahead.
+      constexpr std::size_t ahead = 16;
+      if (j + ahead < size && descents[j + ahead].parent != no_node) {
+        const std::uint32_t parent = descents[j + ahead].parent;
+        __builtin_prefetch(&tree.nodes[parent]);
+        __builtin_prefetch(&first_level[volume_of(parent)]);
+      }
       Descent& d = descents[j];
       if (!d.dropped) {
         const std::uint32_t filled = slot_of(tree, d);
@@ -151,11 +144,18 @@ TopTree build_top_tree_in_batches(const Case& c, const PlaneSide& planes,
         ++statistics.dropped_in_shadow;
         continue;
       }
-      const Volume& volume = volumes[j];
+      const BatchVolume& volume = volumes[j];
       const std::uint32_t first = std::uint32_t(tree.nodes.size());
       tree.nodes.insert(tree.nodes.end(), volume.nodes, volume.nodes + nodes_per_volume);
       tree.sources.push_back(volume.source);
       own_depth.push_back(volume.depth);
+      // The height: the capping node of the volume with the deepest first node ends the longest
+      // path (nodes never move once committed).
+      const std::uint32_t level =
+          d.parent == no_node ? 1
+                              : first_level[volume_of(d.parent)] + d.parent % nodes_per_volume + 1;
+      first_level.push_back(level);
+      statistics.height = std::max<std::uint64_t>(statistics.height, level + capping_plane);
       set_volume_depth(tree, first, volume.depth);
       tree.nodes[first + 1].volume_word = d.ancestor;
       tree.nodes[first + 2].volume_word = triangles[j];
@@ -172,7 +172,6 @@ TopTree build_top_tree_in_batches(const Case& c, const PlaneSide& planes,
   }
   set_subtree_depths(tree, own_depth);
   set_wedges(tree, planes, own_depth);
-  statistics.height = longest_path(tree);
   return tree;
 }
 

@@ -10,9 +10,9 @@
 // later one reached (a child is filled, nothing above it changes), so the later one resumes its
 // descent from the volume now standing there, with the same parent and ancestor as the
 // reference's uninterrupted descent. Batches grow with the tree (half its volumes, at most 32768),
-// which keeps those resumed descents short. The depths, wedges and height, which the reference
-// updates along each path, are computed from the finished tree with the reference's own order of
-// comparisons, so every bit agrees.
+// which keeps those resumed descents short. The depths and wedges, which the reference updates
+// along each path, are computed from the finished tree with the reference's own order of
+// comparisons, so every bit agrees; the height as each volume is committed (nodes never move).
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -33,14 +33,30 @@ struct Descent {
   bool dropped = false;
 };
 
+// What a triangle of a batch brings to its commit unless it was dropped: its volume's depth,
+// nodes and source.
+struct BatchVolume {
+  float depth = 0.0f;
+  TopNode nodes[nodes_per_volume];
+  VolumeSource source;
+};
+
+// The volume of `triangle` (an index into planes.triangles()), as the reference makes it.
+void make_batch_volume(const PlaneSide& planes, std::uint32_t triangle, BatchVolume& volume);
+
+// make_batch_volume for every triangle of a batch that was not dropped, on oneTBB threads.
+void make_batch_volumes(const PlaneSide& planes, const std::vector<std::uint32_t>& triangles,
+                        const std::vector<Descent>& descents, std::vector<BatchVolume>& volumes);
+
 // What descends: a port's plane tests and parallelism.
 class DescentEngine {
  public:
   virtual ~DescentEngine() = default;
   // Descends each triangle of `triangles` (indices into the case's triangles) from the root of
-  // `tree`, which does not change during the call, into out[i].
+  // `tree`, which does not change during the call, into out[i], and makes volumes[i] of each
+  // triangle not dropped (make_batch_volume; after the descents, make_batch_volumes).
   virtual void descend_batch(const TopTree& tree, const std::vector<std::uint32_t>& triangles,
-                             std::vector<Descent>& out) = 0;
+                             std::vector<Descent>& out, std::vector<BatchVolume>& volumes) = 0;
   // Continues `d` from `node` on the tree as it stands now (the commit's resumed descents).
   virtual void resume(const TopTree& tree, std::uint32_t node, std::uint32_t triangle,
                       Descent& d) = 0;
@@ -79,10 +95,9 @@ struct BatchWork {
   std::uint64_t resumed_descents = 0;  // triangles whose child an earlier one of the batch filled
 };
 
-// build_top_tree's tree, sources and statistics, from `engine`'s descents. The volumes' planes
-// and depths are computed on oneTBB threads (the caller's arena).
-TopTree build_top_tree_in_batches(const Case& c, const PlaneSide& planes,
-                                  const std::vector<std::uint32_t>& order,
+// build_top_tree's tree, sources and statistics, from `engine`'s descents and volumes. The
+// depths and wedges are computed on oneTBB threads (the caller's arena).
+TopTree build_top_tree_in_batches(const PlaneSide& planes, const std::vector<std::uint32_t>& order,
                                   BuildStatistics& statistics, DescentEngine& engine,
                                   BatchWork& work);
 

@@ -100,7 +100,7 @@ class ParallelDescents final : public ref::DescentEngine {
       : c_(c), planes_(planes), corners_(corners) {}
 
   void descend_batch(const ref::TopTree& tree, const std::vector<std::uint32_t>& triangles,
-                     std::vector<Descent>& out) override {
+                     std::vector<Descent>& out, std::vector<ref::BatchVolume>& volumes) override {
     add_corners(tree);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), 64),
                       [&](const tbb::blocked_range<std::size_t>& range) {
@@ -114,8 +114,11 @@ class ParallelDescents final : public ref::DescentEngine {
                           item = r++;
                           return &c_.triangles[triangles[item]];
                         };
+                        // The volume while the triangle is in the cache.
                         const auto done = [&](std::size_t item, const Descent& d) {
                           out[item] = d;
+                          if (!d.dropped)
+                            ref::make_batch_volume(planes_.exact(), triangles[item], volumes[item]);
                         };
                         interleaved_descents(tree, corners_, planes_, next, done);
                       });
@@ -183,7 +186,7 @@ ref::TopTree build_top_tree(const Case& c, const PlaneSide& planes,
   corners.reserve(order.size());
   ParallelDescents engine(c, planes, corners);
   ref::TopTree tree =
-      ref::build_top_tree_in_batches(c, planes.exact(), order, statistics, engine, work);
+      ref::build_top_tree_in_batches(planes.exact(), order, statistics, engine, work);
   engine.add_corners(tree);  // the last batch's
   return tree;
 }
