@@ -1,6 +1,7 @@
 #include "reference/psv/top_tree_batches.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include <tbb/blocked_range.h>
@@ -53,33 +54,42 @@ void set_subtree_depths(TopTree& tree, const std::vector<float>& own) {
 }
 
 // Every edge node's wedge: the largest triangle_wedge over the volumes of its intersection subtree
-// (the triangles that straddled it on their way down), folded as the reference folds it.
+// (the triangles that straddled it on their way down). Volume by volume in parallel: the
+// intersection nodes above a volume are the chain of ancestor links from it (the innermost one,
+// then the innermost above that one's volume, ...), so each volume widens the wedges of its chain
+// with its own triangle read once. The reference folds with std::max from 0, which never takes a
+// NaN; a maximum does not depend on the order the volumes arrive in.
 void set_wedges(TopTree& tree, const PlaneSide& planes, const std::vector<float>& own) {
-  const std::size_t node_count = tree.nodes.size();
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, node_count, 256),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      std::vector<std::uint32_t> pending;
-                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                        TopNode& node = tree.nodes[i];
-                        if (is_capping_node(std::uint32_t(i)) || node.intersection == no_node)
-                          continue;
-                        float wedge = node.wedge;
-                        pending.assign(1, node.intersection);
-                        while (!pending.empty()) {
-                          const std::uint32_t first = pending.back();
-                          pending.pop_back();
-                          const std::uint32_t v = volume_of(first);
-                          const Triangle& t = planes.triangles()[volume_triangle(tree, first)];
-                          wedge = std::max(wedge, triangle_wedge(planes, node, t, own[v]));
-                          for (std::uint32_t k = 0; k < nodes_per_volume; ++k) {
-                            const TopNode& n = tree.nodes[first + k];
-                            if (n.positive != no_node) pending.push_back(n.positive);
-                            if (n.intersection != no_node) pending.push_back(n.intersection);
-                          }
-                        }
-                        node.wedge = wedge;
-                      }
-                    });
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, own.size(), 1024),
+      [&](const tbb::blocked_range<std::size_t>& range) {
+        for (std::size_t v = range.begin(); v != range.end(); ++v) {
+          // The ancestors and triangles lie anywhere: fetch ahead.
+          constexpr std::size_t ahead = 8;
+          if (v + ahead < range.end()) {
+            const std::uint32_t later = std::uint32_t((v + ahead) * nodes_per_volume);
+            const std::uint32_t node = ancestor_link(tree, later);
+            if (node != no_node) {
+              __builtin_prefetch(&tree.nodes[node]);
+              __builtin_prefetch(&tree.nodes[first_node(node) + 1]);
+              __builtin_prefetch(&planes.triangles()[volume_triangle(tree, later)]);
+            }
+          }
+          const std::uint32_t first = std::uint32_t(v * nodes_per_volume);
+          if (ancestor_link(tree, first) == no_node) continue;
+          const Triangle& t = planes.triangles()[volume_triangle(tree, first)];
+          for (std::uint32_t node = ancestor_link(tree, first); node != no_node;
+               node = ancestor_link(tree, node)) {
+            if (is_capping_node(node)) continue;
+            const float wedge = triangle_wedge(planes, tree.nodes[node], t, own[v]);
+            std::atomic_ref<float> widest(tree.nodes[node].wedge);
+            float current = widest.load(std::memory_order_relaxed);
+            while (wedge > current &&
+                   !widest.compare_exchange_weak(current, wedge, std::memory_order_relaxed)) {
+            }
+          }
+        }
+      });
 }
 
 }  // namespace
