@@ -101,7 +101,10 @@ class ParallelDescents final : public ref::DescentEngine {
 
   void descend_batch(const ref::TopTree& tree, const std::vector<std::uint32_t>& triangles,
                      std::vector<Descent>& out, std::vector<ref::BatchVolume>& volumes) override {
-    add_corners(tree);
+    add_corners(tree);  // the last batch's
+    batch_triangles_ = triangles;
+    batch_corners_.resize(triangles.size());
+    next_item_ = 0;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), 64),
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         std::size_t r = range.begin();
@@ -114,11 +117,13 @@ class ParallelDescents final : public ref::DescentEngine {
                           item = r++;
                           return &c_.triangles[triangles[item]];
                         };
-                        // The volume while the triangle is in the cache.
+                        // The volume and its corners while the triangle is in the cache.
                         const auto done = [&](std::size_t item, const Descent& d) {
                           out[item] = d;
-                          if (!d.dropped)
-                            ref::make_batch_volume(planes_.exact(), triangles[item], volumes[item]);
+                          if (d.dropped) return;
+                          ref::make_batch_volume(planes_.exact(), triangles[item], volumes[item]);
+                          const Triangle& t = c_.triangles[triangles[item]];
+                          batch_corners_[item] = {t.v0, t.v1, t.v2};
                         };
                         interleaved_descents(tree, corners_, planes_, next, done);
                       });
@@ -130,12 +135,14 @@ class ParallelDescents final : public ref::DescentEngine {
     descend(tree, corners_, planes_, node, vertices_of(c_.triangles[triangle]), d);
   }
 
-  // Appends the corners of the volumes added since the last call.
+  // Appends the corners of the volumes committed since the last call: the batch's triangles that
+  // stayed, in batch order (each triangle occurs once in a batch; the others were dropped).
   void add_corners(const ref::TopTree& tree) {
     for (std::size_t v = corners_.size(); v < tree.sources.size(); ++v) {
-      const Triangle& t =
-          c_.triangles[ref::volume_triangle(tree, std::uint32_t(v * nodes_per_volume))];
-      corners_.push_back({t.v0, t.v1, t.v2});
+      const std::uint32_t triangle =
+          ref::volume_triangle(tree, std::uint32_t(v * nodes_per_volume));
+      while (batch_triangles_[next_item_] != triangle) ++next_item_;
+      corners_.push_back(batch_corners_[next_item_++]);
     }
   }
 
@@ -143,6 +150,10 @@ class ParallelDescents final : public ref::DescentEngine {
   const Case& c_;
   const PlaneSide& planes_;
   std::vector<VolumeCorners>& corners_;
+  // The batch being committed: its triangles, and the corners of those its descents kept.
+  std::vector<std::uint32_t> batch_triangles_;
+  std::vector<VolumeCorners> batch_corners_;
+  std::size_t next_item_ = 0;
 };
 
 }  // namespace
