@@ -11,6 +11,7 @@
 
 #include "reference/psv/top_tree_depth.h"
 #include "shadowcts/hard_shadow_inputs.h"
+#include "simd/psv/descent_lanes.h"
 
 namespace shadowcts::simd::psv {
 namespace {
@@ -43,55 +44,6 @@ void descend(const ref::TopTree& tree, const std::vector<VolumeCorners>& corners
   while (node != no_node) node = descend_step(tree, corners, planes, node, t, d);
 }
 
-void prefetch_node(const ref::TopTree& tree, const std::vector<VolumeCorners>& corners,
-                   std::uint32_t node) {
-  __builtin_prefetch(&tree.nodes[node]);
-  __builtin_prefetch(&corners[ref::volume_of(node)]);
-}
-
-// Descents of several triangles interleaved node by node: a descent waits for memory at every
-// node (the tree is far larger than the caches), so while one node is fetched (prefetched) the
-// others are tested.
-template <class Next, class Done>
-void interleaved_descents(const ref::TopTree& tree, const std::vector<VolumeCorners>& corners,
-                          const PlaneSide& planes, Next&& next, Done&& done) {
-  constexpr int in_flight = 8;
-  struct Walk {
-    std::size_t item = 0;
-    TriangleVertices t;
-    std::uint32_t node = no_node;
-    Descent d;
-    bool active = false;
-  };
-  Walk walks[in_flight];
-  const auto start = [&](Walk& w) {
-    const Triangle* triangle = next(w.item);
-    w.active = triangle != nullptr;
-    if (!w.active) return;
-    w.t = vertices_of(*triangle);
-    w.d = Descent();
-    w.node = tree.root;
-  };
-  int active = 0;
-  for (Walk& w : walks) {
-    start(w);
-    active += w.active ? 1 : 0;
-  }
-  while (active > 0) {
-    for (Walk& w : walks) {
-      if (!w.active) continue;
-      if (w.node != no_node) w.node = descend_step(tree, corners, planes, w.node, w.t, w.d);
-      if (w.node != no_node) {
-        prefetch_node(tree, corners, w.node);
-        continue;
-      }
-      done(w.item, w.d);
-      start(w);
-      if (!w.active) --active;
-    }
-  }
-}
-
 // The descents of a batch on oneTBB threads with this port's plane tests. The corners of the
 // tree's volumes are kept beside it, appended as the tree grows.
 class ParallelDescents final : public ref::DescentEngine {
@@ -107,25 +59,15 @@ class ParallelDescents final : public ref::DescentEngine {
     next_item_ = 0;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), 64),
                       [&](const tbb::blocked_range<std::size_t>& range) {
-                        std::size_t r = range.begin();
-                        const auto next = [&](std::size_t& item) -> const Triangle* {
-                          if (r == range.end()) return nullptr;
-                          // The triangles lie in the scene's order, not the shuffled one:
-                          // fetch ahead.
-                          if (r + 8 < range.end())
-                            __builtin_prefetch(&c_.triangles[triangles[r + 8]]);
-                          item = r++;
-                          return &c_.triangles[triangles[item]];
-                        };
-                        // The volume and its corners while the triangle is in the cache.
-                        const auto done = [&](std::size_t item, const Descent& d) {
-                          out[item] = d;
-                          if (d.dropped) return;
+                        descend_in_lanes(tree, corners_, planes_, c_.triangles, triangles.data(),
+                                         range.begin(), range.end(), out.data());
+                        // The volumes and corners of those that stay, their triangles in cache.
+                        for (std::size_t item = range.begin(); item != range.end(); ++item) {
+                          if (out[item].dropped) continue;
                           ref::make_batch_volume(planes_.exact(), triangles[item], volumes[item]);
                           const Triangle& t = c_.triangles[triangles[item]];
                           batch_corners_[item] = {t.v0, t.v1, t.v2};
-                        };
-                        interleaved_descents(tree, corners_, planes_, next, done);
+                        }
                       });
   }
 

@@ -8,6 +8,7 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <hwy/targets.h>
 
 #include "hand_built_case.h"
 #include "metric_test_cases.h"
@@ -198,6 +199,38 @@ TEST(SimdPsvBuild, BatchesResumeDescentsAndStillBuildTheReferenceTree) {
   EXPECT_GT(actual.work.resumed_descents, 100u);
   const ref::PsvBuild expected = ref::build_psv(f.c, f.samples, f.c.parameters.seed);
   EXPECT_EQ(first_tree_difference(expected.tree, actual.build.tree), "");
+}
+
+// The build's descents and the queries run in Highway lanes: every target this build has code
+// for and this CPU runs builds the reference's tree and gives its answers, on a fixture and on a
+// huge-scale case with infinite and NaN bounds.
+TEST(SimdPsv, SameTreeAndAnswersOnEveryHighwayTarget) {
+  const FixtureCase f = load_fixture("gate_house.20k", 16);
+  auto huge = shadowcts::testing::make_random_case(
+      707, 8, 600, 0.75f, 1200, shadowcts::testing::point_light({1.5f, 10.0f, 0.75f}));
+  const auto scale = [](glm::vec3& v) {
+    v = {std::ldexp(v.x, 60), std::ldexp(v.y, 60), std::ldexp(v.z, 60)};
+  };
+  for (Triangle& t : huge.c.triangles) {
+    scale(t.v0);
+    scale(t.v1);
+    scale(t.v2);
+  }
+  scale(huge.c.light->position);
+  scale(huge.c.camera.position);
+  scale(huge.c.camera.target);
+  for (ViewSample& s : huge.samples.samples) scale(s.position);
+  std::size_t targets = 0;
+  for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
+    SCOPED_TRACE(hwy::TargetName(target));
+    hwy::SetSupportedTargetsForTest(target);
+    expect_same_tree(f.c, f.samples);
+    expect_same_queries(f.c, f.samples, {16});
+    expect_same_tree(huge.c, huge.samples);
+    ++targets;
+  }
+  hwy::SetSupportedTargetsForTest(0);
+  EXPECT_GE(targets, 2u);
 }
 
 // Every counter, exact_plane_tests included, and the mask do not depend on the thread count.
