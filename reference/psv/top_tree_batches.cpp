@@ -6,6 +6,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include "reference/psv/top_tree_depth.h"
 
@@ -180,8 +181,10 @@ TopTree build_top_tree_in_batches(const PlaneSide& planes, const std::vector<std
     begin += size;
     ++work.batches;
   }
-  set_subtree_depths(tree, own_depth);
-  set_wedges(tree, planes, own_depth);
+  // Side by side: the depth sweep is sequential, and the two write different fields (the first
+  // node's volume word, the edge nodes' wedges) and read neither's.
+  tbb::parallel_invoke([&] { set_subtree_depths(tree, own_depth); },
+                       [&] { set_wedges(tree, planes, own_depth); });
   return tree;
 }
 
