@@ -1,7 +1,7 @@
 #pragma once
 // The TOP tree of reference/psv built on oneTBB, node for node the reference's tree: the batches
-// of reference/psv/top_tree_batches.h, whose descents run here on oneTBB threads, several
-// interleaved per thread, with this port's plane tests (plane_side.h).
+// of reference/psv/top_tree_batches.h, whose descents run here on oneTBB threads, eight per
+// thread in Highway lanes (descent_lanes.h), with this port's plane tests (plane_side.h).
 #include <cstdint>
 #include <vector>
 
