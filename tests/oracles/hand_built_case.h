@@ -81,6 +81,24 @@ inline void add_pyramid_fan(HandBuiltCase& h) {
   for (int i = 0; i < 4; ++i) h.add_triangle(apex, rim[i], rim[(i + 1) % 4]);
 }
 
+// The case with every position (triangles, a point light, camera, samples) multiplied by 2^k:
+// exact in float away from denormals and overflow. Directions stay.
+inline HandBuiltCase scaled_by_power_of_two(HandBuiltCase h, int k) {
+  const auto scale = [k](glm::vec3& v) {
+    v = {std::ldexp(v.x, k), std::ldexp(v.y, k), std::ldexp(v.z, k)};
+  };
+  for (Triangle& t : h.c.triangles) {
+    scale(t.v0);
+    scale(t.v1);
+    scale(t.v2);
+  }
+  if (h.c.light && h.c.light->kind == ShadowLightKind::point) scale(h.c.light->position);
+  scale(h.c.camera.position);
+  scale(h.c.camera.target);
+  for (ViewSample& s : h.samples.samples) scale(s.position);
+  return h;
+}
+
 // A random scene: a caster ground of 2 x grid x grid triangles on [-8, 8]^2 (y = 0), `blockers`
 // random triangles of size ~`size` above it, and `sample_count` samples: half on the ground
 // (receiver: the ground triangle under them), a quarter on blockers (receiver: that blocker,

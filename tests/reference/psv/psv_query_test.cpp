@@ -1,5 +1,4 @@
 // The four TOP tree queries against each other and against the exact oracle.
-#include <cmath>
 #include <cstdint>
 #include <iostream>
 #include <random>
@@ -257,20 +256,10 @@ TEST(PsvSemantics, TinyAndHugeScenesAgreeWithTheOracle) {
 
   // A random scene (blockers, samples on shadow images) at 2^-60 and 2^60.
   for (const int k : {-60, 60}) {
-    auto r = testing::make_random_case(31, 8, 300, 0.75f, 600,
-                                       testing::point_light({1.5f, 10.0f, 0.75f}));
-    const auto scale = [k](glm::vec3& v) {
-      v = {std::ldexp(v.x, k), std::ldexp(v.y, k), std::ldexp(v.z, k)};
-    };
-    for (Triangle& t : r.c.triangles) {
-      scale(t.v0);
-      scale(t.v1);
-      scale(t.v2);
-    }
-    scale(r.c.light->position);
-    scale(r.c.camera.position);
-    scale(r.c.camera.target);
-    for (ViewSample& v : r.samples.samples) scale(v.position);
+    const auto r = testing::scaled_by_power_of_two(
+        testing::make_random_case(31, 8, 300, 0.75f, 600,
+                                  testing::point_light({1.5f, 10.0f, 0.75f})),
+        k);
     const HardShadowTruth scaled_truth = exact_hard_shadow_oracle(r.c, r.samples);
     for (QueryKind query :
          {QueryKind::stack, QueryKind::depth, QueryKind::stackless, QueryKind::hybrid}) {

@@ -3,7 +3,6 @@
 // visited for every sample, and the same counters (exact_plane_tests excepted: it counts each
 // port's own exact decisions), for every variant, any thread count and any packet size, on the
 // default fixtures, the stiff cases and random scenes at ordinary, tiny and huge scales.
-#include <cmath>
 #include <cstring>
 #include <string>
 
@@ -168,20 +167,10 @@ TEST_P(SimdPsvOnRandomCases, SameTreeAnswersAndCounters) {
                             : k % 3 == 1
                                 ? shadowcts::testing::point_light({0.25f, 0.5f, 0.5f})
                                 : shadowcts::testing::directional_light({0.25f, 1.0f, -0.375f});
-  auto h = shadowcts::testing::make_random_case(700 + std::uint64_t(k), 8, 600, 0.75f, 1200, light);
   const int exponent = k < 3 ? 0 : (k < 6 ? -60 : 60);
-  const auto scale = [exponent](glm::vec3& v) {
-    v = {std::ldexp(v.x, exponent), std::ldexp(v.y, exponent), std::ldexp(v.z, exponent)};
-  };
-  for (Triangle& t : h.c.triangles) {
-    scale(t.v0);
-    scale(t.v1);
-    scale(t.v2);
-  }
-  if (h.c.light->kind == ShadowLightKind::point) scale(h.c.light->position);
-  scale(h.c.camera.position);
-  scale(h.c.camera.target);
-  for (ViewSample& s : h.samples.samples) scale(s.position);
+  const auto h = shadowcts::testing::scaled_by_power_of_two(
+      shadowcts::testing::make_random_case(700 + std::uint64_t(k), 8, 600, 0.75f, 1200, light),
+      exponent);
   expect_same_tree(h.c, h.samples);
   expect_same_queries(h.c, h.samples, {3, 16});
 }
@@ -206,20 +195,10 @@ TEST(SimdPsvBuild, BatchesResumeDescentsAndStillBuildTheReferenceTree) {
 // huge-scale case with infinite and NaN bounds.
 TEST(SimdPsv, SameTreeAndAnswersOnEveryHighwayTarget) {
   const FixtureCase f = load_fixture("gate_house.20k", 16);
-  auto huge = shadowcts::testing::make_random_case(
-      707, 8, 600, 0.75f, 1200, shadowcts::testing::point_light({1.5f, 10.0f, 0.75f}));
-  const auto scale = [](glm::vec3& v) {
-    v = {std::ldexp(v.x, 60), std::ldexp(v.y, 60), std::ldexp(v.z, 60)};
-  };
-  for (Triangle& t : huge.c.triangles) {
-    scale(t.v0);
-    scale(t.v1);
-    scale(t.v2);
-  }
-  scale(huge.c.light->position);
-  scale(huge.c.camera.position);
-  scale(huge.c.camera.target);
-  for (ViewSample& s : huge.samples.samples) scale(s.position);
+  const auto huge = shadowcts::testing::scaled_by_power_of_two(
+      shadowcts::testing::make_random_case(707, 8, 600, 0.75f, 1200,
+                                           shadowcts::testing::point_light({1.5f, 10.0f, 0.75f})),
+      60);
   std::size_t targets = 0;
   for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
     SCOPED_TRACE(hwy::TargetName(target));
