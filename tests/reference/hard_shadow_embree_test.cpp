@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -63,20 +64,9 @@ TEST(EmbreeHardShadow, ClosedFanDoesNotLeakAndReceiverIsIgnored) {
 // The case and its samples with every position multiplied by 2^k (exact in float away from
 // denormals); directions stay.
 testing::HandBuiltCase scaled(testing::HandBuiltCase h, int k) {
-  const auto scale = [k](glm::vec3& v) {
-    v = {std::ldexp(v.x, k), std::ldexp(v.y, k), std::ldexp(v.z, k)};
-  };
-  for (Triangle& t : h.c.triangles) {
-    scale(t.v0);
-    scale(t.v1);
-    scale(t.v2);
-  }
-  if (h.c.light->kind == ShadowLightKind::point) scale(h.c.light->position);
-  scale(h.c.camera.position);
-  scale(h.c.camera.target);
+  h = testing::scaled_by_power_of_two(std::move(h), k);
   h.c.camera.near_plane = std::ldexp(h.c.camera.near_plane, k);
   h.c.camera.far_plane = std::ldexp(h.c.camera.far_plane, k);
-  for (ViewSample& s : h.samples.samples) scale(s.position);
   return h;
 }
 
