@@ -29,6 +29,13 @@ EmbreeScene::EmbreeScene(const Case& c) : EmbreeScene(c, every_triangle(c)) {}
 EmbreeScene::EmbreeScene(const Case& c, std::vector<std::uint32_t> triangles,
                          RTCFilterFunctionN occluded_filter)
     : triangles_(std::move(triangles)), primitives_(c.triangles.size(), absent) {
+  const double scale = c.scale();
+  if (scale > 0.0 && (scale < std::ldexp(1.0, embree_min_scale_exponent) ||
+                      scale > std::ldexp(1.0, embree_max_scale_exponent))) {
+    int binary_exponent = 0;
+    std::frexp(scale, &binary_exponent);  // scale = m 2^binary_exponent, m in [1/2, 1)
+    exponent_ = -binary_exponent;
+  }
   for (std::size_t i = 0; i < triangles_.size(); ++i) primitives_[triangles_[i]] = std::uint32_t(i);
 
   device_ = rtcNewDevice("verbose=0");
@@ -52,9 +59,10 @@ EmbreeScene::EmbreeScene(const Case& c, std::vector<std::uint32_t> triangles,
       const glm::vec3* corners[3] = {&t.v0, &t.v1, &t.v2};
       for (std::size_t k = 0; k < 3; ++k) {
         float* vertex = vertices + 4 * (3 * i + k);
-        vertex[0] = corners[k]->x;
-        vertex[1] = corners[k]->y;
-        vertex[2] = corners[k]->z;
+        const glm::vec3 corner = to_scene(glm::dvec3(*corners[k]));
+        vertex[0] = corner.x;
+        vertex[1] = corner.y;
+        vertex[2] = corner.z;
         vertex[3] = 0.0f;
         indices[3 * i + k] = unsigned(3 * i + k);
       }

@@ -70,15 +70,18 @@ ViewSamples generate_view_samples(const Case& c) {
         // Primary rays start at the near plane and end at the far plane along the view axis.
         const double cos_axis = glm::dot(dir, frame.forward);
 
+        // In the scene's units (a power of two away from the case's outside Embree's range):
+        // the barycentrics and the triangle hit are the same.
+        const glm::vec3 origin = scene.to_scene(frame.origin);
         RTCRayHit hit{};
-        hit.ray.org_x = float(frame.origin.x);
-        hit.ray.org_y = float(frame.origin.y);
-        hit.ray.org_z = float(frame.origin.z);
+        hit.ray.org_x = origin.x;
+        hit.ray.org_y = origin.y;
+        hit.ray.org_z = origin.z;
         hit.ray.dir_x = float(dir.x);
         hit.ray.dir_y = float(dir.y);
         hit.ray.dir_z = float(dir.z);
-        hit.ray.tnear = float(cam.near_plane / cos_axis);
-        hit.ray.tfar = float(cam.far_plane / cos_axis);
+        hit.ray.tnear = scene.to_scene(cam.near_plane / cos_axis);
+        hit.ray.tfar = scene.to_scene(cam.far_plane / cos_axis);
         hit.ray.mask = 0xFFFFFFFFu;
         hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
         rtcIntersect1(scene.handle(), &context, &hit);

@@ -70,10 +70,12 @@ bool EmbreeShadowRays::occluded(const glm::vec3& origin, std::uint32_t receiver,
   context.scene = &s.casters;
   context.rule = rule;
 
+  // In the scene's units (EmbreeScene: a power of two away outside Embree's range).
+  const glm::vec3 start = s.casters.to_scene(glm::dvec3(origin));
   RTCRay ray{};
-  ray.org_x = origin.x;
-  ray.org_y = origin.y;
-  ray.org_z = origin.z;
+  ray.org_x = start.x;
+  ray.org_y = start.y;
+  ray.org_z = start.z;
   ray.tnear = 0.0f;
   if (s.light.directional) {
     ray.dir_x = float(s.light.direction.x);
@@ -82,9 +84,10 @@ bool EmbreeShadowRays::occluded(const glm::vec3& origin, std::uint32_t receiver,
     ray.tfar = std::numeric_limits<float>::infinity();
   } else {
     // Up to the light: t = 1 along the (float-rounded) vector to it.
-    ray.dir_x = float(s.light.position.x) - origin.x;
-    ray.dir_y = float(s.light.position.y) - origin.y;
-    ray.dir_z = float(s.light.position.z) - origin.z;
+    const glm::vec3 light = s.casters.to_scene(s.light.position);
+    ray.dir_x = light.x - start.x;
+    ray.dir_y = light.y - start.y;
+    ray.dir_z = light.z - start.z;
     ray.tfar = 1.0f;
   }
   ray.mask = 0xffffffffu;

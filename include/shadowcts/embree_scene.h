@@ -1,15 +1,29 @@
 #pragma once
 // An Embree 3 scene in robust mode over a chosen subset of a case's triangles: one triangle
 // geometry (geomID 0), with maps between Embree's primID and the index into Case::triangles.
+//
+// Embree works in float32 and asserts on ray origins beyond about 1.8e18; its products of three
+// coordinates overflow from scales near 2^42 and its tests lose hits below 2^-34. A case whose
+// scale S lies outside [2^embree_min_scale_exponent, 2^embree_max_scale_exponent] is therefore
+// put into Embree multiplied by a power of two that brings S into [1/2, 1): exact for every
+// coordinate that stays a normal float, so hits, barycentrics and the triangles hit are those of
+// the case itself. Rays must be given in the same units: to_scene() for points and lengths.
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <vector>
 
 #include <embree3/rtcore.h>
+#include <glm/vec3.hpp>
 
 namespace shadowcts {
 
 struct Case;
+
+// The scales at which a case goes into Embree unchanged (S = 2^-34 .. 2^39, where the Embree
+// peer runs: reference/embree/hard_shadow_embree.h).
+inline constexpr int embree_min_scale_exponent = -34;
+inline constexpr int embree_max_scale_exponent = 39;
 
 class EmbreeScene {
  public:
@@ -26,6 +40,12 @@ class EmbreeScene {
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 
   RTCScene handle() const { return scene_; }
+  // A point or a length of the case in the scene's units (times 2^exponent(), rounded to float).
+  float to_scene(double value) const { return float(std::ldexp(value, exponent_)); }
+  glm::vec3 to_scene(const glm::dvec3& point) const {
+    return {to_scene(point.x), to_scene(point.y), to_scene(point.z)};
+  }
+  int exponent() const { return exponent_; }
   std::uint32_t triangle_of_primitive(std::uint32_t primitive) const {
     return triangles_[primitive];
   }
@@ -35,6 +55,7 @@ class EmbreeScene {
   }
 
  private:
+  int exponent_ = 0;
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   std::vector<std::uint32_t> triangles_;   // by primID

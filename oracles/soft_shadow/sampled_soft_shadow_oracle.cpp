@@ -121,9 +121,10 @@ SoftShadowTruth sampled_soft_shadow_oracle(const Case& c, const ViewSamples& sam
                 rtcInitIntersectContext(&context.context);
                 context.receiver_primitive = scene.primitive_of_triangle(sample.receiver);
                 RTCRay ray{};
-                ray.org_x = sample.position.x;
-                ray.org_y = sample.position.y;
-                ray.org_z = sample.position.z;
+                const glm::vec3 origin = scene.to_scene(glm::dvec3(sample.position));
+                ray.org_x = origin.x;
+                ray.org_y = origin.y;
+                ray.org_z = origin.z;
                 ray.dir_x = float(direction.x);
                 ray.dir_y = float(direction.y);
                 ray.dir_z = float(direction.z);

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "shadowcts/algorithm.h"
+#include "shadowcts/embree_scene.h"
 
 namespace shadowcts {
 
@@ -20,8 +21,8 @@ namespace shadowcts {
 // 2^embree_min_scale_exponent <= S <= 2^embree_max_scale_exponent, and for directional lights
 // with S^2 |d|_inf outside [2^-102, 2^117]. (Fuzzed: it leaks from S ~ 2^-43 and shadows falsely
 // from S ~ 2^42 on.)
-inline constexpr int embree_min_scale_exponent = -34;
-inline constexpr int embree_max_scale_exponent = 39;
+// (The two exponents are defined beside EmbreeScene, whose cases beyond them go into Embree
+// scaled by a power of two: the oracles and the view samples use that, this peer does not.)
 
 // id "embree", backend "embree", variants {"robust"}.
 std::unique_ptr<Algorithm> make_embree_hard_shadow();

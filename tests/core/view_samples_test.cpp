@@ -41,6 +41,58 @@ ShadowLight point_light(glm::vec3 p) {
   return l;
 }
 
+// Embree asserts on ray origins beyond about 1.8e18 and misses hits at tiny scales: outside its
+// range the case goes into Embree scaled by a power of two (EmbreeScene). Every scale beyond that
+// range then gives the same pixels: classes, receivers and normals identical, positions exactly
+// scaled (each one is interpolated from the case's own vertices with the same barycentrics).
+TEST(ViewSamples, SamePixelsAtScalesOutsideEmbreesRange) {
+  const auto scaled = [](int k) {
+    Case c = ground_and_wall(point_light({0, 5, 3}));
+    const auto scale = [k](glm::vec3& v) {
+      v = {std::ldexp(v.x, k), std::ldexp(v.y, k), std::ldexp(v.z, k)};
+    };
+    for (Triangle& t : c.triangles) {
+      scale(t.v0);
+      scale(t.v1);
+      scale(t.v2);
+    }
+    scale(c.camera.position);
+    scale(c.camera.target);
+    c.camera.near_plane = std::ldexp(c.camera.near_plane, k);
+    c.camera.far_plane = std::ldexp(c.camera.far_plane, k);
+    scale(c.light->position);
+    validate(c);
+    return c;
+  };
+  const int base = -40;  // 20 * 2^-40 < 2^-34: already outside the range
+  const ViewSamples want = generate_view_samples(scaled(base));
+  std::size_t regular = 0;
+  for (const ViewSample& v : want.samples) regular += v.sample_class == SampleClass::regular;
+  EXPECT_GT(regular, 2000u);
+  for (const int k : {-100, -60, 40, 60, 90}) {
+    const ViewSamples got = generate_view_samples(scaled(k));
+    ASSERT_EQ(got.samples.size(), want.samples.size());
+    for (std::size_t i = 0; i < want.samples.size(); ++i) {
+      const ViewSample &a = want.samples[i], &b = got.samples[i];
+      ASSERT_EQ(b.sample_class, a.sample_class) << "2^" << k << ", sample " << i;
+      if (a.sample_class == SampleClass::sky) continue;
+      ASSERT_EQ(b.receiver, a.receiver) << "2^" << k << ", sample " << i;
+      for (int axis = 0; axis < 3; ++axis) {
+        ASSERT_EQ(b.position[axis], std::ldexp(a.position[axis], k - base))
+            << "2^" << k << ", sample " << i;
+        ASSERT_EQ(b.normal[axis], a.normal[axis]) << "2^" << k << ", sample " << i;
+      }
+    }
+  }
+  // Inside Embree's range the case goes in unchanged, and the same pixels see the same surfaces.
+  const ViewSamples unit = generate_view_samples(scaled(0));
+  std::size_t same = 0;
+  for (std::size_t i = 0; i < want.samples.size(); ++i)
+    same += unit.samples[i].sample_class == want.samples[i].sample_class &&
+            unit.samples[i].receiver == want.samples[i].receiver;
+  EXPECT_GE(same, want.samples.size() - 8);
+}
+
 TEST(ViewSamples, LieOnTheirReceiverWithinFloatError) {
   const Case c = ground_and_wall(point_light({0, 5, 3}));
   const ViewSamples s = generate_view_samples(c);
