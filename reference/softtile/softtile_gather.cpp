@@ -36,7 +36,11 @@ Gathered gather(const Case& c, const ViewSamples& samples) {
   const SunDiskFrame frame = sun_disk_frame(c);
   Gathered out;
   out.sun = {frame.direction, frame.angular_radius};
-  out.light_space = {frame.x_axis, frame.y_axis, frame.direction};
+  int binary_exponent = 0;
+  std::frexp(c.scale(), &binary_exponent);  // S = m 2^binary_exponent, m in [1/2, 1)
+  out.light_space = {std::ldexp(1.0, -binary_exponent) * frame.x_axis,
+                     std::ldexp(1.0, -binary_exponent) * frame.y_axis,
+                     std::ldexp(1.0, -binary_exponent) * frame.direction};
 
   glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
   bool any = false;

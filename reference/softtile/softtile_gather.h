@@ -13,8 +13,12 @@
 
 namespace shadowcts::softtile {
 
-// Light space: z towards the sun, x and y any orthonormal pair perpendicular to it (the post's
-// to_light_space_matrix).
+// Light space: z towards the sun, x and y any orthogonal pair perpendicular to it (the post's
+// to_light_space_matrix), all three of length 2^k with 2^k S in [1/2, 1) for the case's scale S.
+// The fragment setup's edge functions are homogeneous in light-space coordinates (degree 2, the
+// determinant degree 3, and the rasterized crossings degree 0), so a power of two changes no
+// decision and no mask, while it keeps their float32 products of three coordinates from
+// overflowing (S from about 2^40) or losing precision to underflow (S below about 2^-40).
 struct LightSpace {
   glm::dvec3 x_axis, y_axis, z_axis;
   glm::vec3 to_light(const glm::vec3& world) const;  // rounded to float, as the shader reads it

@@ -216,6 +216,28 @@ TEST(Softtile, DeterministicForAnyThreadCount) {
   }
 }
 
+// The fragment setup's edge functions are homogeneous in light-space coordinates, and light
+// space is normalized by a power of two: the same case at scales 2^-60 .. 2^60 gives the same
+// masks and counters, where float32 products of three coordinates would otherwise overflow (all
+// lit from about 2^40 on) or lose precision to underflow.
+TEST(Softtile, SameAnswersAtEveryPowerOfTwoScale) {
+  const testing::HandBuiltCase h =
+      testing::make_random_case(29, 8, 100, 1.0f, 600, sun_disk({0.3f, 1.0f, 0.2f}, 3.0));
+  const auto algorithm = make_softtile();
+  for (const char* variant : {"grid16+rot", "rows31"}) {
+    const AlgorithmOutput unit = algorithm->run(h.c, h.samples, variant);
+    std::size_t shadowed = 0;
+    for (const float v : unit.visible_fraction) shadowed += v < 1.0f ? 1 : 0;
+    EXPECT_GT(shadowed, 100u) << variant;
+    for (const int k : {-60, -24, 24, 60}) {
+      const testing::HandBuiltCase scaled = testing::scaled_by_power_of_two(h, k);
+      const AlgorithmOutput output = algorithm->run(scaled.c, scaled.samples, variant);
+      EXPECT_EQ(output.visible_fraction, unit.visible_fraction) << variant << " at 2^" << k;
+      EXPECT_EQ(output.counters, unit.counters) << variant << " at 2^" << k;
+    }
+  }
+}
+
 TEST(Softtile, OnlySunDisks) {
   const auto algorithm = make_softtile();
   testing::HandBuiltCase h =
