@@ -1,5 +1,6 @@
 #include "oracles/soft_shadow/exact_disk_union.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iterator>
 #include <list>
@@ -63,11 +64,18 @@ double signed_area(const Polygon& boundary) {
     const double cx = CGAL::to_double(circle.center().x());
     const double cy = CGAL::to_double(circle.center().y());
     const double r2 = CGAL::to_double(circle.squared_radius());
+    // An x-monotone arc sweeps at most half the circle, |sweep| <= pi, in the direction of its
+    // orientation. The difference of the endpoints' angles is that sweep, or it minus 2 pi where
+    // the arc crosses atan2's cut at angle pi; or, for an arc shorter than the rounding of its
+    // endpoints to double (a sliver leaving the disk), a tiny value of either sign, which is no
+    // wrap: taking it for one added a whole disk (pi) to the area.
     double sweep = std::atan2(y1 - cy, x1 - cx) - std::atan2(y0 - cy, x0 - cx);
     if (cv.orientation() == CGAL::COUNTERCLOCKWISE) {
-      if (sweep < 0.0) sweep += 2.0 * std::numbers::pi;
-    } else if (sweep > 0.0) {
-      sweep -= 2.0 * std::numbers::pi;
+      if (sweep < -0.5 * std::numbers::pi) sweep += 2.0 * std::numbers::pi;
+      sweep = std::max(sweep, 0.0);
+    } else {
+      if (sweep > 0.5 * std::numbers::pi) sweep -= 2.0 * std::numbers::pi;
+      sweep = std::min(sweep, 0.0);
     }
     // x dy - y dx around a circle centred at c: the centre's shoelace term plus r^2 dtheta.
     sum += 0.5 * (cx * (y1 - y0) - cy * (x1 - x0) + r2 * sweep);

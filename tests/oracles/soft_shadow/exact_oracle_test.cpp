@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "oracles/soft_shadow/disk_polygon_area.h"
+#include "oracles/soft_shadow/exact_disk_union.h"
 #include "shadowcts/soft_shadow_oracle.h"
 #include "tests/oracles/soft_shadow/soft_case.h"
 
@@ -42,6 +43,41 @@ TEST(ExactUnion, SharedEdgeAcrossTheDiskIsCountedOnce) {
   const double sum = 2.0 - single_triangle_visible_fraction(light, {0, 0, 0}, h.c.triangles[1]) -
                      single_triangle_visible_fraction(light, {0, 0, 0}, h.c.triangles[2]);
   EXPECT_NEAR(1.0 - sum, expected, 1e-12);
+}
+
+// A needle whose tip pokes into the disk leaves it through an arc shorter than the rounding of its
+// ends to double: Green's theorem must take that arc as the tiny sweep it is, not as a whole turn
+// (which added pi: the whole disk hidden; found at a wide sun, where the horizon lines of the
+// receiver's coplanar neighbours cross the disk). Needles and slivers at every angle against the
+// closed form.
+TEST(ExactUnion, NeedlesLeavingTheDiskThroughTinyArcs) {
+  std::size_t compared = 0;
+  for (int step = 0; step < 96; ++step) {
+    const double angle = 2.0 * std::numbers::pi * (step + 0.37) / 96.0;
+    const glm::dvec2 u{std::cos(angle), std::sin(angle)}, v{-u.y, u.x};
+    for (const double width : {1e-3, 1e-7, 1e-11, 1e-14}) {
+      for (const double tip : {0.93, 1.0 - 1e-9}) {
+        DiskPolygon needle;
+        needle.count = 3;
+        needle.corners[0] = 2.86 * u + width * v;
+        needle.corners[1] = tip * u;
+        needle.corners[2] = 2.86 * u - width * v;
+        const double want = unit_disk_intersection_area(needle);
+        EXPECT_NEAR(covered_disk_area({needle}).area, want, 1e-9)
+            << "angle " << angle << ", width " << width << ", tip " << tip;
+        ++compared;
+      }
+    }
+  }
+  // The polygon that hid a whole disk in the oracle: a ground triangle seen nearly edge-on from a
+  // sample beside it, under an 80-degree sun.
+  DiskPolygon sliver;
+  sliver.count = 3;
+  sliver.corners[0] = {2.8636791593740387, -1.4300252749903923};
+  sliver.corners[1] = {1.7397007920301486, -0.63348830436446868};
+  sliver.corners[2] = {0.93183590349426759, -0.060973503648079186};
+  EXPECT_NEAR(covered_disk_area({sliver}).area, unit_disk_intersection_area(sliver), 1e-9);
+  EXPECT_EQ(compared, 96u * 8u);
 }
 
 TEST(ExactUnion, OverlappingCastersOccludeOnce) {
