@@ -6,6 +6,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -335,6 +337,66 @@ TEST(OutputIntegrity, ACaseWithNothingToJudgeIsNotSupportedNeverPass) {
   EXPECT_NE(junit.find(tests.str()), std::string::npos) << junit;
   EXPECT_NE(junit.find(skipped.str()), std::string::npos) << junit;
   EXPECT_NE(read_file(dir / "stdout.txt").find("NotSupported"), std::string::npos);
+}
+
+// A scene file scaled by 2^k (k = -60, 60, 90; dyadic coordinates, so the scaling is exact) runs
+// to the verdicts of the unscaled one on every record: same verdicts, same compared and robust
+// samples. Before EmbreeScene normalized such cases, 2^60 aborted the whole run (Embree's
+// ray.valid() assertion, exit 134) and 2^-60 and 2^90 saw only sky (every record NotSupported).
+TEST(OutputIntegrity, ScenesFarOutsideEmbreesRangeRunToTheUnscaledVerdicts) {
+  const fs::path dir = fresh_dir("embree_range");
+  const auto verdicts = [&](int k) {
+    const std::string name = "scaled_" + std::to_string(k + 100);
+    std::ofstream obj(dir / (name + ".obj"));
+    const auto vertex = [&](double x, double y, double z) {
+      char line[160];
+      std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", std::ldexp(x, k), std::ldexp(y, k),
+                    std::ldexp(z, k));
+      obj << line;
+    };
+    // A floor of two triangles and two floating quads above it.
+    for (const auto& [x, z] : {std::pair{-6.0, -6.0}, {6.0, -6.0}, {6.0, 6.0}, {-6.0, 6.0}})
+      vertex(x, 0.0, z);
+    for (const double h : {1.0, 1.75})
+      for (const auto& [x, z] : {std::pair{-1.0, -0.5}, {0.5, -1.0}, {1.0, 0.75}, {-0.75, 1.0}})
+        vertex(x + h - 1.375, h, z);
+    obj << "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 9 10 11\nf 9 11 12\n";
+    obj.close();
+    const auto at = [k](double v) {
+      char text[32];
+      std::snprintf(text, sizeof text, "%.17g", std::ldexp(v, k));
+      return std::string(text);
+    };
+    std::ofstream(dir / (name + ".json")) << R"({"scenes": [{"file": ")" << name << R"(.obj"}],
+      "camera": {"position": [)" << at(1) << ", "
+                                          << at(5) << ", " << at(3) << R"(],
+                 "target": [0, 0, 0], "up": [0, 1, 0], "near": )"
+                                          << at(0.125) << R"(,
+                 "far": )" << at(64) << R"(, "width": 48, "height": 32},
+      "light": {"type": "sun", "direction": [0.3, 1, 0.2], "angular_radius_degrees": 2},
+      "ranged_lights": [{"type": "sphere", "centre": [0, )"
+                                          << at(1) << R"(, 0], "range": )" << at(2) << "}]}";
+    EXPECT_EQ(run_tool("run --case " + name + ".json --algorithm ptsv:twopass --algorithm " +
+                           "psv:stackless --algorithm softtile:grid16 --algorithm " +
+                           "lightassign:clustered --backend reference --backend simd --repeat 1 " +
+                           "--no-images --out out_" + name,
+                       dir),
+              exit_pass)
+        << "2^" << k << ": " << err_of(dir);
+    std::map<std::string, std::string> by_record;
+    const auto results = json::parse(read_file(dir / ("out_" + name) / "results.json"));
+    for (const auto& r : results["results"])
+      by_record[r["algorithm"].get<std::string>() + ":" + r["variant"].get<std::string>() + " [" +
+                r["backend"].get<std::string>() + "]"] =
+          r["verdict"].get<std::string>() + " " + r["error"].value("compared", json()).dump() +
+          " " + r["error"].value("robust", json()).dump();
+    return by_record;
+  };
+  const auto unscaled = verdicts(0);
+  ASSERT_EQ(unscaled.size(), 8u);
+  for (const auto& [record, verdict] : unscaled)
+    EXPECT_EQ(verdict.rfind("Pass", 0), 0u) << record << ": " << verdict;
+  for (const int k : {-60, 60, 90}) EXPECT_EQ(verdicts(k), unscaled) << "2^" << k;
 }
 
 // Item 6: a bad G-buffer (the second case's) is exit 2 before the output folder is touched.
