@@ -92,6 +92,13 @@ bool is_zero_area(const Triangle& t) {
                          P(t.v2.x, t.v2.y, t.v2.z));
 }
 
+int exact_orientation(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+                      const glm::dvec3& d) {
+  using P = Epick::Point_3;
+  return int(
+      CGAL::orientation(P(a.x, a.y, a.z), P(b.x, b.y, b.z), P(c.x, c.y, c.z), P(d.x, d.y, d.z)));
+}
+
 ExactShadowPredicate::ExactShadowPredicate(const HardShadowLight& light, double scene_bound)
     : light_(light), scene_bound_(scene_bound) {}
 

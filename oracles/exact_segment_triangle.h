@@ -27,6 +27,11 @@ struct MovedPoint {
 // shadow).
 bool is_zero_area(const Triangle& t);
 
+// The exact sign of CGAL's orientation(a, b, c, d), the sign of det(b - a, c - a, d - a): 0 when
+// the four points lie in one plane.
+int exact_orientation(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+                      const glm::dvec3& d);
+
 // Whether triangle i of the case casts a shadow by the oracles' own tests: its mesh is a caster
 // and is_zero_area() says no (the algorithms ask shadowcts/hard_shadow_inputs.h instead). Throws
 // InputError when its mesh id is out of range.

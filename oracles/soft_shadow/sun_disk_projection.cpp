@@ -6,6 +6,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "oracles/exact_segment_triangle.h"
 #include "shadowcts/errors.h"
 
 namespace shadowcts {
@@ -60,9 +61,16 @@ DiskPolygon project_triangle(const SunDiskFrame& frame, const glm::dvec3& p,
     polygon.count = 3;
     return polygon;
   }
-  const double det = glm::dot(h[0], glm::cross(h[1], h[2]));
-  if (det == 0.0) return polygon;  // seen edge-on: no area
-  const double sign = det > 0.0 ? 1.0 : -1.0;
+  // h is v - p in a scaled rotation of light space, so det(h0, h1, h2) has the sign of the exact
+  // orientation of (p, v0, v1, v2) times the light frame's handedness. Decided exactly: from a
+  // caster in p's own plane (a coplanar neighbour of the receiver) the rounded h have a det of
+  // either sign, whose "cone" is then a half-space of directions (or its part beside a shared
+  // edge through p) instead of the edge-on triangle's no area.
+  const int side = exact_orientation(p, v[0], v[1], v[2]);
+  if (side == 0) return polygon;  // seen edge-on: no area
+  const double handedness =
+      glm::dot(glm::cross(frame.x_axis, frame.y_axis), frame.direction) > 0.0 ? 1.0 : -1.0;
+  const double sign = double(side) * handedness;
   polygon.corners[0] = {-half_width, -half_width};
   polygon.corners[1] = {half_width, -half_width};
   polygon.corners[2] = {half_width, half_width};

@@ -80,6 +80,28 @@ TEST(ExactUnion, NeedlesLeavingTheDiskThroughTinyArcs) {
   EXPECT_EQ(compared, 96u * 8u);
 }
 
+// A caster in the sample's own plane projects to no area: seen exactly edge-on, whatever the
+// rounding of its light-space coordinates says. Samples exactly on the shared diagonal of two
+// coplanar floor triangles (casters) and inside a third that overlaps the receiver, under suns
+// wide enough that a half-plane of directions would cross the disk.
+TEST(ExactUnion, CastersInTheSamplesPlaneHideNothing) {
+  for (const double degrees : {2.0, 45.0, 80.0}) {
+    const ShadowLight light = sun_disk({0.3f, 1.0f, 0.2f}, degrees);
+    testing::HandBuiltCase h = testing::make_hand_built_case(light);
+    h.add_triangle({-1, 0, -1}, {1, 0, -1}, {1, 0, 1}, testing::caster_ground_mesh);
+    h.add_triangle({-1, 0, -1}, {1, 0, 1}, {-1, 0, 1}, testing::caster_ground_mesh);
+    h.add_triangle({-2, 0, -3}, {3, 0, 2}, {-3, 0, 2}, testing::caster_ground_mesh);
+    for (int i = 0; i < 200; ++i) {
+      const float t = -0.9f + 1.8f * float(i) / 199.0f;
+      h.add_ground_sample({t, 0.0f, t});
+      h.add_ground_sample({0.37f * t, 0.0f, -0.61f * t});
+    }
+    const SoftShadowTruth truth = exact_soft_shadow_oracle(h.c, h.samples);
+    for (std::size_t i = 0; i < h.samples.samples.size(); ++i)
+      ASSERT_EQ(truth.visible_fraction[i], 1.0) << degrees << " degrees, sample " << i;
+  }
+}
+
 TEST(ExactUnion, OverlappingCastersOccludeOnce) {
   // ... but two casters both hiding the same half of the disk hide half of it, not all of it
   // (the post's argument against summing areas).
