@@ -40,12 +40,12 @@ class EmbreeScene {
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 
   RTCScene handle() const { return scene_; }
-  // A point or a length of the case in the scene's units (times 2^exponent(), rounded to float).
+  // A point or a length of the case in the scene's units (times the scene's power of two, rounded
+  // to float).
   float to_scene(double value) const { return float(std::ldexp(value, exponent_)); }
   glm::vec3 to_scene(const glm::dvec3& point) const {
     return {to_scene(point.x), to_scene(point.y), to_scene(point.z)};
   }
-  int exponent() const { return exponent_; }
   std::uint32_t triangle_of_primitive(std::uint32_t primitive) const {
     return triangles_[primitive];
   }
@@ -55,7 +55,7 @@ class EmbreeScene {
   }
 
  private:
-  int exponent_ = 0;
+  int exponent_ = 0;  // the power of two the case is multiplied by (0 inside Embree's range)
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   std::vector<std::uint32_t> triangles_;   // by primID
