@@ -1,5 +1,6 @@
 #include "shadowcts/embree_scene.h"
 
+#include <cmath>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -34,7 +35,7 @@ EmbreeScene::EmbreeScene(const Case& c, std::vector<std::uint32_t> triangles,
                       scale > std::ldexp(1.0, embree_max_scale_exponent))) {
     int binary_exponent = 0;
     std::frexp(scale, &binary_exponent);  // scale = m 2^binary_exponent, m in [1/2, 1)
-    exponent_ = -binary_exponent;
+    factor_ = std::ldexp(1.0, -binary_exponent);
   }
   for (std::size_t i = 0; i < triangles_.size(); ++i) primitives_[triangles_[i]] = std::uint32_t(i);
 

@@ -56,6 +56,9 @@ ViewSamples generate_view_samples(const Case& c) {
   out.height = cam.height;
   out.samples.resize(std::size_t(cam.width) * cam.height);
 
+  // Rays in the scene's units (a power of two away from the case's outside Embree's range): the
+  // barycentrics and the triangle hit are the same.
+  const glm::vec3 origin = scene.to_scene(frame.origin);
   // Rows are independent and every sample is written by exactly one task: deterministic.
   phase_progress::begin(cam.height, "pixel rows");
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, cam.height), [&](const auto& rows) {
@@ -70,9 +73,6 @@ ViewSamples generate_view_samples(const Case& c) {
         // Primary rays start at the near plane and end at the far plane along the view axis.
         const double cos_axis = glm::dot(dir, frame.forward);
 
-        // In the scene's units (a power of two away from the case's outside Embree's range):
-        // the barycentrics and the triangle hit are the same.
-        const glm::vec3 origin = scene.to_scene(frame.origin);
         RTCRayHit hit{};
         hit.ray.org_x = origin.x;
         hit.ray.org_y = origin.y;

@@ -8,7 +8,6 @@
 // put into Embree multiplied by a power of two that brings S into [1/2, 1): exact for every
 // coordinate that stays a normal float, so hits, barycentrics and the triangles hit are those of
 // the case itself. Rays must be given in the same units: to_scene() for points and lengths.
-#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -42,7 +41,7 @@ class EmbreeScene {
   RTCScene handle() const { return scene_; }
   // A point or a length of the case in the scene's units (times the scene's power of two, rounded
   // to float).
-  float to_scene(double value) const { return float(std::ldexp(value, exponent_)); }
+  float to_scene(double value) const { return float(value * factor_); }
   glm::vec3 to_scene(const glm::dvec3& point) const {
     return {to_scene(point.x), to_scene(point.y), to_scene(point.z)};
   }
@@ -55,7 +54,7 @@ class EmbreeScene {
   }
 
  private:
-  int exponent_ = 0;  // the power of two the case is multiplied by (0 inside Embree's range)
+  double factor_ = 1.0;  // the power of two the case is multiplied by (1 inside Embree's range)
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   std::vector<std::uint32_t> triangles_;   // by primID

@@ -111,6 +111,7 @@ SoftShadowTruth sampled_soft_shadow_oracle(const Case& c, const ViewSamples& sam
             const auto uniform = [&] { return double(random() >> 11) * 0x1p-53; };
             ReceiverContext context;
             std::uint32_t unblocked = 0;
+            const glm::vec3 origin = scene.to_scene(glm::dvec3(sample.position));
             for (std::uint32_t a = 0; a < side; ++a)
               for (std::uint32_t b = 0; b < side; ++b) {
                 const double u = (double(a) + uniform()) / double(side);
@@ -121,7 +122,6 @@ SoftShadowTruth sampled_soft_shadow_oracle(const Case& c, const ViewSamples& sam
                 rtcInitIntersectContext(&context.context);
                 context.receiver_primitive = scene.primitive_of_triangle(sample.receiver);
                 RTCRay ray{};
-                const glm::vec3 origin = scene.to_scene(glm::dvec3(sample.position));
                 ray.org_x = origin.x;
                 ray.org_y = origin.y;
                 ray.org_z = origin.z;

@@ -38,9 +38,8 @@ Gathered gather(const Case& c, const ViewSamples& samples) {
   out.sun = {frame.direction, frame.angular_radius};
   int binary_exponent = 0;
   std::frexp(c.scale(), &binary_exponent);  // S = m 2^binary_exponent, m in [1/2, 1)
-  out.light_space = {std::ldexp(1.0, -binary_exponent) * frame.x_axis,
-                     std::ldexp(1.0, -binary_exponent) * frame.y_axis,
-                     std::ldexp(1.0, -binary_exponent) * frame.direction};
+  const double unit = std::ldexp(1.0, -binary_exponent);
+  out.light_space = {unit * frame.x_axis, unit * frame.y_axis, unit * frame.direction};
 
   glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
   bool any = false;
