@@ -98,7 +98,7 @@ void validate_parameters(const Case& c) {
 
 }  // namespace
 
-double Case::scale() const {
+double Case::triangle_scale() const {
   // A maximum of float magnitudes: exact in float, and independent of how the reduction splits
   // (a NaN coordinate is never taken, as in a sequential std::max). Read by every algorithm and
   // oracle at 1M triangles, so in parallel.
@@ -113,7 +113,11 @@ double Case::scale() const {
         return m;
       },
       [](float a, float b) { return std::max(a, b); });
-  double s = largest;
+  return largest;
+}
+
+double Case::scale() const {
+  double s = triangle_scale();
   s = std::max(s, max_abs(camera.position));
   if (light && light->kind == ShadowLightKind::point) s = std::max(s, max_abs(light->position));
   return s;
@@ -143,7 +147,16 @@ void validate(const Case& c) {
     throw InputError(c.source, "light", "the case has no light");
   validate_parameters(c);
   // Coordinates so large that float32 differences overflow make every predicate meaningless.
-  if (c.scale() > 1e30) throw InputError(c.source, "triangles", "coordinates exceed 1e30");
+  const std::string beyond = "lies beyond 1e30 (the largest coordinate a case accepts)";
+  if (max_abs(c.camera.position) > 1e30) throw InputError(c.source, "camera.position", beyond);
+  if (c.light && c.light->kind == ShadowLightKind::point && max_abs(c.light->position) > 1e30)
+    throw InputError(c.source, "light.position", beyond);
+  if (c.triangle_scale() > 1e30)
+    for (std::size_t i = 0; i < c.triangles.size(); ++i) {
+      const Triangle& t = c.triangles[i];
+      if (std::max({max_abs(t.v0), max_abs(t.v1), max_abs(t.v2)}) > 1e30)
+        throw InputError(c.source, "triangles[" + std::to_string(i) + "]", "a corner " + beyond);
+    }
 }
 
 }  // namespace shadowcts

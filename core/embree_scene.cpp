@@ -25,16 +25,16 @@ std::vector<std::uint32_t> every_triangle(const Case& c) {
 
 }  // namespace
 
-EmbreeScene::EmbreeScene(const Case& c) : EmbreeScene(c, every_triangle(c)) {}
+EmbreeScene::EmbreeScene(const Case& c, double magnitude)
+    : EmbreeScene(c, every_triangle(c), nullptr, magnitude) {}
 
 EmbreeScene::EmbreeScene(const Case& c, std::vector<std::uint32_t> triangles,
-                         RTCFilterFunctionN occluded_filter)
+                         RTCFilterFunctionN occluded_filter, double magnitude)
     : triangles_(std::move(triangles)), primitives_(c.triangles.size(), absent) {
-  const double scale = c.scale();
-  if (scale > 0.0 && (scale < std::ldexp(1.0, embree_min_scale_exponent) ||
-                      scale > std::ldexp(1.0, embree_max_scale_exponent))) {
+  if (magnitude > 0.0 && (magnitude < std::ldexp(1.0, embree_min_scale_exponent) ||
+                          magnitude > std::ldexp(1.0, embree_max_scale_exponent))) {
     int binary_exponent = 0;
-    std::frexp(scale, &binary_exponent);  // scale = m 2^binary_exponent, m in [1/2, 1)
+    std::frexp(magnitude, &binary_exponent);  // M = m 2^binary_exponent, m in [1/2, 1)
     factor_ = std::ldexp(1.0, -binary_exponent);
   }
   for (std::size_t i = 0; i < triangles_.size(); ++i) primitives_[triangles_[i]] = std::uint32_t(i);

@@ -2,6 +2,7 @@
 #include "shadowcts/geometry/camera_frame.h"
 #include "shadowcts/geometry/exact_orientation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -49,7 +50,11 @@ std::size_t ViewSamples::count(SampleClass c) const {
 ViewSamples generate_view_samples(const Case& c) {
   const Camera& cam = c.camera;
   const CameraFrame frame = camera_frame(cam);
-  const EmbreeScene scene(c);
+  // The rays start at the eye: it and the triangles set the scene's magnitude (not a far point
+  // light, which no primary ray reaches).
+  const glm::dvec3 eye(cam.position);
+  const EmbreeScene scene(
+      c, std::max({c.triangle_scale(), std::fabs(eye.x), std::fabs(eye.y), std::fabs(eye.z)}));
 
   ViewSamples out;
   out.width = cam.width;

@@ -1,5 +1,7 @@
 #include "oracles/embree_shadow_rays.h"
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -54,7 +56,8 @@ struct EmbreeShadowRays::Scene {
   EmbreeScene casters;
 
   explicit Scene(const Case& c)
-      : light(hard_shadow_light(c)), casters(c, shadow_casters(c), filter_hits) {}
+      : light(hard_shadow_light(c)),
+        casters(c, shadow_casters(c), filter_hits, c.triangle_scale()) {}
 };
 
 EmbreeShadowRays::EmbreeShadowRays(const Case& c) : scene_(std::make_unique<Scene>(c)) {}
@@ -83,12 +86,25 @@ bool EmbreeShadowRays::occluded(const glm::vec3& origin, std::uint32_t receiver,
     ray.dir_z = float(s.light.direction.z);
     ray.tfar = std::numeric_limits<float>::infinity();
   } else {
-    // Up to the light: t = 1 along the (float-rounded) vector to it.
-    const glm::vec3 light = s.casters.to_scene(s.light.position);
-    ray.dir_x = light.x - start.x;
-    ray.dir_y = light.y - start.y;
-    ray.dir_z = light.z - start.z;
+    // Up to the light: t = 1 along the (float-rounded) vector to it. A light far beyond the
+    // triangles (the scene's magnitude leaves it out) gets that vector scaled by a power of two
+    // and tfar = its inverse (Embree's tests are linear in the direction: the same decisions),
+    // so the direction stays inside Embree's range (it asserts beyond 1.8e18) and finite.
+    const glm::vec3 to_light = s.casters.to_scene(s.light.position) - start;
+    ray.dir_x = to_light.x;
+    ray.dir_y = to_light.y;
+    ray.dir_z = to_light.z;
     ray.tfar = 1.0f;
+    if (!(std::max({std::fabs(to_light.x), std::fabs(to_light.y), std::fabs(to_light.z)}) <=
+          0x1p40f)) {
+      const glm::dvec3 far = s.light.position * s.casters.factor() - glm::dvec3(start);
+      int exponent = 0;
+      std::frexp(std::max({std::fabs(far.x), std::fabs(far.y), std::fabs(far.z)}), &exponent);
+      ray.dir_x = float(std::ldexp(far.x, -exponent));
+      ray.dir_y = float(std::ldexp(far.y, -exponent));
+      ray.dir_z = float(std::ldexp(far.z, -exponent));
+      ray.tfar = float(std::ldexp(1.0, exponent));
+    }
   }
   ray.mask = 0xffffffffu;
   ray.flags = 0;

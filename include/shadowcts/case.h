@@ -93,6 +93,8 @@ struct Case {
   // Largest absolute coordinate of the case (triangles, camera, point light): the scale S of the
   // ambiguity band.
   double scale() const;
+  // Largest absolute coordinate of the triangles alone.
+  double triangle_scale() const;
 };
 
 // Throws InputError naming case.source and the element if the case is not valid: NaN/Inf,

@@ -3,11 +3,14 @@
 // geometry (geomID 0), with maps between Embree's primID and the index into Case::triangles.
 //
 // Embree works in float32 and asserts on ray origins beyond about 1.8e18; its products of three
-// coordinates overflow from scales near 2^42 and its tests lose hits below 2^-34. A case whose
-// scale S lies outside [2^embree_min_scale_exponent, 2^embree_max_scale_exponent] is therefore
-// put into Embree multiplied by a power of two that brings S into [1/2, 1): exact for every
-// coordinate that stays a normal float, so hits, barycentrics and the triangles hit are those of
-// the case itself. Rays must be given in the same units: to_scene() for points and lengths.
+// coordinates (vertices relative to the ray's origin) overflow from magnitudes near 2^42 and its
+// tests lose hits below 2^-34. A scene whose magnitude M (the largest absolute coordinate of its
+// triangles and of its rays' origins) lies outside [2^embree_min_scale_exponent,
+// 2^embree_max_scale_exponent] is therefore put into Embree multiplied by a power of two that
+// brings M into [1/2, 1): exact for every coordinate that stays a normal float, so hits,
+// barycentrics and the triangles hit are those of the case itself. Rays must be given in the same
+// units: to_scene() for points and lengths. M is not the case's scale S: a far point light or a
+// far camera that no ray starts from must not shrink the triangles into Embree's denormals.
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -29,11 +32,13 @@ class EmbreeScene {
   static constexpr std::uint32_t absent = std::numeric_limits<std::uint32_t>::max();
 
   // `triangles`: indices into c.triangles, in primID order. `occluded_filter`, if given, is the
-  // geometry's occlusion filter function. Throws std::runtime_error when Embree fails.
+  // geometry's occlusion filter function. `magnitude`: M above, or 0 for a scene that is never
+  // scaled (the Embree peers, which run only inside the range). Throws std::runtime_error when
+  // Embree fails.
   EmbreeScene(const Case& c, std::vector<std::uint32_t> triangles,
-              RTCFilterFunctionN occluded_filter = nullptr);
+              RTCFilterFunctionN occluded_filter, double magnitude);
   // Every triangle of the case; primID == triangle index.
-  explicit EmbreeScene(const Case& c);
+  EmbreeScene(const Case& c, double magnitude);
   ~EmbreeScene();
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
@@ -42,6 +47,8 @@ class EmbreeScene {
   // A point or a length of the case in the scene's units (times the scene's power of two, rounded
   // to float).
   float to_scene(double value) const { return float(value * factor_); }
+  // The power of two of to_scene() (1 inside Embree's range).
+  double factor() const { return factor_; }
   glm::vec3 to_scene(const glm::dvec3& point) const {
     return {to_scene(point.x), to_scene(point.y), to_scene(point.z)};
   }

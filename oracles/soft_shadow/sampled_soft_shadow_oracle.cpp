@@ -98,7 +98,7 @@ SoftShadowTruth sampled_soft_shadow_oracle(const Case& c, const ViewSamples& sam
 
   // Every band move lies within this Euclidean distance (as in the exact oracle).
   const double move = std::sqrt(3.0) * truth.tau;
-  const EmbreeScene scene(c, casters_of(c), ignore_receiver);
+  const EmbreeScene scene(c, casters_of(c), ignore_receiver, c.triangle_scale());
   run_with_thread_limit(c.parameters.threads, [&] {
     const LightConeBvh casters(c);
     tbb::parallel_for(

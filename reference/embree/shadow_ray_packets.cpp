@@ -51,7 +51,7 @@ void filter_hits(const RTCFilterFunctionNArguments* args) {
 }  // namespace
 
 ShadowRayPackets::ShadowRayPackets(const Case& c)
-    : case_(c), light_(hard_shadow_light(c)), casters_(c, shadow_casters(c), filter_hits) {}
+    : case_(c), light_(hard_shadow_light(c)), casters_(c, shadow_casters(c), filter_hits, 0.0) {}
 
 void ShadowRayPackets::trace(const ViewSamples& samples, std::span<const std::uint32_t> indices,
                              std::vector<std::uint8_t>& shadowed) const {

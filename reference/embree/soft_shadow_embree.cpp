@@ -158,7 +158,7 @@ class EmbreeSoftShadow final : public VariantTableAlgorithm<std::uint32_t> {
       std::vector<std::uint32_t> casters;
       for (std::uint32_t t = 0; t < scene.casters.size(); ++t)
         if (scene.casters.casts[t]) casters.push_back(t);
-      const EmbreeScene embree(c, std::move(casters), filter_hits);
+      const EmbreeScene embree(c, std::move(casters), filter_hits, 0.0);  // the peer: unscaled
       clock.lap(build_phase);
       phase_progress::begin(regular.size(), "regular samples");
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, regular.size(), 64),

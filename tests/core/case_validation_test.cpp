@@ -124,8 +124,24 @@ TEST(CaseValidation, ScaleIsTheLargestAbsoluteCoordinate) {
   c.camera.position = {0, 2, 5};
   c.light->position = {0, -9.5f, 0};
   EXPECT_EQ(c.scale(), 9.5);
+  EXPECT_EQ(c.triangle_scale(), 1.0);
   c.triangles[0].v2.x = -12;
   EXPECT_EQ(c.scale(), 12.0);
+  EXPECT_EQ(c.triangle_scale(), 12.0);
+}
+
+// Beyond 1e30 float differences overflow: the error names what lies there, not "triangles".
+TEST(CaseValidation, RejectsCoordinatesBeyond1e30NamingTheElement) {
+  Case c = valid_case();
+  c.light->position = {0, 2e30f, 0};
+  expect_error(c, "light.position");
+  c = valid_case();
+  c.camera.position = {-3e30f, 0, 1};
+  c.camera.target = {0, 0, 0};
+  expect_error(c, "camera.position");
+  c = valid_case();
+  c.triangles.push_back({{0, 0, 0}, {1, 0, 0}, {0, 0, 1.5e30f}, 0});
+  expect_error(c, "triangles[1]");
 }
 
 }  // namespace

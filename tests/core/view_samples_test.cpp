@@ -93,6 +93,31 @@ TEST(ViewSamples, SamePixelsAtScalesOutsideEmbreesRange) {
   EXPECT_GE(same, want.samples.size() - 8);
 }
 
+// The primary rays start at the eye and meet only the triangles: a point light far beyond them
+// (it sets the case's scale S) must not change which surface a pixel sees. Before, S put the scene
+// into Embree scaled by 2^-69, the triangles became denormal-sized and every pixel was sky.
+TEST(ViewSamples, AFarPointLightDoesNotChangeWhatThePixelsSee) {
+  const ViewSamples want = generate_view_samples(ground_and_wall(point_light({0, 5, 3})));
+  for (const float distance : {1e12f, 1e20f, 1e29f}) {
+    const Case c = ground_and_wall(point_light({0, distance, 0}));
+    ASSERT_GT(c.scale(), 0x1p39);
+    const ViewSamples got = generate_view_samples(c);
+    ASSERT_EQ(got.samples.size(), want.samples.size());
+    std::size_t surface = 0;
+    for (std::size_t i = 0; i < want.samples.size(); ++i) {
+      const ViewSample &a = want.samples[i], &b = got.samples[i];
+      ASSERT_EQ(b.sample_class == SampleClass::sky, a.sample_class == SampleClass::sky)
+          << distance << ", sample " << i;
+      if (a.sample_class == SampleClass::sky) continue;
+      ++surface;
+      ASSERT_EQ(b.receiver, a.receiver) << distance << ", sample " << i;
+      for (int axis = 0; axis < 3; ++axis)
+        ASSERT_EQ(b.position[axis], a.position[axis]) << distance << ", sample " << i;
+    }
+    EXPECT_GT(surface, 5000u);
+  }
+}
+
 TEST(ViewSamples, LieOnTheirReceiverWithinFloatError) {
   const Case c = ground_and_wall(point_light({0, 5, 3}));
   const ViewSamples s = generate_view_samples(c);
