@@ -1,8 +1,8 @@
 #pragma once
 // The Algorithm around the brute-force kernel, one for each build of the kernel source: the
 // device (`cuda`) and the emulator (`cuda-emu`). Both finish the kernel's answer on the host the
-// same way: samples the kernel leaves unsure (near a triangle edge) are decided by the exact
-// predicate, and a point light on a caster triangle shadows every sample it does not receive.
+// same way: samples the kernel leaves unsure (near a triangle edge or the light) are decided by the
+// exact predicate, and a point light on a caster triangle shadows every sample it does not receive.
 #include <cstdint>
 #include <memory>
 #include <optional>

@@ -12,8 +12,10 @@
 //
 // The float test is exact for one perturbation of each triangle's vertices and of L - p; beside
 // an edge its miss may be a crack (a T-junction) and its hit a rounding of L - p near the light,
-// so a sample that no triangle hits away from its edges but that passes near an edge comes back
-// `unsure` and the host decides it exactly.
+// and at the light's end of the segment (triangle_reaches_light_end) either answer may be such a
+// rounding; so a sample that no triangle hits away from its edges and the light's end but that
+// passes near an edge or a triangle at that end comes back `unsure` and the host decides it
+// exactly.
 //
 // The receiver half-space rule (shadowcts/geometry/receiver_half_space.h) is decided exactly on
 // the device for every caster the float test hits or passes beside: one that cannot shadow the
@@ -105,7 +107,7 @@ __global__ void SHADOWCTS_BRUTEFORCE_LAUNCH_BOUNDS bruteforce_hard_shadow(
   geometry::ReceiverHalfSpace half_space;
   bool has_half_space = false;
   bool done = !has_sample;  // shadowed, or no sample to shade
-  bool hit = false, near_edge = false;
+  bool hit = false, left_unsure = false;
   unsigned long long tests = 0;
 
   for (std::uint32_t tile_start = 0; tile_start < caster_count; tile_start += casters_per_tile) {
@@ -141,27 +143,30 @@ __global__ void SHADOWCTS_BRUTEFORCE_LAUNCH_BOUNDS bruteforce_hard_shadow(
       const glm::vec3 v0(v[0], v[1], v[2]), v1(v[3], v[4], v[5]), v2(v[6], v[7], v[8]);
       const bool float_hit = ray_hits_triangle(ray, v0, v1, v2);
       // Beside an edge neither answer of the float test is certain: a miss may be a crack, a hit
-      // may come from the rounding of L - p at the light end (stiff.light_1e-6_from_caster).
-      // Only a hit away from every edge ends the search.
-      const bool beside_edge =
-          (float_hit || !near_edge) && ray_within_rounding_of_triangle_edge(ray, v0, v1, v2);
-      if (!float_hit && !beside_edge) continue;
+      // may come from the rounding of L - p at the light end (stiff.light_1e-6_from_caster). At
+      // the light's end of the segment neither is certain either, edge or not: a crossing of the
+      // caster's plane within rounding of L (stiff.light_1ulp_off_caster_face). Only a hit away
+      // from both ends the search; the host decides the samples left unsure.
+      const bool unsure =
+          (float_hit || !left_unsure) && (ray_within_rounding_of_triangle_edge(ray, v0, v1, v2) ||
+                                          triangle_reaches_light_end(ray, v0, v1, v2));
+      if (!float_hit && !unsure) continue;
       if (!counts_for_sample(half_space, has_half_space, sample_receiver_triangles + sample,
                              directional_light, light, position, v0, v1, v2))
         continue;
-      if (float_hit && !beside_edge) {
+      if (float_hit && !unsure) {
         hit = true;
         done = true;
         break;
       }
-      near_edge = near_edge || beside_edge;
+      left_unsure = left_unsure || unsure;
     }
   }
 
   if (has_sample) {
-    sample_states[sample] = hit         ? bruteforce_sample_shadowed
-                            : near_edge ? bruteforce_sample_unsure
-                                        : bruteforce_sample_lit;
+    sample_states[sample] = hit           ? bruteforce_sample_shadowed
+                            : left_unsure ? bruteforce_sample_unsure
+                                          : bruteforce_sample_lit;
   }
   // Integer sums are order-independent, so the total is deterministic.
   for (int offset = warpSize / 2; offset > 0; offset /= 2) {

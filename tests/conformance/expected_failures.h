@@ -37,17 +37,6 @@ inline constexpr ExpectedFailure expected_failures[] = {
      "missing annulus is half the disk"},
     {"soft.softtile.post.*.stiff.sun_radius_80_degrees",
      "as at 45 degrees: the disk of tangent radius sin(a) = 0.98 stands for one of tan(a) = 5.7"},
-    {"hard.metric.*.stiff.light_1e-6_from_caster",
-     "the metric tree's final test is the float watertight segment test (shared with the device "
-     "code): the same rounding at the light end as Embree"},
-    {"hard.metric.*.stiff.light_1ulp_off_caster_face",
-     "the light is one float step (5e-7) above the face, so every shadow segment crosses the "
-     "face's plane within ~1e-8 of its end at L: the float watertight segment test rounds that "
-     "crossing past the light for a few segments (its exact fallback covers segments beside an "
-     "edge, not ends beside a plane)"},
-    {"hard.bruteforce.float32.cuda*.stiff.light_1ulp_off_caster_face",
-     "the brute-force kernel's float watertight segment test, as metric's: the crossing of the "
-     "face's plane within ~1e-8 of the segment's end at L rounds past the light"},
     // Shadow maps beyond their declared ceiling on the robust mismatch rate (measured
     // 2026-12-02; the ceilings are in reference/shadowmap/shadowmap_algorithm.cpp). The biased
     // maps only: the unbiased map's ceiling (0.6) covers these.

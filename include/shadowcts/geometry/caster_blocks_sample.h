@@ -22,8 +22,8 @@ SHADOWCTS_GEOMETRY_ABI_BEGIN
 enum class CasterDecision : std::uint8_t {
   passes,  // does not shadow the sample
   blocks,  // shadows it
-  // Only with exact_segment_test = false: a float miss within rounding of an edge (or inside the
-  // triangle but outside the segment's range) of a triangle the rule lets count, which the exact
+  // Only with exact_segment_test = false: a float miss within rounding of an edge, or a float
+  // answer at the light's end of the segment, for a triangle the rule lets count, which the exact
   // segment test must decide (a device defers it to the host: the
   // exact tests' expansions cost a kernel minutes of ptxas time and kilobytes of stack).
   needs_exact_segment_test,
@@ -57,13 +57,18 @@ SHADOWCTS_HD inline CasterDecision decide_caster(const RaySpace& ray_space, cons
   const bool float_hit = ray_hits_triangle(ray_space, v0, v1, v2);
   // The float test rounds each vertex on its own: beside an edge its miss may be a crack (a
   // vertex on another triangle's edge, found by fuzz_watertight). A hit there is never wrong on a
-  // robust sample (the ray then passes within rounding of an open edge, which makes the sample
-  // ambiguous, or of a covered one).
-  if (!float_hit && !ray_near_triangle_edge(ray_space, v0, v1, v2)) return CasterDecision::passes;
+  // robust sample away from the light (the ray then passes within rounding of an open edge, which
+  // makes the sample ambiguous, or of a covered one). At the light's end of the segment neither
+  // answer is certain: a light 1e-30 above a floor, or on a caster's edge, is where robust samples
+  // got false shadows.
+  const bool at_light_end = triangle_reaches_light_end(ray_space, v0, v1, v2);
+  if (!float_hit && !at_light_end && !ray_near_triangle_edge(ray_space, v0, v1, v2))
+    return CasterDecision::passes;
+  const bool certain_hit = float_hit && !at_light_end;
   // Without the exact test, a miss whose line is certainly outside needs none: it is the exact
   // test's answer.
   if constexpr (!exact_segment_test)
-    if (!float_hit && line_certainly_misses_triangle(ray_space, v0, v1, v2))
+    if (!certain_hit && line_certainly_misses_triangle(ray_space, v0, v1, v2))
       return CasterDecision::passes;
   // The receiver half-space rule: a hit counts only strictly on the light's side of the
   // receiver's plane, so a coplanar neighbour or the next face of a convex mesh is passed over.
@@ -71,7 +76,7 @@ SHADOWCTS_HD inline CasterDecision decide_caster(const RaySpace& ray_space, cons
   const glm::dvec3 a(v0), b(v1), c(v2);
   const CasterReach reach = caster_reach(half_space, a, b, c);
   if (reach == CasterReach::no_hit) return CasterDecision::passes;
-  if (!float_hit) {
+  if (!certain_hit) {
     if constexpr (!exact_segment_test) {
       return CasterDecision::needs_exact_segment_test;
     } else {

@@ -222,6 +222,20 @@ SHADOWCTS_HD inline bool ray_near_triangle_edge(const RaySpace& space, const glm
          std::fabs(exact_edge_function(a, b)) <= 0x1p-16 * na * nb;
 }
 
+// Whether some vertex of the triangle lies along the segment to a point light within its last
+// sixteenth or beyond (ray-space depth >= 15/16 t_max): then a crossing may lie within rounding of
+// the light, where the float segment's end (p + (L - p) rounded) and the float depths can take it
+// or leave it either way, and the band cannot tell (moving p barely moves the segment's light
+// end). Farther from the light a float hit beside an edge moves with p, and the band covers it.
+// Never for a directional light (its ray has no end).
+SHADOWCTS_HD inline bool triangle_reaches_light_end(const RaySpace& space, const glm::vec3& v0,
+                                                    const glm::vec3& v1, const glm::vec3& v2) {
+  if (space.zero_direction || !(space.t_max < INFINITY)) return false;
+  const float reach = space.t_max * 0.9375f;
+  return to_ray_space(space, v0).z >= reach || to_ray_space(space, v1).z >= reach ||
+         to_ray_space(space, v2).z >= reach;
+}
+
 SHADOWCTS_HD inline bool ray_hits_triangle(const ShadowRay& ray, const glm::vec3& v0,
                                            const glm::vec3& v1, const glm::vec3& v2) {
   return ray_hits_triangle(make_ray_space(ray), v0, v1, v2);

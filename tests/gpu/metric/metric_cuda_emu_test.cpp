@@ -264,8 +264,7 @@ INSTANTIATE_TEST_SUITE_P(DefaultFixtures, CudaEmuMetricOnFixtures,
                          ::testing::ValuesIn(ref::testing::hard_shadow_fixtures()),
                          ref::testing::fixture_test_name);
 
-// The stiff cases metric's own traps live in, at their own resolution: identical answers,
-// including the reference's expected failures.
+// The stiff cases metric's own traps live in, at their own resolution: identical answers.
 class CudaEmuMetricOnStiffCases : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(CudaEmuMetricOnStiffCases, SameAnswersAndCountersAsTheReference) {

@@ -125,7 +125,7 @@ INSTANTIATE_TEST_SUITE_P(DefaultFixtures, SimdMetricOnFixtures,
 
 // The stiff cases metric's own traps live in (the light a float ulp off a caster's face or 1e-6
 // from it, a light inside a cluster, zero-length capsules, coplanar and crease receivers), at
-// their own resolution: identical answers, including the reference's expected failures.
+// their own resolution: identical answers.
 class SimdMetricOnStiffCases : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(SimdMetricOnStiffCases, SameAnswersAndCountersAsTheReference) {
