@@ -205,6 +205,22 @@ TEST(HardShadowOracles, LightInACastersPlane) {
   EXPECT_EQ(exact.band[i], BandClass::robust_shadowed);
 }
 
+// A point light far beyond the triangles: S (1e25) is the light's, so Embree's scene is sized by
+// the triangles and the ray towards the light gets its direction scaled by a power of two (beyond
+// Embree's 1.8e18 assertion as it is). Before, the scene went in at 2^-84, denormal-sized, and
+// every ray missed.
+TEST(HardShadowOracles, RaysReachAFarPointLight) {
+  HandBuiltCase h = make_hand_built_case(point_light({0.25f, 1e25f, 0.5f}));
+  add_pyramid_fan(h);
+  const std::size_t under = h.add_ground_sample({0.1f, 0, 0.2f});
+  const std::size_t beside = h.add_ground_sample({5, 0, 5});
+  const Truths t = run_both(h);
+  EXPECT_EQ(t.exact.shadowed[under], 1);
+  EXPECT_EQ(t.embree.shadowed[under], 1);
+  EXPECT_EQ(t.exact.shadowed[beside], 0);
+  EXPECT_EQ(t.embree.shadowed[beside], 0);
+}
+
 TEST(HardShadowOracles, ZeroAreaCastersNeverShadow) {
   for (const ShadowLight& light : {point_light({0, 8, 0}), directional_light({0, 1, 0})}) {
     auto h = make_hand_built_case(light);
