@@ -49,15 +49,21 @@ std::vector<std::uint32_t> shadow_casters(const Case& c) {
   return casters;
 }
 
+double max_abs(const glm::dvec3& v) {
+  return std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+}
+
 }  // namespace
 
 struct EmbreeShadowRays::Scene {
   HardShadowLight light;
   EmbreeScene casters;
+  double extent;  // the triangles' largest absolute coordinate, in the scene's units
 
   explicit Scene(const Case& c)
       : light(hard_shadow_light(c)),
-        casters(c, shadow_casters(c), filter_hits, c.triangle_scale()) {}
+        casters(c, shadow_casters(c), filter_hits, c.triangle_scale()),
+        extent(c.triangle_scale() * casters.factor()) {}
 };
 
 EmbreeShadowRays::EmbreeShadowRays(const Case& c) : scene_(std::make_unique<Scene>(c)) {}
@@ -74,7 +80,8 @@ bool EmbreeShadowRays::occluded(const glm::vec3& origin, std::uint32_t receiver,
   context.rule = rule;
 
   // In the scene's units (EmbreeScene: a power of two away outside Embree's range).
-  const glm::vec3 start = s.casters.to_scene(glm::dvec3(origin));
+  const glm::dvec3 from = glm::dvec3(origin) * s.casters.factor();
+  const glm::vec3 start(from);
   RTCRay ray{};
   ray.org_x = start.x;
   ray.org_y = start.y;
@@ -86,25 +93,48 @@ bool EmbreeShadowRays::occluded(const glm::vec3& origin, std::uint32_t receiver,
     ray.dir_z = float(s.light.direction.z);
     ray.tfar = std::numeric_limits<float>::infinity();
   } else {
-    // Up to the light: t = 1 along the (float-rounded) vector to it. A light far beyond the
-    // triangles (the scene's magnitude leaves it out) gets that vector scaled by a power of two
-    // and tfar = its inverse (Embree's tests are linear in the direction: the same decisions),
-    // so the direction stays inside Embree's range (it asserts beyond 1.8e18) and finite.
+    // Up to the light: t = 1 along the (float-rounded) vector to it.
     const glm::vec3 to_light = s.casters.to_scene(s.light.position) - start;
     ray.dir_x = to_light.x;
     ray.dir_y = to_light.y;
     ray.dir_z = to_light.z;
     ray.tfar = 1.0f;
-    if (!(std::max({std::fabs(to_light.x), std::fabs(to_light.y), std::fabs(to_light.z)}) <=
-          0x1p40f)) {
-      const glm::dvec3 far = s.light.position * s.casters.factor() - glm::dvec3(start);
-      int exponent = 0;
-      std::frexp(std::max({std::fabs(far.x), std::fabs(far.y), std::fabs(far.z)}), &exponent);
-      ray.dir_x = float(std::ldexp(far.x, -exponent));
-      ray.dir_y = float(std::ldexp(far.y, -exponent));
-      ray.dir_z = float(std::ldexp(far.z, -exponent));
-      ray.tfar = float(std::ldexp(1.0, exponent));
+  }
+  // A point light far beyond the triangles (their magnitude sized the scene, not S), or an origin
+  // far outside them (the band moves samples by up to 2^-10 S): Embree asserts beyond 1.8e18 and
+  // its products overflow. The ray is taken in double instead: its part outside the box of twice
+  // the triangles' extent meets none of them, so it starts where it enters that box, and its
+  // direction is scaled by a power of two, tfar by the inverse (Embree's tests are linear in the
+  // direction: the same decisions).
+  constexpr double far = 0x1p40;
+  if (!(max_abs(from) <= far && max_abs(glm::dvec3(ray.dir_x, ray.dir_y, ray.dir_z)) <= far)) {
+    glm::dvec3 o = from;
+    const glm::dvec3 d =
+        s.light.directional ? s.light.direction : s.light.position * s.casters.factor() - from;
+    double t_end = s.light.directional ? std::numeric_limits<double>::infinity() : 1.0;
+    const double half = 2.0 * s.extent;
+    double t_in = 0.0, t_out = t_end;
+    for (int k = 0; k < 3; ++k) {
+      if (d[k] == 0.0) {
+        if (std::fabs(o[k]) > half) return false;
+        continue;
+      }
+      const double a = (-half - o[k]) / d[k], b = (half - o[k]) / d[k];
+      t_in = std::max(t_in, std::min(a, b));
+      t_out = std::min(t_out, std::max(a, b));
     }
+    if (!(t_in <= t_out)) return false;
+    o += t_in * d;
+    t_end -= t_in;
+    int exponent = 0;
+    std::frexp(max_abs(d), &exponent);
+    ray.org_x = float(o.x);
+    ray.org_y = float(o.y);
+    ray.org_z = float(o.z);
+    ray.dir_x = float(std::ldexp(d.x, -exponent));
+    ray.dir_y = float(std::ldexp(d.y, -exponent));
+    ray.dir_z = float(std::ldexp(d.z, -exponent));
+    ray.tfar = float(std::ldexp(t_end, exponent));
   }
   ray.mask = 0xffffffffu;
   ray.flags = 0;
