@@ -74,6 +74,16 @@ std::string ReportData::page_relative(std::size_t dir, const std::string& path_i
 
 ReportData load_report_data(const std::vector<fs::path>& result_dirs, const fs::path& page_dir) {
   if (result_dirs.empty()) throw UsageError("report: no result directory given");
+  // The same folder twice (or by two paths) would be compared with itself and counted twice.
+  for (std::size_t d = 0; d < result_dirs.size(); ++d)
+    for (std::size_t e = 0; e < d; ++e) {
+      std::error_code ec;
+      if (fs::equivalent(result_dirs[d], result_dirs[e], ec))
+        throw UsageError("report: " + result_dirs[d].string() + " is given twice" +
+                         (result_dirs[d] == result_dirs[e]
+                              ? std::string()
+                              : " (also as " + result_dirs[e].string() + ")"));
+    }
   ReportData data;
   data.page_dir = page_dir;
   std::map<std::string, std::size_t> case_index;

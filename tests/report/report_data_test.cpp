@@ -91,6 +91,11 @@ TEST(ReportData, RefusesWhatIsNotAResultDirectory) {
                 {hand_hard_record("a", "x", 1, 0), hand_hard_record("a", "x", 2, 0)});
   EXPECT_THROW(load_report_data({root / "twice"}, root), InputError);
 
+  // One folder given twice, also by another path: it would be compared with itself.
+  write_results(root / "once", {hand_case("a")}, {hand_hard_record("a", "x", 1, 0)});
+  EXPECT_THROW(load_report_data({root / "once", root / "once"}, root), UsageError);
+  EXPECT_THROW(load_report_data({root / "once", root / "." / "once"}, root), UsageError);
+
   ordered_json nameless = hand_hard_record("a", "x", 1, 0);
   nameless.erase("name");
   write_results(root / "nameless", {hand_case("a")}, {nameless});
