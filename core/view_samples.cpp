@@ -52,7 +52,7 @@ ViewSamples generate_view_samples(const Case& c) {
   const CameraFrame frame = camera_frame(cam);
   // The rays start at the eye: it and the triangles set the scene's magnitude (not a far point
   // light, which no primary ray reaches).
-  const glm::dvec3 eye(cam.position);
+  const glm::dvec3& eye = frame.origin;
   const EmbreeScene scene(
       c, std::max({c.triangle_scale(), std::fabs(eye.x), std::fabs(eye.y), std::fabs(eye.z)}));
 

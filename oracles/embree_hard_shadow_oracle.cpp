@@ -23,13 +23,14 @@ namespace {
 struct ExactRule {
   const Case* c;
   const ExactShadowPredicate* predicate;
-  const std::vector<char>* near_light;  // per triangle: decided by the exact pass, not by Embree
+  // casters_near_light, in index order: decided by the exact pass, not by Embree.
+  const std::vector<std::uint32_t>* near_light;
   ReceiverPlane plane;
   glm::dvec3 position;
 
   static bool counts(const void* state, std::uint32_t caster) {
     const auto& rule = *static_cast<const ExactRule*>(state);
-    if ((*rule.near_light)[caster]) return false;
+    if (std::binary_search(rule.near_light->begin(), rule.near_light->end(), caster)) return false;
     const Triangle& t = rule.c->triangles[caster];
     const PlaneReach reach = rule.predicate->reach(rule.plane, t);
     if (reach != PlaneReach::straddles) return reach == PlaneReach::whole;
@@ -37,11 +38,11 @@ struct ExactRule {
   }
 };
 
-// The casters near a point light, whose box lies within 2^-14 S of it. Embree's segment ends at
-// p + (L - p) rounded, within about 2^-21 S of L, so only there can its hit or its miss be that
-// rounding, which the band (moving p, not L) does not cover: a light 1e-7 from a blocker's face
-// made the oracle wrong on 226 samples it called robust. These casters are decided by the exact
-// predicate for every sample; they are none where the light is away from the geometry.
+// The casters near a point light, whose box lies within 2^-14 S of it, in index order. Embree's
+// segment ends at p + (L - p) rounded, within about 2^-21 S of L, so only there can its hit or its
+// miss be that rounding, which the band (moving p, not L) does not cover: a light 1e-7 from a
+// blocker's face made the oracle wrong on 226 samples it called robust. These casters are decided
+// by the exact predicate for every sample; they are none where the light is away from the geometry.
 std::vector<std::uint32_t> casters_near_light(const Case& c, double scale) {
   std::vector<std::uint32_t> near;
   if (!c.light || c.light->kind != ShadowLightKind::point) return near;
@@ -97,8 +98,6 @@ HardShadowTruth embree_hard_shadow_oracle(const Case& c, const ViewSamples& samp
     const EmbreeShadowRays rays(c);
     const ExactShadowPredicate predicate(hard_shadow_light(c), scale);
     const std::vector<std::uint32_t> near = casters_near_light(c, scale);
-    std::vector<char> near_light(c.triangles.size(), 0);
-    for (const std::uint32_t t : near) near_light[t] = 1;
     phase_progress::begin(n, "view samples");
     tbb::parallel_for(
         tbb::blocked_range<std::size_t>(0, n, 256),
@@ -107,7 +106,7 @@ HardShadowTruth embree_hard_shadow_oracle(const Case& c, const ViewSamples& samp
           for (std::size_t i = range.begin(); i != range.end(); ++i) {
             const ViewSample& sample = samples.samples[i];
             if (sample.sample_class != SampleClass::regular) continue;
-            ExactRule rule{&c, &predicate, &near_light, {}, glm::dvec3(sample.position)};
+            ExactRule rule{&c, &predicate, &near, {}, glm::dvec3(sample.position)};
             if (sample.receiver != no_receiver)
               rule.plane = predicate.receiver_plane(c.triangles[sample.receiver]);
             const EmbreeShadowRays::CasterRule caster_rule{&rule, &ExactRule::counts};

@@ -60,10 +60,11 @@ struct EmbreeShadowRays::Scene {
   EmbreeScene casters;
   double extent;  // the triangles' largest absolute coordinate, in the scene's units
 
-  explicit Scene(const Case& c)
+  explicit Scene(const Case& c) : Scene(c, c.triangle_scale()) {}
+  Scene(const Case& c, double triangle_scale)
       : light(hard_shadow_light(c)),
-        casters(c, shadow_casters(c), filter_hits, c.triangle_scale()),
-        extent(c.triangle_scale() * casters.factor()) {}
+        casters(c, shadow_casters(c), filter_hits, triangle_scale),
+        extent(triangle_scale * casters.factor()) {}
 };
 
 EmbreeShadowRays::EmbreeShadowRays(const Case& c) : scene_(std::make_unique<Scene>(c)) {}
