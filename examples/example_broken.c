@@ -5,6 +5,7 @@
  *                      edges of the closed boxes                                    -> Fail
  *   gate_house.*       a segmentation fault                                         -> Crash
  *   closed_shapes.*    never returns                                                -> Timeout
+ *   shared_edges.*     a fatal-error path that ends the host process: exit(3)       -> Crash
  *   foliage.*          state kept across processes: every second process (a marker file in
  *                      $TMPDIR or /tmp alternates) answers one sample differently,
  *                      so certify's rerun in a fresh process differs               -> Fail
@@ -78,6 +79,10 @@ static int32_t run_broken(void* context, const ShadowctsScene* scene, ShadowctsO
   }
   if (starts_with(name, "closed_shapes.")) {
     for (;;) sleep(1);
+  }
+  if (starts_with(name, "shared_edges.")) {
+    fprintf(stderr, "example_broken: fatal: cannot continue\n");
+    exit(3);
   }
   const ExampleFault fault = starts_with(name, "ground_blockers.") || grid_aligned_casters(scene)
                                  ? EXAMPLE_FAULT_EDGE_CRACK

@@ -344,8 +344,17 @@ WorkerOutcome run_case_variant(const std::string& exe, const CertifyOptions& opt
   if (outcome.run.end != WorkerRun::End::exited || outcome.run.code > 1) {
     outcome.problem = run_end_text(outcome.run, options.timeout_s);
     if (outcome.run.end == WorkerRun::End::exited) {
+      // The runner's own errors end the worker with a "shadowcts: ..." line. Any other exit
+      // status came from code the runner does not control: the library ended the process.
       const std::string line = last_line(run_dir / "worker.log");
-      if (!line.empty()) outcome.problem += ": " + line;
+      if (line.rfind("shadowcts: ", 0) == 0)
+        outcome.problem += ": " + line;
+      else
+        outcome.problem +=
+            " without an error from shadowcts: the library ended the process (exit() in a "
+            "plugin call?)" +
+            (line.empty() ? std::string(", and printed nothing")
+                          : "; worker.log ends with '" + line + "'");
     }
     return outcome;
   }

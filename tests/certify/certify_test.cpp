@@ -153,23 +153,25 @@ TEST(Certify, ExamplePortPassesInShardsThatMergeAndVerify) {
   }
 }
 
-TEST(Certify, BrokenPortGivesFailCrashTimeoutFailAndTheRunCompletes) {
+TEST(Certify, BrokenPortGivesFailCrashTimeoutFailCrashAndTheRunCompletes) {
   const fs::path dir = fresh_dir("certify_broken");
   // example_broken.c: a leak at shared edges (ground_blockers), a segfault (gate_house), a hang
-  // (closed_shapes) and other answers in every second process (foliage).
+  // (closed_shapes), other answers in every second process (foliage) and exit(3) inside the
+  // call (shared_edges).
   // TMPDIR: where the broken example keeps its marker file between processes.
   const int code = testing::run_shell(
       "TMPDIR=\"$PWD\" exec '" SHADOWCTS_TOOL "' certify --backend '" EXAMPLE_BROKEN
       "' --fixture ground_blockers.100 --fixture gate_house.1000 --fixture closed_shapes.100 "
-      "--fixture foliage.100 --timeout 6 --threads 1 --out out\n",
+      "--fixture foliage.100 --fixture shared_edges.500 --timeout 6 --threads 1 --out out\n",
       dir);
   const std::string log = read_file(dir / "stdout.txt") + read_file(dir / "stderr.txt");
   ASSERT_EQ(code, 1) << log;
   const ordered_json c = read_certificate(dir / "out");
-  ASSERT_EQ(c["results"].size(), 4u) << log;
+  ASSERT_EQ(c["results"].size(), 5u) << log;
   std::vector<std::string> verdicts;
   for (const ordered_json& r : c["results"]) verdicts.push_back(r["verdict"]);
-  EXPECT_EQ(verdicts, (std::vector<std::string>{"Fail", "Crash", "Timeout", "Fail"})) << log;
+  EXPECT_EQ(verdicts, (std::vector<std::string>{"Fail", "Crash", "Timeout", "Fail", "Crash"}))
+      << log;
   EXPECT_NE(c["results"][0]["reason"].get<std::string>().find("leaks"), std::string::npos);
   EXPECT_NE(c["results"][1]["reason"].get<std::string>().find("signal 11"), std::string::npos);
   EXPECT_NE(c["results"][3]["reason"].get<std::string>().find(
@@ -177,9 +179,16 @@ TEST(Certify, BrokenPortGivesFailCrashTimeoutFailAndTheRunCompletes) {
             std::string::npos)
       << c["results"][3].dump();
   EXPECT_EQ(c["results"][3]["runs"].size(), 2u);
+  // An exit status that no shadowcts error explains is the library's, with what it printed.
+  EXPECT_NE(c["results"][4]["reason"].get<std::string>().find(
+                "the worker exited with status 3 without an error from shadowcts: the library "
+                "ended the process (exit() in a plugin call?); worker.log ends with "
+                "'example_broken: fatal: cannot continue'"),
+            std::string::npos)
+      << c["results"][4].dump();
   // The usual outputs carry the same verdicts, the timeout as Timeout.
   const ordered_json results = ordered_json::parse(read_file(dir / "out" / "results.json"));
-  ASSERT_EQ(results["results"].size(), 4u);
+  ASSERT_EQ(results["results"].size(), 5u);
   EXPECT_EQ(results["results"][1]["verdict"], "Crash");
   EXPECT_EQ(results["results"][2]["verdict"], "Timeout");
   const std::string junit = read_file(dir / "out" / "junit.xml");
