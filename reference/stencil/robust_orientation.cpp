@@ -1,9 +1,11 @@
 #include "reference/stencil/robust_orientation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include <boost/multiprecision/cpp_int.hpp>
+#include <glm/common.hpp>
 
 namespace shadowcts::stencil {
 namespace {
@@ -103,6 +105,40 @@ int edge_side_along(const glm::dvec3& l0, const glm::dvec3& l1, const glm::dvec3
   // det[w, a - l0, b - l0] = det[w, a - l0, b - a] = s det[w, a - l0, u1 - u0].
   const int side = sign_of_determinant(l1, l0, a, l0, u1, u0);
   return side != 0 ? side : edge_side_tie(l0, l1, u1, u0);
+}
+
+int extruded_edge_side(const glm::dvec3& l0, const glm::dvec3& l1, const glm::dvec3& origin,
+                       const glm::dvec3& minuend, const glm::dvec3& subtrahend, double factor,
+                       const glm::dvec3& u1, const glm::dvec3& u0) {
+  // det[w, a - l0, b - a] = s det[w, a - l0, u1 - u0] with the exact a; first with the rounded a.
+  const glm::dvec3 rounded = origin + factor * (minuend - subtrahend);
+  const DeterminantEstimate estimate = estimate_determinant(l1, l0, rounded, l0, u1, u0);
+  // Three roundings of at most half_epsilon each move a component by at most
+  // 3 half_epsilon (|origin| + |factor| (|minuend| + |subtrahend|)) (to first order; 4 for the
+  // rest and the subnormals), and det[w, delta, c] <= |delta|_inf |w|_1 |c|_1 (doubled: w and c
+  // are rounded here).
+  double shift = 0.0;
+  for (int k = 0; k < 3; ++k)
+    shift = std::max(shift, std::fabs(origin[k]) + std::fabs(factor) * (std::fabs(minuend[k]) +
+                                                                        std::fabs(subtrahend[k])));
+  const glm::dvec3 w = glm::abs(l1 - l0), c = glm::abs(u1 - u0);
+  const double moved =
+      2.0 * (4.0 * half_epsilon * shift + 8.0 * std::numeric_limits<double>::denorm_min()) *
+      (w.x + w.y + w.z) * (c.x + c.y + c.z);
+  const double bound = estimate.error + moved;
+  if (std::isfinite(bound) && std::fabs(estimate.value) > bound) return estimate.value > 0 ? 1 : -1;
+  Rational wr[3], ar[3], cr[3];
+  for (int k = 0; k < 3; ++k) {
+    wr[k] = Rational(l1[k]) - Rational(l0[k]);
+    ar[k] = Rational(origin[k]) +
+            Rational(factor) * (Rational(minuend[k]) - Rational(subtrahend[k])) - Rational(l0[k]);
+    cr[k] = Rational(u1[k]) - Rational(u0[k]);
+  }
+  const Rational det = wr[0] * (ar[1] * cr[2] - ar[2] * cr[1]) -
+                       wr[1] * (ar[0] * cr[2] - ar[2] * cr[0]) +
+                       wr[2] * (ar[0] * cr[1] - ar[1] * cr[0]);
+  if (det != 0) return det > 0 ? 1 : -1;
+  return edge_side_tie(l0, l1, u1, u0);
 }
 
 }  // namespace shadowcts::stencil

@@ -48,4 +48,14 @@ int edge_side(const glm::dvec3& l0, const glm::dvec3& l1, const glm::dvec3& a, c
 int edge_side_along(const glm::dvec3& l0, const glm::dvec3& l1, const glm::dvec3& a,
                     const glm::dvec3& u1, const glm::dvec3& u0);
 
+// edge_side(l0, l1, a, b) for an edge between two extruded points, both known only rounded: a is
+// exactly origin + factor (minuend - subtrahend) (Extrusion::Exact) and b - a a positive multiple
+// of u1 - u0. The sign of the exact edge, with edge_side_along's simulated tie, so that faces
+// sharing the edge (a dark cap and its neighbour or its side quad) see one line, and a counting
+// line in the plane through the light and the edge's original (the eye at the light, the sample
+// on the original) passes it on the side the original's tie chose.
+int extruded_edge_side(const glm::dvec3& l0, const glm::dvec3& l1, const glm::dvec3& origin,
+                       const glm::dvec3& minuend, const glm::dvec3& subtrahend, double factor,
+                       const glm::dvec3& u1, const glm::dvec3& u0);
+
 }  // namespace shadowcts::stencil

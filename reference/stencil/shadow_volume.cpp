@@ -37,6 +37,10 @@ double point_triangle_distance(const glm::dvec3& p, const glm::dvec3& a, const g
 
 }  // namespace
 
+std::array<glm::dvec3, 3> dark_cap_base(const LightCap& cap) {
+  return {cap.v[0], cap.v[2], cap.v[1]};
+}
+
 double light_to_caps_distance(const Occluders& occluders, const glm::dvec3& light) {
   double d = std::numeric_limits<double>::infinity();
   for (const LightCap& cap : occluders.caps)
@@ -101,7 +105,9 @@ ShadowVolumes build_shadow_volumes(const Occluders& occluders, const HardShadowL
   for (const LightCap& cap : occluders.caps) {
     VolumeFace dark;
     dark.kind = FaceKind::dark_cap;
-    dark.v[0] = extrude(cap.v[0]), dark.v[1] = extrude(cap.v[2]), dark.v[2] = extrude(cap.v[1]);
+    dark.triangle = cap.triangle;
+    const std::array<glm::dvec3, 3> base = dark_cap_base(cap);
+    for (int k = 0; k < 3; ++k) dark.v[k] = extrude(base[std::size_t(k)]);
     volumes.faces.push_back(dark);
   }
   return volumes;
@@ -121,8 +127,9 @@ std::array<VolumeFace, 5> own_volume_faces(const LightCap& cap, const Extrusion&
     side.v[0] = to, side.v[1] = from, side.v[2] = extrude(from), side.v[3] = extrude(to);
   }
   faces[4].kind = FaceKind::dark_cap;
-  faces[4].v[0] = extrude(cap.v[0]), faces[4].v[1] = extrude(cap.v[2]),
-  faces[4].v[2] = extrude(cap.v[1]);
+  faces[4].triangle = cap.triangle;
+  const std::array<glm::dvec3, 3> base = dark_cap_base(cap);
+  for (int k = 0; k < 3; ++k) faces[4].v[k] = extrude(base[std::size_t(k)]);
   return faces;
 }
 

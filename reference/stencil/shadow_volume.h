@@ -31,7 +31,8 @@ inline constexpr std::uint32_t no_triangle = 0xFFFFFFFFu;
 struct VolumeFace {
   glm::dvec3 v[4];
   FaceKind kind = FaceKind::light_cap;
-  std::uint32_t triangle = no_triangle;  // light caps: the caster triangle (to know receivers)
+  // Light and dark caps: the caster triangle (to know receivers; a dark cap's light cap).
+  std::uint32_t triangle = no_triangle;
   bool is_quad() const { return kind == FaceKind::side_quad; }
 };
 
@@ -45,7 +46,21 @@ struct Extrusion {
   glm::dvec3 operator()(const glm::dvec3& x) const {
     return directional ? x + shift * away : light + scale * (x - light);
   }
+  // The extruded point before rounding, origin + factor (minuend - subtrahend): operator() is
+  // that expression evaluated in double. The counting takes the sides of edges between extruded
+  // points of these exact points (volume_counting.h).
+  struct Exact {
+    glm::dvec3 origin, minuend, subtrahend;
+    double factor;
+  };
+  Exact exact(const glm::dvec3& x) const {
+    return directional ? Exact{x, away, glm::dvec3(0.0), shift} : Exact{light, x, light, scale};
+  }
 };
+
+// The vertices a cap's dark cap is extruded from, in the dark cap's order (reversed: it faces
+// away from the light).
+std::array<glm::dvec3, 3> dark_cap_base(const LightCap& cap);
 
 struct ShadowVolumes {
   std::vector<VolumeFace> faces;

@@ -93,7 +93,11 @@ class StencilAlgorithm final : public VariantTableAlgorithm<stencil::CountingMod
         grid.for_each_candidate(p, [&](std::uint32_t f) {
           ++tally.faces;
           (faces[f].is_quad() ? tally.quads : tally.caps) += 1;
-          winding += count_crossings(faces[f], sides[f], mode, eye, p, light);
+          std::array<glm::dvec3, 3> base;
+          if (faces[f].kind == FaceKind::dark_cap)
+            base = dark_cap_base(occluders.caps[cap_of_triangle[faces[f].triangle]]);
+          winding +=
+              count_crossings(faces[f], sides[f], mode, eye, p, light, volumes.extrusion, &base);
         });
         const std::uint32_t own =
             s.receiver < cap_of_triangle.size() ? cap_of_triangle[s.receiver] : no_triangle;

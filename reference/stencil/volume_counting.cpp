@@ -16,16 +16,31 @@ int placed_crossing(int direction, int eye_side, int sample_side, CountingMode m
   return e_side == -direction && p_side == direction ? -direction : 0;
 }
 
-// One oriented triangle (a cap); `sample_side` is the sample's exact side of its plane.
-int triangle_crossing(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, int eye_side,
-                      int sample_side, CountingMode mode, const glm::dvec3& eye,
-                      const glm::dvec3& sample) {
+// edge_side of the edge between the exactly extruded points of a and b (extruded_edge_side).
+int extruded_side(const glm::dvec3& eye, const glm::dvec3& sample, const glm::dvec3& a,
+                  const glm::dvec3& b, const Extrusion& extrusion) {
+  const Extrusion::Exact e = extrusion.exact(a);
+  return extruded_edge_side(eye, sample, e.origin, e.minuend, e.subtrahend, e.factor, b, a);
+}
+
+// One oriented triangle (a cap); `sample_side` is the sample's exact side of its plane. A dark
+// cap's edges are those between the exactly extruded points of `dark_base` (its light cap's
+// vertices in its order), which its rounded vertices only approximate: a counting line through
+// the extruded copy of a shared edge (the eye at the light, the sample on the edge) then passes
+// it on the side the tie chose at the edge itself, as in the light caps and side quads.
+int triangle_crossing(const VolumeFace& face, int eye_side, int sample_side, CountingMode mode,
+                      const glm::dvec3& eye, const glm::dvec3& sample, const Extrusion& extrusion,
+                      const std::array<glm::dvec3, 3>* dark_base) {
   // z-pass prefilter: e and p strictly on one side, the segment cannot cross.
   if (mode == CountingMode::z_pass && sample_side != 0 && sample_side == eye_side) return 0;
-  const int direction = edge_side(eye, sample, a, b);
-  if (direction == 0 || edge_side(eye, sample, b, c) != direction ||
-      edge_side(eye, sample, c, a) != direction)
-    return 0;
+  const auto side = [&](int k) {
+    const int next = (k + 1) % 3;
+    if (face.kind != FaceKind::dark_cap) return edge_side(eye, sample, face.v[k], face.v[next]);
+    const std::array<glm::dvec3, 3>& base = *dark_base;
+    return extruded_side(eye, sample, base[std::size_t(k)], base[std::size_t(next)], extrusion);
+  };
+  const int direction = side(0);
+  if (direction == 0 || side(1) != direction || side(2) != direction) return 0;
   return placed_crossing(direction, eye_side, sample_side, mode);
 }
 
@@ -44,20 +59,21 @@ int lateral_side(const glm::dvec3& eye, const glm::dvec3& sample, const glm::dve
 // A side quad (to, from, extrude(from), extrude(to)) as its two triangles; the sides are of its
 // exact plane, shared by both.
 int quad_crossing(const VolumeFace& face, int eye_side, int sample_side, CountingMode mode,
-                  const glm::dvec3& eye, const glm::dvec3& sample, const HardShadowLight& light) {
+                  const glm::dvec3& eye, const glm::dvec3& sample, const HardShadowLight& light,
+                  const Extrusion& extrusion) {
   if (mode == CountingMode::z_pass && sample_side != 0 && sample_side == eye_side) return 0;
   // The line lies in the exact plane: the perturbed line (translated, edge_side) runs parallel to
   // it, so it crosses neither triangle, whatever the rounded far vertices say.
   if (sample_side == 0 && eye_side == 0) return 0;
-  const glm::dvec3 &to = face.v[0], &from = face.v[1], &far_from = face.v[2], &far_to = face.v[3];
+  const glm::dvec3 &to = face.v[0], &from = face.v[1], &far_from = face.v[2];
   const int near = edge_side(eye, sample, to, from);
   const int diagonal = edge_side(eye, sample, far_from, to);
   int count = 0;
   if (near != 0 && lateral_side(eye, sample, from, light) == near && diagonal == near)
     count += placed_crossing(near, eye_side, sample_side, mode);
   // The second triangle: to -> far_from (the diagonal reversed) -> far_to -> to (the lateral
-  // edge of `to` reversed).
-  if (diagonal != 0 && edge_side(eye, sample, far_from, far_to) == -diagonal &&
+  // edge of `to` reversed). Its far edge is the dark caps' exact edge (triangle_crossing).
+  if (diagonal != 0 && extruded_side(eye, sample, from, to, extrusion) == -diagonal &&
       lateral_side(eye, sample, to, light) == diagonal)
     count += placed_crossing(-diagonal, eye_side, sample_side, mode);
   return count;
@@ -95,23 +111,26 @@ FaceEyeSides eye_sides(const VolumeFace& face, const glm::dvec3& eye,
 }
 
 int count_crossings(const VolumeFace& face, const FaceEyeSides& eye_side, CountingMode mode,
-                    const glm::dvec3& eye, const glm::dvec3& sample, const HardShadowLight& light) {
+                    const glm::dvec3& eye, const glm::dvec3& sample, const HardShadowLight& light,
+                    const Extrusion& extrusion, const std::array<glm::dvec3, 3>* dark_base) {
   const int sample_side = face_side(face, light, sample);
   if (face.is_quad())
-    return quad_crossing(face, eye_side.side[0], sample_side, mode, eye, sample, light);
-  return triangle_crossing(face.v[0], face.v[1], face.v[2], eye_side.side[0], sample_side, mode,
-                           eye, sample);
+    return quad_crossing(face, eye_side.side[0], sample_side, mode, eye, sample, light, extrusion);
+  return triangle_crossing(face, eye_side.side[0], sample_side, mode, eye, sample, extrusion,
+                           dark_base);
 }
 
 int count_own_volume(const LightCap& cap, const Extrusion& extrusion, CountingMode mode,
                      const glm::dvec3& eye, const glm::dvec3& sample, const HardShadowLight& light,
                      FaceTally& tally) {
   int count = 0;
+  const std::array<glm::dvec3, 3> base = dark_cap_base(cap);
   for (const VolumeFace& f : own_volume_faces(cap, extrusion)) {
     if (mode == CountingMode::z_pass && f.kind == FaceKind::dark_cap) continue;
     ++tally.faces;
     (f.is_quad() ? tally.quads : tally.caps) += 1;
-    count += count_crossings(f, eye_sides(f, eye, light), mode, eye, sample, light);
+    count +=
+        count_crossings(f, eye_sides(f, eye, light), mode, eye, sample, light, extrusion, &base);
   }
   return count;
 }

@@ -19,6 +19,7 @@
 // its float position rounded, just off its plane, even inside its volume next to a side quad): the
 // algorithm subtracts the count of the receiver's own closed volume (own_volume_faces), counted
 // by the same rules, from the sample's winding.
+#include <array>
 #include <cstdint>
 
 #include <glm/vec3.hpp>
@@ -41,8 +42,13 @@ struct FaceEyeSides {
 FaceEyeSides eye_sides(const VolumeFace& face, const glm::dvec3& eye, const HardShadowLight& light);
 
 // The face's contribution to the sample's winding number (a quad counts as its two triangles).
+// Edges between extruded vertices are the exact lines between the exactly extruded points
+// (`extrusion`; a dark cap's from `dark_base`, dark_cap_base of its light cap: required for dark
+// caps), not between their rounded copies.
 int count_crossings(const VolumeFace& face, const FaceEyeSides& eye_side, CountingMode mode,
-                    const glm::dvec3& eye, const glm::dvec3& sample, const HardShadowLight& light);
+                    const glm::dvec3& eye, const glm::dvec3& sample, const HardShadowLight& light,
+                    const Extrusion& extrusion,
+                    const std::array<glm::dvec3, 3>* dark_base = nullptr);
 
 // Crossing tests made, for the counters.
 struct FaceTally {

@@ -381,6 +381,65 @@ TEST(StencilFuzzReproducer, ZPassCountsALightCapInFrontOfTheSample) {
   expect_both_variants_exact(r, true);
 }
 
+// fuzz_differential (e1603e48c96c4ef8): the eye at the point light, the sample exactly on the
+// diagonal shared by two coplanar ground triangles, under a caster near the light. The eye line
+// lies in the plane through the light and the diagonal, so it meets the diagonal, and the dark
+// caps' copy of it, exactly: the tie that sent it past the receiver's light cap must send it past
+// the receiver's dark cap too. Their rounded extruded vertices had decided that edge instead, so
+// the receiver's own volume counted an exit without an entry and z-fail left the sample lit.
+TEST(StencilFuzzReproducer, TheEyeAtThePointLightSeesTheDarkCapsEdgesAsTheirLightCapsEdges) {
+  ShadowLight light;
+  light.kind = ShadowLightKind::point;
+  light.position = {3.229381561279297f, 5.300436019897461f, -4.149859428405762f};
+  Reproducer r{
+      reproducer_case(light, light.position, {-1.4753661155700684f, 2.917203426361084f, -4.0f},
+                      1.6380588931497186e-05f, 16380.5888671875f),
+      {}};
+  r.c.meshes[0].caster = true;
+  r.c.triangles = {{{-8, 0, -8}, {0, 0, 0}, {0, 0, -8}, 0},
+                   {{-8, 0, -8}, {-8, 0, 0}, {0, 0, 0}, 0},
+                   {{5.049267768859863f, 3.2916676998138428f, -7.19283390045166f},
+                    {3.344972610473633f, 5.834406852722168f, -4.394125461578369f},
+                    {2.418731212615967f, 2.7034213542938232f, -2.601506471633911f},
+                    1}};
+  r.sample.position = {-7.5f, 0, -7.5f};
+  r.sample.normal = {0, 1, 0};
+  r.sample.receiver = 0;
+  expect_both_variants_exact(r, true);
+  // The other receiver of the diagonal.
+  r.sample.receiver = 1;
+  expect_both_variants_exact(r, true);
+}
+
+// The directional counterpart: eyes up the light's direction from samples on the shared
+// diagonal (the eye is the sample plus a multiple of the direction, exactly), a caster between.
+TEST(StencilFuzzReproducer, AnEyeLineAlongTheDirectionalLightThroughASharedEdgeCountsOnce) {
+  // Directions normalized in double are rounded, and so are the extruded vertices.
+  const std::pair<glm::vec3, float> directions[] = {
+      {{1, 2, 2}, 4.0f}, {{2, 3, 6}, 2.0f}, {{1, 4, 8}, 1.0f}, {{4, 4, 7}, 1.0f}};
+  for (const auto& [direction, multiple] : directions)
+    for (float k = 0.25f; k < 8.0f; k += 0.25f) {
+      ShadowLight light;
+      light.kind = ShadowLightKind::directional;
+      light.direction = direction;
+      const glm::vec3 sample{-k, 0, -k};
+      Reproducer r{reproducer_case(light, sample + multiple * direction, sample, 0.01f, 1000), {}};
+      r.c.meshes[0].caster = true;
+      r.c.triangles = {{{-8, 0, -8}, {0, 0, 0}, {0, 0, -8}, 0},
+                       {{-8, 0, -8}, {-8, 0, 0}, {0, 0, 0}, 0},
+                       {{-64, 1, -64}, {0, 1, 64}, {64, 1, -64}, 1}};
+      r.sample.position = sample;
+      r.sample.normal = {0, 1, 0};
+      for (std::uint32_t receiver : {0u, 1u}) {
+        SCOPED_TRACE(testing::Message()
+                     << "direction (" << direction.x << ", " << direction.y << ", " << direction.z
+                     << "), sample at -" << k << ", receiver " << receiver);
+        r.sample.receiver = receiver;
+        expect_both_variants_exact(r, true);
+      }
+    }
+}
+
 // fuzz_watertight-f86d8fd9b34c69eb: a point light; the eye segment of a far sample passes
 // through a caster of an open three-triangle fan. The fuzzer's receiver (triangle 0, no caster)
 // has the sample far on its side away from the light, the fan too: under the receiver half-space

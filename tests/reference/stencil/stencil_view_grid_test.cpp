@@ -62,7 +62,12 @@ Coverage grid_coverage(const Case& c, const ViewSamples& samples, CountingMode m
     });
     coverage.pairs += faces.size();
     for (std::size_t f = 0; f < faces.size(); ++f) {
-      if (count_crossings(faces[f], sides[f], mode, eye, p, light) == 0) continue;
+      std::array<glm::dvec3, 3> base;
+      if (faces[f].kind == FaceKind::dark_cap)
+        for (const LightCap& cap : occluders.caps)
+          if (cap.triangle == faces[f].triangle) base = dark_cap_base(cap);
+      if (count_crossings(faces[f], sides[f], mode, eye, p, light, volumes.extrusion, &base) == 0)
+        continue;
       ++coverage.counted;
       if (listed[f]) continue;
       if (coverage.missed++ == 0)
