@@ -117,13 +117,14 @@ int extruded_edge_side(const glm::dvec3& l0, const glm::dvec3& l1, const glm::dv
   // 3 half_epsilon (|origin| + |factor| (|minuend| + |subtrahend|)) (to first order; 4 for the
   // rest and the subnormals), and det[w, delta, c] <= |delta|_inf |w|_1 |c|_1 (doubled: w and c
   // are rounded here).
-  double shift = 0.0;
+  double magnitude = 0.0;
   for (int k = 0; k < 3; ++k)
-    shift = std::max(shift, std::fabs(origin[k]) + std::fabs(factor) * (std::fabs(minuend[k]) +
-                                                                        std::fabs(subtrahend[k])));
+    magnitude = std::max(
+        magnitude, std::fabs(origin[k]) +
+                       std::fabs(factor) * (std::fabs(minuend[k]) + std::fabs(subtrahend[k])));
   const glm::dvec3 w = glm::abs(l1 - l0), c = glm::abs(u1 - u0);
   const double moved =
-      2.0 * (4.0 * half_epsilon * shift + 8.0 * std::numeric_limits<double>::denorm_min()) *
+      2.0 * (4.0 * half_epsilon * magnitude + 8.0 * std::numeric_limits<double>::denorm_min()) *
       (w.x + w.y + w.z) * (c.x + c.y + c.z);
   const double bound = estimate.error + moved;
   if (std::isfinite(bound) && std::fabs(estimate.value) > bound) return estimate.value > 0 ? 1 : -1;

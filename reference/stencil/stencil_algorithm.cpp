@@ -94,10 +94,10 @@ class StencilAlgorithm final : public VariantTableAlgorithm<stencil::CountingMod
           ++tally.faces;
           (faces[f].is_quad() ? tally.quads : tally.caps) += 1;
           std::array<glm::dvec3, 3> base;
-          if (faces[f].kind == FaceKind::dark_cap)
-            base = dark_cap_base(occluders.caps[cap_of_triangle[faces[f].triangle]]);
-          winding +=
-              count_crossings(faces[f], sides[f], mode, eye, p, light, volumes.extrusion, &base);
+          const bool dark = faces[f].kind == FaceKind::dark_cap;
+          if (dark) base = dark_cap_base(occluders.caps[cap_of_triangle[faces[f].triangle]]);
+          winding += count_crossings(faces[f], sides[f], mode, eye, p, light, volumes.extrusion,
+                                     dark ? &base : nullptr);
         });
         const std::uint32_t own =
             s.receiver < cap_of_triangle.size() ? cap_of_triangle[s.receiver] : no_triangle;
