@@ -6,8 +6,10 @@
 // eye; a T-junction), and on small fixtures.
 #include "reference/stencil/view_grid.h"
 
+#include <array>
 #include <random>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
@@ -48,6 +50,12 @@ Coverage grid_coverage(const Case& c, const ViewSamples& samples, CountingMode m
     sides.push_back(eye_sides(f, eye, light));
     reaches.push_back(crossing_reach(f, sides.back(), mode, volumes.extrusion, light, eye, reach));
   }
+  // Each dark cap's light-cap vertices (count_crossings' dark_base), once per face.
+  std::vector<std::array<glm::dvec3, 3>> bases(faces.size());
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    if (faces[f].kind == FaceKind::dark_cap)
+      for (const LightCap& cap : occluders.caps)
+        if (cap.triangle == faces[f].triangle) bases[f] = dark_cap_base(cap);
   const ViewGrid grid(c.camera, samples, faces, reaches, mode);
   Coverage coverage;
   std::vector<char> listed(faces.size());
@@ -62,11 +70,9 @@ Coverage grid_coverage(const Case& c, const ViewSamples& samples, CountingMode m
     });
     coverage.pairs += faces.size();
     for (std::size_t f = 0; f < faces.size(); ++f) {
-      std::array<glm::dvec3, 3> base;
-      if (faces[f].kind == FaceKind::dark_cap)
-        for (const LightCap& cap : occluders.caps)
-          if (cap.triangle == faces[f].triangle) base = dark_cap_base(cap);
-      if (count_crossings(faces[f], sides[f], mode, eye, p, light, volumes.extrusion, &base) == 0)
+      const std::array<glm::dvec3, 3>* base =
+          faces[f].kind == FaceKind::dark_cap ? &bases[f] : nullptr;
+      if (count_crossings(faces[f], sides[f], mode, eye, p, light, volumes.extrusion, base) == 0)
         continue;
       ++coverage.counted;
       if (listed[f]) continue;
