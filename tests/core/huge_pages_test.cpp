@@ -82,6 +82,39 @@ TEST(HugePages, VectorsBehaveAsVectors) {
   EXPECT_EQ(copy, v);
 }
 
+TEST(HugePages, AFreedLargeArrayServesTheNextRequestThatFitsItAndNoLargerOne) {
+  if (!large_blocks_are_reused()) GTEST_SKIP() << "a sanitizer build frees every block";
+  const std::size_t bytes = 5 * huge_page_bytes;
+  auto* p = static_cast<unsigned char*>(allocate_large(bytes, 64));
+  std::memset(p, 0x3C, bytes);
+  free_large(p);
+  // Larger than the idle block: a fresh one.
+  void* larger = allocate_large(bytes + huge_page_bytes, 64);
+  EXPECT_NE(larger, static_cast<void*>(p));
+  // Fits (a smaller request rounds up to the same huge pages): the idle block, whole and writable.
+  auto* again = static_cast<unsigned char*>(allocate_large(bytes - huge_page_bytes + 1, 8));
+  EXPECT_EQ(again, p);
+  std::memset(again, 0x11, bytes);
+  // Taken: the next request of its size gets another block.
+  void* other = allocate_large(bytes, 64);
+  EXPECT_NE(other, static_cast<void*>(p));
+  free_large(other);
+  free_large(again);
+  free_large(larger);
+}
+
+TEST(HugePages, ARequestOfLessThanHalfAnIdleBlockDoesNotTakeIt) {
+  if (!large_blocks_are_reused()) GTEST_SKIP() << "a sanitizer build frees every block";
+  void* big = allocate_large(16 * huge_page_bytes, 64);
+  free_large(big);
+  void* small = allocate_large(4 * huge_page_bytes, 64);
+  EXPECT_NE(small, big);
+  void* fits = allocate_large(16 * huge_page_bytes, 64);
+  EXPECT_EQ(fits, big);
+  free_large(small);
+  free_large(fits);
+}
+
 TEST(HugePages, ImpossibleSizesThrowInsteadOfWrapping) {
   EXPECT_THROW(HugePageAllocator<double>().allocate(std::numeric_limits<std::size_t>::max() / 4),
                std::bad_array_new_length);
