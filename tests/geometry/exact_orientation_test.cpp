@@ -67,6 +67,41 @@ TEST(ExactOrientation, CoordinatesOfVeryDifferentMagnitudes) {
   }
 }
 
+TEST(ExactOrientation, PointsOnOneAxisAlignedPlaneAreCoplanarAndTheSmallestStepOffItIsNot) {
+  // A shared coordinate is a zero row (the shortcut before the expansions); a coordinate one
+  // float step away (the inputs are floats: down to float's smallest subnormal) is not, and the
+  // expansions must still see the sign of that step.
+  std::mt19937_64 rng(5);
+  const double tiny = std::ldexp(1.0, -149);
+  for (int i = 0; i < 3000; ++i) {
+    const int axis = int(rng() % 3);
+    const double level = i % 3 == 0 ? 0.0 : double(float(std::ldexp(double(rng() % 1000), -5)));
+    auto on_plane = [&] {
+      glm::dvec3 p = random_float_point(rng, 100.0);
+      p[axis] = level;
+      return p;
+    };
+    const glm::dvec3 a = on_plane(), b = on_plane(), c = on_plane();
+    glm::dvec3 d = on_plane();
+    ASSERT_EQ(orientation(a, b, c, d), 0) << i;
+    glm::dvec3 direction = random_float_point(rng, 1.0);
+    direction[axis] = 0.0;
+    ASSERT_EQ(orientation_towards(a, b, c, direction), 0) << i;
+    d[axis] = level == 0.0 ? (i % 2 ? tiny : -tiny)
+                           : double(std::nextafter(float(level), i % 2 ? 1e9f : -1e9f));
+    ASSERT_EQ(orientation(a, b, c, d), cgal_orientation(a, b, c, d)) << i;
+    ASSERT_NE(orientation(a, b, c, d), 0) << i;  // unless a, b, c are collinear: never here
+    // The normal is along the axis, so the sign is the normal's times the step's (a + direction
+    // would round back to a).
+    direction[axis] = i % 2 ? tiny : -tiny;
+    glm::dvec3 unit(0.0);
+    unit[axis] = 1.0;
+    ASSERT_EQ(orientation_towards(a, b, c, direction),
+              cgal_orientation(a, b, c, a + unit) * (i % 2 ? 1 : -1))
+        << i;
+  }
+}
+
 TEST(ExactOrientation, TowardsADirectionIsTheOrientationOfThePointPlusTheDirection) {
   std::mt19937_64 rng(11);
   for (int i = 0; i < 5000; ++i) {

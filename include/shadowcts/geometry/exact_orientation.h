@@ -50,6 +50,16 @@ SHADOWCTS_HD inline void filtered_determinant(const double u[3], const double v[
                           rounded_mul(fabs(u[2]), abs_minor2(v[0], v[1], w[0], w[1])));
 }
 
+// A coordinate in which all three rows vanish makes the determinant exactly zero. A difference of
+// doubles is zero only for equal doubles (gradual underflow), so this is exact: points sharing an
+// axis-aligned plane (a flat floor's samples and triangles) skip the expansions the filter leaves
+// them to.
+SHADOWCTS_HD inline bool has_zero_row(const double u[3], const double v[3], const double w[3]) {
+  for (int i = 0; i < 3; ++i)
+    if (u[i] == 0.0 && v[i] == 0.0 && w[i] == 0.0) return true;
+  return false;
+}
+
 SHADOWCTS_HD inline int certified_sign(double det, double permanent) {
   if (!(permanent >= smallest_filtered_permanent) || !(permanent < 0x1p+1000)) return 2;
   const double bound = rounded_mul(orientation_error_factor, permanent);
@@ -119,6 +129,7 @@ SHADOWCTS_HD inline int orientation(const glm::dvec3& a, const glm::dvec3& b, co
   detail::filtered_determinant(u, v, w, det, permanent);
   const int s = detail::certified_sign(det, permanent);
   if (s != 2) return s;
+  if (detail::has_zero_row(u, v, w)) return 0;
   return sign(orientation_value(a, b, c, d));
 }
 
@@ -135,6 +146,7 @@ SHADOWCTS_HD inline int orientation_towards(const glm::dvec3& a, const glm::dvec
   detail::filtered_determinant(u, v, w, det, permanent);
   const int s = detail::certified_sign(det, permanent);
   if (s != 2) return s;
+  if (detail::has_zero_row(u, v, w)) return 0;
   return sign(orientation_towards_value(a, b, c, direction));
 }
 
