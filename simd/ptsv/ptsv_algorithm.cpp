@@ -40,12 +40,12 @@ double max_abs(const glm::dvec3& v) {
   return std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
 }
 
-// The reference's scene bound: the case's scale and every regular sample (max is exact in any
-// order).
+// The reference's scene bound: the case's scale (the prepared scene's copy of Case::scale) and
+// every regular sample (max is exact in any order).
 double scene_bound(const PreparedScene& scene) {
   const RegularSamples& s = scene.samples;
   return tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(0, s.size(), 8192), scene.source.scale(),
+      tbb::blocked_range<std::size_t>(0, s.size(), 8192), scene.scale,
       [&](const tbb::blocked_range<std::size_t>& r, double bound) {
         for (std::size_t i = r.begin(); i != r.end(); ++i)
           bound = std::max(bound, max_abs(glm::dvec3(s.position(i))));
