@@ -30,8 +30,8 @@ constexpr bool reuse = true;
 #endif
 
 // Freed huge blocks kept for the next request they fit, as an engine keeps its per-frame buffers:
-// the kernel zeroes every fresh page, and at 1M triangles that was a quarter of simd ptsv's frame
-// on the 2-core VMs (256 MB of volumes per call).
+// the kernel zeroes every fresh page, and at 1M triangles that was about an eighth of simd ptsv's
+// frame on the 2-core VMs (256 MB of volumes per call; simd/README.md).
 struct IdleBlocks {
   std::mutex mutex;
   std::unordered_map<void*, std::size_t> live;  // huge blocks handed out: their rounded size

