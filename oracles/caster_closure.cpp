@@ -9,9 +9,9 @@
 #include <hwy/contrib/sort/vqsort.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_invoke.h>
 
 #include "oracles/ordered_float_bits.h"
+#include "shadowcts/distinct_key_sort.h"
 
 namespace shadowcts {
 namespace {
@@ -84,29 +84,13 @@ CasterClosure::CasterClosure(const Case& c, const CasterBvh& casters,
       key.lo = ((x & 0x3ffu) << 22 | (y & 0x7ffu) << 11 | (z & 0x7ffu)) << 32 | (ids[i] * 4 + k);
     }
   });
-  {  // two halves sorted at once, then merged in two parts at once
-    const std::size_t half = use_count / 2;
-    hwy::uint128_t* const first = keys.get();
-    hwy::uint128_t* const second = first + half;
-    hwy::uint128_t* const end = first + use_count;
-    tbb::parallel_invoke([&] { hwy::Sorter()(first, half, hwy::SortAscending()); },
-                         [&] { hwy::Sorter()(second, use_count - half, hwy::SortAscending()); });
-    const auto before = [](const hwy::uint128_t& u, const hwy::uint128_t& v) {
-      return u.hi != v.hi ? u.hi < v.hi : u.lo < v.lo;
-    };
-    // The keys of both halves below the first half's median go first.
-    hwy::uint128_t* const first_split = first + half / 2;
-    hwy::uint128_t* const second_split =
-        half == 0 ? second : std::lower_bound(second, end, *first_split, before);
-    std::unique_ptr<hwy::uint128_t[]> merged(new hwy::uint128_t[use_count]);
-    hwy::uint128_t* const out = merged.get();
-    tbb::parallel_invoke([&] { std::merge(first, first_split, second, second_split, out, before); },
-                         [&] {
-                           std::merge(first_split, second, second_split, end,
-                                      out + (first_split - first) + (second_split - second),
-                                      before);
-                         });
-    keys = std::move(merged);
+  {
+    std::unique_ptr<hwy::uint128_t[]> sorted(new hwy::uint128_t[use_count]);
+    sort_distinct_keys(keys.get(), use_count, sorted.get(),
+                       [](const hwy::uint128_t& u, const hwy::uint128_t& v) {
+                         return u.hi != v.hi ? u.hi < v.hi : u.lo < v.lo;
+                       });
+    keys = std::move(sorted);
   }
   const auto key_use = [&](std::size_t i) { return std::uint32_t(keys[i].lo); };
   const auto same_position = [&](std::size_t i, std::size_t j) {
