@@ -89,6 +89,8 @@ struct Packet {
   const ViewSample* sample[P];
   std::uint32_t receiver[P];
   std::uint32_t receiver_slot[P];  // the receiver's slot in cluster order, or ~0u
+  // The plane of the receiver (ClusterPlanes::of_triangle); at least 16 wide, as the floats.
+  alignas(64) std::uint32_t receiver_plane[float_lanes];
   RaySpace ray[P];
   // The ends of the segment the slabs are tested against (segment_meets_slabs), by coordinate.
   alignas(64) double from_x[P], from_y[P], from_z[P], to_x[P], to_y[P], to_z[P];
@@ -639,6 +641,25 @@ LaneMask lanes_missing_cluster(const NodeCluster& cluster, const Packet<P>& pk, 
   return missing & pk.within_scale;
 }
 
+// The lanes of `visit` whose receiver's supporting plane holds every triangle of the cluster, so
+// that none of them meets the segment strictly on the light's side of it (the receiver half-space
+// rule): the reference's triangle_blocks_sample answers "passes" for each.
+template <std::size_t P>
+LaneMask lanes_in_plane(const NodeCluster& cluster, const Packet<P>& pk, LaneMask visit) {
+  if (cluster.plane == no_plane) return 0;
+  const hn::ScalableTag<std::uint32_t> d;
+  const std::size_t N = std::min(hn::Lanes(d), max_float_lanes);
+  const LaneMask chunk = (LaneMask(1) << N) - 1;
+  const auto plane = hn::Set(d, cluster.plane);
+  LaneMask in_plane = 0;
+  for (std::size_t j = 0; j < P; j += N) {
+    const LaneMask here = (visit >> j) & chunk;
+    if (here == 0) continue;
+    in_plane |= (float_lane_bits(d, hn::Eq(hn::Load(d, pk.receiver_plane + j), plane)) & here) << j;
+  }
+  return in_plane;
+}
+
 // The lanes of `visit` whose segment meets the cluster's slabs: segment_meets_slabs on the node's
 // copy of the slabs, in its operations (glm::dot's (x + y) + z, std::max and std::min as
 // comparisons, so that NaNs go the same way), 8 lanes per vector of doubles.
@@ -730,6 +751,7 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
     pk.ux[l] = pk.uy[l] = pk.uz[l] = pk.qld[l] = 0.0;
     pk.from_x[l] = pk.from_y[l] = pk.from_z[l] = pk.to_x[l] = pk.to_y[l] = pk.to_z[l] = 0.0;
     pk.fx[l] = pk.fy[l] = pk.fz[l] = pk.qlo[l] = pk.qhi[l] = 0.0f;
+    pk.receiver_plane[l] = no_plane;
     if (l >= count) continue;
     const std::uint32_t i = members[l];
     // The prepared scene's compacted arrays (the same floats as the view sample's); the view
@@ -738,6 +760,8 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
     pk.receiver[l] = prepared.samples.receiver[i];
     const std::vector<std::uint32_t>& slot_of = traversal.triangles->slot_of;
     pk.receiver_slot[l] = pk.receiver[l] < slot_of.size() ? slot_of[pk.receiver[l]] : ~0u;
+    const std::vector<std::uint32_t>& plane_of = traversal.triangles->planes.of_triangle;
+    pk.receiver_plane[l] = pk.receiver[l] < plane_of.size() ? plane_of[pk.receiver[l]] : no_plane;
     pk.sample_index[l] = prepared.samples.index[i];
     shadowed[prepared.samples.index[i]] = 0;
     const float px = prepared.samples.px[i], py = prepared.samples.py[i],
@@ -842,8 +866,11 @@ void traverse_packet(const PacketTraversal& traversal, const std::uint32_t* memb
       // A directional light's lines are parallel: most lanes that visit a cluster pass beside
       // all of its triangles, which the plane bounds tell for many lanes at once. Where their
       // segments meet the slabs, their tests are counted in bulk, none is made.
+      // And a sample's receiver plane holds every triangle of many a cluster it visits (a
+      // tessellated floor's): none of them can shadow it (ClusterPlanes).
       const LaneMask beside =
-          frame.directional ? lanes_missing_cluster(cluster, pk, visiting) : LaneMask(0);
+          (frame.directional ? lanes_missing_cluster(cluster, pk, visiting) : LaneMask(0)) |
+          lanes_in_plane(cluster, pk, visiting);
       const LaneMask missing = beside != 0 ? lanes_meeting_slabs(cluster, pk, beside) : 0;
       if (missing != 0) {
         const std::uint32_t size = cluster.end - cluster.begin;
@@ -1009,6 +1036,7 @@ ClusterTriangles cluster_triangles_soa(const CasterArrays& casters,
   const std::size_t slots = clustering.triangles.size();
   out.slot_of.assign(casters.size(), ~0u);
   for (std::size_t j = 0; j < slots; ++j) out.slot_of[clustering.triangles[j]] = std::uint32_t(j);
+  out.planes = cluster_planes(casters, clustering);
   return out;
 }
 
@@ -1229,6 +1257,7 @@ PacketNodes packet_nodes(const shadowcts::metric::TraversalScene& scene,
           record.begin = scene.clustering->cluster_begin[cluster];
           record.end = scene.clustering->cluster_begin[cluster + 1];
           record.group = first_group[cluster];
+          record.plane = triangles.planes.of_cluster[cluster];
           for (int k = 0; k < 4; ++k) {
             record.plane_low[k] = plane_bounds[cluster].low[k];
             record.plane_high[k] = plane_bounds[cluster].high[k];

@@ -31,6 +31,7 @@
 #include "reference/metric/traversal.h"
 #include "shadowcts/huge_pages.h"
 #include "shadowcts/prepared_scene.h"
+#include "simd/metric/cluster_planes.h"
 
 namespace shadowcts::simd::metric {
 
@@ -46,6 +47,7 @@ struct alignas(64) TriangleGroup {
 struct ClusterTriangles {
   HugePageVector<TriangleGroup> groups;  // cluster k's from first_groups(...)[k] on
   std::vector<std::uint32_t> slot_of;    // per caster triangle: its slot (finds a receiver in O(1))
+  ClusterPlanes planes;
 };
 
 // Per cluster, its first group in ClusterTriangles::groups; one more entry for the end.
@@ -127,6 +129,7 @@ struct alignas(32) NodeCluster {
   double low = 0.0, high = 0.0;
   std::uint32_t begin = 0, end = 0;  // slots in cluster order
   std::uint32_t group = 0;           // its first ClusterTriangles group
+  std::uint32_t plane = no_plane;    // ClusterPlanes::of_cluster
 };
 
 // An array of trivially destructible records that the code filling it constructs (in parallel):
