@@ -49,9 +49,16 @@ struct Verdicts {
 };
 
 HWY_INLINE std::uint32_t bits_of(D d, M m) {
+#if HWY_TARGET <= HWY_AVX3
+  // An AVX-512 mask register holds the lane bits: no round trip through memory (a visit reads
+  // some ten masks).
+  (void)d;
+  return std::uint32_t(m.raw);
+#else
   std::uint8_t bytes[8] = {};
   hn::StoreMaskBits(d, m, bytes);
   return std::uint32_t(bytes[0]) | (std::uint32_t(bytes[1]) << 8);
+#endif
 }
 
 // plane.at(x) as the reference evaluates it: ((nx (x - ax) + ny (y - ay)) + nz (z - az)) + shift,
@@ -116,7 +123,10 @@ class Engine {
     const bool implicit = in_.config.implicit_cells;
     const V rounding = hn::Set(d, tol.rounding);
     const std::uint32_t culling = culling_ ? vol.extra_mask : 0u;
-    Verdicts out{0, 0, 0, 0};
+    // 64-bit words, not a Verdicts: the accumulators live on the stack (the corner pointers take
+    // the registers), and 32-bit fields or-ed there were read back with 64-bit loads into the
+    // return registers, a failed store forward on every visit (12 % of this function's samples).
+    std::uint64_t reject = 0, accept = 0, cull = 0, refine = 0;
     for (std::uint32_t base = 0; base < count; base += lanes) {
       const std::uint32_t lane_bits = lanes >= 32 ? ~0u : ((1u << lanes) - 1u);
       const std::uint32_t wanted = (live >> base) & lane_bits;
@@ -160,7 +170,7 @@ class Engine {
         range(k, false, low, high[k]);
         rej |= bits_of(d, hn::Gt(low, rounding)) & wanted;
       }
-      out.reject |= rej << base;
+      reject |= rej << base;
       if (rej == wanted) continue;
       // Accepted: the accept point inside all four planes, by the rounding (the triangle plane
       // also by the accept bias and by the reject reach of the node's samples).
@@ -176,7 +186,7 @@ class Engine {
                                     hn::Lt(high[k], reach_inside)));
         }
       }
-      out.accept |= acc << base;
+      accept |= acc << base;
       const std::uint32_t rest = wanted & ~rej & ~acc;
       std::uint32_t cul = 0;
       for (std::uint32_t planes = culling; planes != 0 && cul != rest; planes &= planes - 1) {
@@ -184,10 +194,11 @@ class Engine {
         range(4 + std::countr_zero(planes), false, low, unused);
         cul |= bits_of(d, hn::Gt(low, rounding)) & rest;
       }
-      out.cull |= cul << base;
-      out.refine |= (rest & ~cul) << base;
+      cull |= cul << base;
+      refine |= (rest & ~cul) << base;
     }
-    return out;
+    return Verdicts{std::uint32_t(accept), std::uint32_t(refine), std::uint32_t(reject),
+                    std::uint32_t(cull)};
   }
 
   // test_children for explicit bounds, with each plane's lanes and corner choice set up once per
@@ -218,7 +229,7 @@ class Engine {
       return plane_at(q.nx, q.ny, q.nz, q.ax, q.ay, q.az, q.shift, hn::LoadU(d, at[0] + base),
                       hn::LoadU(d, at[1] + base), hn::LoadU(d, at[2] + base));
     };
-    Verdicts out{0, 0, 0, 0};
+    std::uint64_t reject = 0, accept = 0, cull = 0, refine = 0;  // as in test_children
     for (std::uint32_t base = 0; base < count; base += lanes) {
       const std::uint32_t lane_bits = lanes >= 32 ? ~0u : ((1u << lanes) - 1u);
       const std::uint32_t wanted = (live >> base) & lane_bits;
@@ -226,7 +237,7 @@ class Engine {
       std::uint32_t rej = 0;
       for (int k = 0; k < 4 && rej != wanted; ++k)
         rej |= bits_of(d, hn::Gt(value(p[k], corner[k][0], base), rounding)) & wanted;
-      out.reject |= rej << base;
+      reject |= rej << base;
       if (rej == wanted) continue;
       std::uint32_t acc = wanted & ~rej;
       for (int k = 0; k < 3 && acc != 0; ++k)
@@ -237,7 +248,7 @@ class Engine {
             hn::Neg(hn::Add(rounding, hn::LoadU(d, L.reach.data() + first + base)));
         acc &= bits_of(d, hn::And(hn::Lt(high, inside_triangle), hn::Lt(high, reach_inside)));
       }
-      out.accept |= acc << base;
+      accept |= acc << base;
       const std::uint32_t rest = wanted & ~rej & ~acc;
       std::uint32_t cul = 0;
       for (std::uint32_t planes = culling; planes != 0 && cul != rest; planes &= planes - 1) {
@@ -248,10 +259,11 @@ class Engine {
           at[axis] = (plane_normal(vol, k)[axis] >= 0.0 ? L.lo[axis] : L.hi[axis]).data() + first;
         cul |= bits_of(d, hn::Gt(value(q, at, base), rounding)) & rest;
       }
-      out.cull |= cul << base;
-      out.refine |= (rest & ~cul) << base;
+      cull |= cul << base;
+      refine |= (rest & ~cul) << base;
     }
-    return out;
+    return Verdicts{std::uint32_t(accept), std::uint32_t(refine), std::uint32_t(reject),
+                    std::uint32_t(cull)};
   }
 
   // TESTVIEWSAMPLES: every sample of the leaf's tile against the volume.
