@@ -56,19 +56,23 @@ double scene_bound(const PreparedScene& scene) {
 
 // The reference's checks of run(): a point or directional light (hard_shadow_light's words),
 // receivers that name triangles, one sample per pixel.
-void check_inputs(const Case& c, const ViewSamples& samples) {
+void check_inputs(const PreparedScene& scene) {
+  const Case& c = scene.source;
+  const ViewSamples& samples = scene.view_samples;
   if (!c.light) throw InputError(c.source, "light", "a hard-shadow case needs a shadow light");
   if (c.light->kind == ShadowLightKind::sun_disk)
     throw InputError(c.source, "light",
                      "hard shadows need a point or directional light, not a sun disk");
   if (c.light->kind == ShadowLightKind::directional && c.light->direction == glm::vec3(0.0f))
     throw InputError(c.source, "light.direction", "has zero length");
-  for (std::size_t i = 0; i < samples.samples.size(); ++i) {
-    const ViewSample& s = samples.samples[i];
-    if (s.sample_class == SampleClass::regular && s.receiver != no_receiver &&
-        s.receiver >= c.triangles.size())
-      throw InputError(c.source, "view sample " + std::to_string(i),
-                       "receiver " + std::to_string(s.receiver) + " is not a triangle index");
+  // The regular samples' receivers from the prepared arrays (3.7 MB at 1080p), not from the view
+  // samples (83 MB): the same samples in the same order.
+  const RegularSamples& regular = scene.samples;
+  for (std::size_t i = 0; i < regular.size(); ++i) {
+    const std::uint32_t receiver = regular.receiver[i];
+    if (receiver != no_receiver && receiver >= c.triangles.size())
+      throw InputError(c.source, "view sample " + std::to_string(regular.index[i]),
+                       "receiver " + std::to_string(receiver) + " is not a triangle index");
   }
   if (samples.width == 0 || samples.height == 0 ||
       samples.samples.size() != std::size_t(samples.width) * samples.height)
@@ -134,7 +138,7 @@ class SimdPtsv final : public VariantTableAlgorithm<VariantConfig> {
     const Case& c = scene.source;
     const ViewSamples& samples = scene.view_samples;
     const VariantConfig& config = variant.config;
-    check_inputs(c, samples);
+    check_inputs(scene);
     PhaseClock clock;
     const ref::ViewFrame frame = ref::make_view_frame(c.camera, samples.width, samples.height);
     const double bound = scene_bound(scene);
@@ -216,7 +220,7 @@ namespace simd::ptsv {
 
 Structures build_structures(const PreparedScene& scene, const std::string& variant) {
   const VariantConfig& config = variant_config(variant);
-  check_inputs(scene.source, scene.view_samples);
+  check_inputs(scene);
   const ref::ViewFrame frame = ref::make_view_frame(scene.source.camera, scene.view_samples.width,
                                                     scene.view_samples.height);
   const port::ReceiverRule rule(scene);
