@@ -17,7 +17,8 @@
 // signs, beyond the rounding of the transform); every other one is decided by the reference's own
 // triangle_blocks_sample. A directional light's lanes whose line passes outside a cluster's plane
 // bounds (NodeCluster::plane_low, plane_high) by the margin skip its triangles altogether, their
-// tests counted as the reference counts them.
+// tests counted as the reference counts them; so do the lanes whose receiver's supporting plane
+// holds the whole cluster (NodeCluster::plane, ClusterPlanes), by the receiver half-space rule.
 #include <cstdint>
 #include <new>
 #include <type_traits>
