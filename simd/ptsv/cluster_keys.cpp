@@ -12,7 +12,8 @@ namespace shadowcts::simd::ptsv {
 ClusterKeys assign_cluster_keys(const ref::ClusterKeyLayout& layout, const ref::ViewFrame& frame,
                                 const PreparedScene& scene, bool require_pixel_wedge) {
   const ViewSamples& samples = scene.view_samples;
-  const std::vector<std::uint32_t>& index = scene.samples.index;
+  const RegularSamples& regular = scene.samples;
+  const std::vector<std::uint32_t>& index = regular.index;
   ClusterKeys keys;
   keys.key.assign(index.size(), ref::no_key);
   const std::uint64_t slice_limit = std::uint64_t(1) << layout.depth_bits;
@@ -36,12 +37,13 @@ ClusterKeys assign_cluster_keys(const ref::ClusterKeyLayout& layout, const ref::
       tbb::blocked_range<std::size_t>(0, index.size(), 4096),
       [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t i = r.begin(); i != r.end(); ++i) {
-          // The reference's per-sample steps, on the same ViewSample.
-          const ViewSample& s = samples.samples[index[i]];
-          const ref::ViewPoint v = ref::to_view(frame, glm::dvec3(s.position));
+          // The reference's per-sample steps, on the same position and pixel, read from the
+          // prepared arrays (the view samples are ten times their size): the pixel is the
+          // sample's place in the row-major image.
+          const ref::ViewPoint v = ref::to_view(frame, glm::dvec3(regular.position(i)));
           ref::ClusterCoordinate c;
-          c.x = s.pixel_x / ref::cluster_tile_size;
-          c.y = s.pixel_y / ref::cluster_tile_size;
+          c.x = index[i] % samples.width / ref::cluster_tile_size;
+          c.y = index[i] / samples.width / ref::cluster_tile_size;
           bool ok = v.depth > 0.0 && c.x < layout.tiles_x && c.y < layout.tiles_y;
           if (ok) {
             c.slice =

@@ -204,6 +204,7 @@ Hierarchy build_hierarchy(const ref::ClusterKeyLayout& layout, const ref::ViewFr
   // samples of tile t go after those of the chunks before it, so the order is sample order.
   const std::size_t tiles = std::size_t(layout.tiles_x) * layout.tiles_y;
   std::vector<std::uint32_t> tile_of(n);
+  const std::uint32_t width = scene.view_samples.width;
   constexpr std::size_t chunks = 16;
   const std::size_t per_chunk = (n + chunks - 1) / chunks;
   std::vector<std::uint32_t> count(chunks * tiles, 0u);
@@ -212,9 +213,11 @@ Hierarchy build_hierarchy(const ref::ClusterKeyLayout& layout, const ref::ViewFr
         for (std::size_t c = r.begin(); c != r.end(); ++c) {
           std::uint32_t* counts = count.data() + c * tiles;
           for (std::size_t i = c * per_chunk; i < std::min(n, (c + 1) * per_chunk); ++i) {
-            const ViewSample& s = scene.view_samples.samples[samples.index[i]];
-            tile_of[i] = (s.pixel_y / ref::cluster_tile_size) * layout.tiles_x +
-                         s.pixel_x / ref::cluster_tile_size;
+            // The pixel is the sample's place in the row-major image.
+            const std::uint32_t pixel_x = samples.index[i] % width,
+                                pixel_y = samples.index[i] / width;
+            tile_of[i] = (pixel_y / ref::cluster_tile_size) * layout.tiles_x +
+                         pixel_x / ref::cluster_tile_size;
             ++counts[tile_of[i]];
           }
         }

@@ -94,11 +94,8 @@ Built build(const PreparedScene& scene, const ref::ViewFrame& frame, const port:
   if (!b.layout.problem.empty()) throw InputError(c.source, "camera", b.layout.problem);
   b.keys = port::assign_cluster_keys(b.layout.layout, frame, scene, config.implicit_cells());
   if (!b.keys.problem.empty()) throw InputError(c.source, "view samples", b.keys.problem);
-  std::vector<double> reach(scene.samples.size());
-  const std::vector<double>& all = rule.reject_reach();
-  for (std::size_t i = 0; i < reach.size(); ++i) reach[i] = all[scene.samples.index[i]];
-  b.hierarchy = port::build_hierarchy(b.layout.layout, frame, scene, b.keys.key, reach,
-                                      config.implicit_cells());
+  b.hierarchy = port::build_hierarchy(b.layout.layout, frame, scene, b.keys.key,
+                                      rule.reject_reach(), config.implicit_cells());
   return b;
 }
 

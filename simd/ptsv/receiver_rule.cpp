@@ -10,7 +10,7 @@
 namespace shadowcts::simd::ptsv {
 
 ReceiverRule::ReceiverRule(const PreparedScene& scene)
-    : slot_(scene.source.triangles.size(), 0u), reach_(scene.view_samples.samples.size(), 0.0) {
+    : slot_(scene.source.triangles.size(), 0u), reach_(scene.samples.size()) {
   const Case& c = scene.source;
   const RegularSamples& samples = scene.samples;
   const bool directional = c.light->kind == ShadowLightKind::directional;
@@ -44,7 +44,7 @@ ReceiverRule::ReceiverRule(const PreparedScene& scene)
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size(), 4096),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       for (std::size_t i = r.begin(); i != r.end(); ++i)
-                        reach_[samples.index[i]] = ::shadowcts::ptsv::reject_reach(
+                        reach_[i] = ::shadowcts::ptsv::reject_reach(
                             half_space(samples.receiver[i]), glm::dvec3(samples.position(i)));
                     });
 }

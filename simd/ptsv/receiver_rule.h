@@ -14,7 +14,8 @@ class ReceiverRule {
   // Needs a point or directional light (checked by the caller) and receivers that are triangles.
   explicit ReceiverRule(const PreparedScene& scene);
 
-  // Per view sample, as ref::ReceiverRule::reject_reach.
+  // Per regular sample (PreparedScene::samples), as ref::ReceiverRule::reject_reach per view
+  // sample.
   const std::vector<double>& reject_reach() const { return reach_; }
   // The half-space of a receiver of a regular sample (no_receiver: no plane).
   const geometry::ReceiverHalfSpace& half_space(std::uint32_t receiver) const {

@@ -306,8 +306,9 @@ std::vector<bool> front_face_culling_meshes(const PreparedScene& scene, const Hi
     for (int k = 0; k < 3; ++k) clear = clear || eye[k] + reach < lo[k] || eye[k] - reach > hi[k];
     culled[m] = clear;
   }
-  if (sample_reach.size() != samples.samples.size())
-    throw std::logic_error("ptsv simd: one reject reach per sample expected");
+  const RegularSamples& regular = scene.samples;
+  if (sample_reach.size() != regular.size())
+    throw std::logic_error("ptsv simd: one reject reach per regular sample expected");
   std::vector<std::size_t> candidates;
   for (std::size_t m = 0; m < meshes; ++m)
     if (culled[m]) candidates.push_back(m);
@@ -315,17 +316,16 @@ std::vector<bool> front_face_culling_meshes(const PreparedScene& scene, const Hi
   // A mesh keeps its light-facing triangles if any sample comes within its reach of the box:
   // which sample finds it does not matter, so the samples are split over the threads.
   std::vector<std::uint8_t> near(meshes, 0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.samples.size(), 8192),
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, regular.size(), 8192),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       std::vector<std::size_t> left;
                       for (std::size_t m : candidates)
                         if (!std::atomic_ref<std::uint8_t>(near[m]).load(std::memory_order_relaxed))
                           left.push_back(m);
                       for (std::size_t i = range.begin(); i != range.end() && !left.empty(); ++i) {
-                        const ViewSample& s = samples.samples[i];
                         const double r = sample_reach[i];
-                        if (s.sample_class != SampleClass::regular || !(r > 0.0)) continue;
-                        const glm::dvec3 p(s.position);
+                        if (!(r > 0.0)) continue;
+                        const glm::dvec3 p(regular.position(i));
                         std::erase_if(left, [&](std::size_t m) {
                           const glm::dvec3 lo(flo[m]), hi(fhi[m]);
                           bool far = false;

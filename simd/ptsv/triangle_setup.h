@@ -81,7 +81,7 @@ struct SetupBatch {
 
 // ref::front_face_culling_meshes, the same meshes: whether a mesh's box holds a regular sample
 // (meshes_safe_for_face_culling) is asked of the hierarchy's explicit boxes instead of every
-// sample, one mesh per task. sample_reach: per view sample (ReceiverRule::reject_reach).
+// sample, one mesh per task. sample_reach: per regular sample (ReceiverRule::reject_reach).
 std::vector<bool> front_face_culling_meshes(const PreparedScene& scene, const Hierarchy& h,
                                             const std::vector<double>& sample_reach);
 
