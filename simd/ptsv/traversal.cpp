@@ -8,6 +8,7 @@
 #include <hwy/highway.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <bit>
 #include <cmath>
@@ -101,6 +102,17 @@ HWY_INLINE void prefetch(const PackedVolume& vol) {
   const char* p = reinterpret_cast<const char*>(&vol);
   for (std::size_t line = 0; line < sizeof(PackedVolume); line += 64) __builtin_prefetch(p + line);
 }
+
+// A node's visitors [begin, end) in the ordered pass and the scatter (Engine::run).
+struct Segment {
+  static constexpr std::uint32_t alone = ~0u;
+  std::uint32_t node, begin, end;
+  std::uint32_t mask;   // a split node's mask before the segment's first visitor
+  std::uint32_t split;  // its entry in the level's per-segment child counts, or alone
+};
+// Small enough that the 20k-triangle test fixtures split their top nodes too; a segment's own
+// work (an OR pass and 32 counts) is small against 4096 visits.
+constexpr std::uint32_t segment_visits = 4096;
 
 class Engine {
  public:
@@ -410,18 +422,57 @@ class Engine {
             }
             phase_progress::advance(v.size());
           });
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, L.size(), 1),
+      // The ordered pass and the scatter, node by node; a node with more than segment_visits
+      // visitors (a handful of top nodes have a million each) in segments on several threads.
+      // Every visitor sees the node's start mask less the accepts of the visitors before it, an
+      // OR over them: one pass over each segment's accepts gives every segment its start mask.
+      std::vector<Segment> segments;
+      std::vector<std::array<std::uint32_t, 32>> split;  // per split segment, by child rank
+      for (std::uint32_t p = 0; p < L.size(); ++p) {
+        const std::uint32_t b = offsets[p], e = offsets[p + 1];
+        if (e - b <= segment_visits) {
+          if (b != e) segments.push_back({p, b, e, 0, Segment::alone});
+          continue;
+        }
+        for (std::uint32_t at = b; at < e; at += segment_visits) {
+          segments.push_back(
+              {p, at, std::min(e, at + segment_visits), 0, std::uint32_t(split.size())});
+          split.emplace_back();
+        }
+      }
+      if (!split.empty()) {
+        tbb::parallel_for(std::size_t(0), segments.size(), [&](std::size_t k) {
+          Segment& g = segments[k];
+          if (g.split == Segment::alone) return;
+          std::uint32_t accepted = 0;
+          for (std::uint32_t i = g.begin; i < g.end; ++i) accepted |= verdicts[i].accept;
+          g.mask = accepted;
+        });
+        std::uint32_t earlier = 0;  // the accepts of the node's earlier segments
+        for (Segment& g : segments) {
+          if (g.split == Segment::alone) continue;
+          if (g.begin == offsets[g.node]) earlier = 0;
+          const std::uint32_t accepted = g.mask;
+          g.mask = level_live[g.node] & ~earlier;
+          earlier |= accepted;
+          if (g.end == offsets[g.node + 1]) level_live[g.node] &= ~earlier;
+        }
+      }
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, segments.size(), 1),
                         [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t p = r.begin(); p != r.end(); ++p) {
-                            const std::uint32_t b = offsets[p], e = offsets[p + 1];
-                            if (b == e) continue;
-                            const std::uint32_t first = L.first_child[p];
-                            const std::uint32_t start = level_live[p];
+                          std::uint64_t tests = 0, acc = 0, rej = 0, cul = 0;
+                          for (std::size_t k = r.begin(); k != r.end(); ++k) {
+                            const Segment& g = segments[k];
+                            const bool alone = g.split == Segment::alone;
+                            // A node in one segment counts its children's visitors in place (no
+                            // other task has them); a split one per segment, summed below.
+                            std::uint32_t* count = alone
+                                                       ? child_count.data() + L.first_child[g.node]
+                                                       : split[g.split].data();
                             // In volume order: what each visitor tests is what its predecessors
                             // left.
-                            std::uint32_t mask = start;
-                            std::uint64_t tests = 0, acc = 0, rej = 0, cul = 0;
-                            for (std::uint32_t i = b; i < e; ++i) {
+                            std::uint32_t mask = alone ? level_live[g.node] : g.mask;
+                            for (std::uint32_t i = g.begin; i < g.end; ++i) {
                               const Verdicts& v = verdicts[i];
                               tests += std::uint64_t(std::popcount(mask));
                               acc += std::uint64_t(std::popcount(v.accept & mask));
@@ -431,28 +482,52 @@ class Engine {
                               mask &= ~v.accept;
                               remaining[i] = rem;
                               for (std::uint32_t bits = rem; bits != 0; bits &= bits - 1)
-                                ++child_count[first + std::uint32_t(std::countr_zero(bits))];
+                                ++count[std::countr_zero(bits)];
                             }
-                            level_live[p] = mask;
-                            node_tests += tests;
-                            accepts += acc;
-                            rejects += rej;
-                            culls += cul;
+                            if (alone) level_live[g.node] = mask;
                           }
+                          node_tests += tests;
+                          accepts += acc;
+                          rejects += rej;
+                          culls += cul;
                         });
+      for (const Segment& g : segments)
+        if (g.split != Segment::alone)
+          for (std::uint32_t rank = 0; rank < std::uint32_t(std::popcount(L.child_mask[g.node]));
+               ++rank)
+            child_count[L.first_child[g.node] + rank] += split[g.split][rank];
       // The next level's visitors, grouped by child, in volume order within each.
       std::vector<std::uint32_t> next_offsets(below.size() + 1, 0u);
       for (std::size_t c = 0; c < below.size(); ++c)
         next_offsets[c + 1] = next_offsets[c] + child_count[c];
+      // A split segment's first slot per child: after the node's earlier segments.
+      std::array<std::uint32_t, 32> next_slot{};
+      for (const Segment& g : segments) {
+        if (g.split == Segment::alone) continue;
+        const std::uint32_t first = L.first_child[g.node];
+        for (std::uint32_t rank = 0; rank < 32; ++rank) {
+          if (g.begin == offsets[g.node])
+            next_slot[rank] = first + rank < below.size() ? next_offsets[first + rank] : 0;
+          const std::uint32_t here = split[g.split][rank];
+          split[g.split][rank] = next_slot[rank];
+          next_slot[rank] += here;
+        }
+      }
       HugePageVector<std::uint32_t> next_visitors(next_offsets.back());
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, L.size(), 16),
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, segments.size(), 16),
                         [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t p = r.begin(); p != r.end(); ++p) {
-                            const std::uint32_t first = L.first_child[p];
-                            std::uint32_t cursor[32] = {};
-                            for (std::uint32_t k = 0; k < 32 && first + k < below.size(); ++k)
-                              cursor[k] = next_offsets[first + k];
-                            for (std::uint32_t i = offsets[p]; i < offsets[p + 1]; ++i)
+                          for (std::size_t k = r.begin(); k != r.end(); ++k) {
+                            const Segment& g = segments[k];
+                            std::array<std::uint32_t, 32> cursor{};
+                            if (g.split != Segment::alone) {
+                              cursor = split[g.split];
+                            } else {
+                              const std::uint32_t first = L.first_child[g.node];
+                              for (std::uint32_t rank = 0; rank < 32 && first + rank < below.size();
+                                   ++rank)
+                                cursor[rank] = next_offsets[first + rank];
+                            }
+                            for (std::uint32_t i = g.begin; i < g.end; ++i)
                               for (std::uint32_t bits = remaining[i]; bits != 0; bits &= bits - 1)
                                 next_visitors[cursor[std::countr_zero(bits)]++] = visitors[i];
                           }

@@ -134,6 +134,29 @@ TEST(SimdPtsv, BigShadowWithTrivialAcceptsIsTheReferences) {
   }
 }
 
+// The big shadow with 12,100 specks floating above its caster, half of them before the caster in
+// the volume order and half after: the nodes around the shadow's centre have more visitors than
+// one segment of the ordered pass holds, and the caster's trivial accepts fall in a middle
+// segment, so the later segments must start from the mask the accepts left.
+TEST(SimdPtsv, TrivialAcceptsAmongManyVisitorsOfANodeAreTheReferences) {
+  Case c = ptsv_test::big_shadow_case(false);
+  const Triangle caster = c.triangles.back();
+  c.triangles.pop_back();
+  c.meshes.push_back(Mesh{"specks", false, true});
+  const std::uint32_t specks = std::uint32_t(c.meshes.size() - 1);
+  constexpr int side = 110;
+  for (int k = 0; k < side * side; ++k) {
+    if (k == side * side / 2) c.triangles.push_back(caster);
+    const float x = 0.25f + 0.002f * float(k % side), z = -0.2f + 0.002f * float(k / side);
+    c.triangles.push_back(
+        Triangle{{x, 3.5f, z}, {x + 0.001f, 3.5f, z}, {x, 3.5f, z + 0.001f}, specks});
+  }
+  const ViewSamples samples = generate_view_samples(c);
+  const AlgorithmOutput out = make_simd_ptsv()->run(c, samples, "twopass");
+  EXPECT_GT(ptsv_test::counter(out, "trivial_accepts"), 0u);
+  expect_like_reference(c, samples);
+}
+
 TEST(SimdPtsv, SameOutputsForOneAndTwoThreadsAndAnotherTarget) {
   const ptsv_test::FixtureWithSamples f = ptsv_test::load_fixture("gate_house.20k");
   const auto port = make_simd_ptsv();
