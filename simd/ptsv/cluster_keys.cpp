@@ -38,8 +38,8 @@ ClusterKeys assign_cluster_keys(const ref::ClusterKeyLayout& layout, const ref::
       [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t i = r.begin(); i != r.end(); ++i) {
           // The reference's per-sample steps, on the same position and pixel, read from the
-          // prepared arrays (the view samples are ten times their size): the pixel is the
-          // sample's place in the row-major image.
+          // prepared arrays (15 MB at gate_house.1M, against 83 MB of view samples): the pixel
+          // is the sample's place in the row-major image.
           const ref::ViewPoint v = ref::to_view(frame, glm::dvec3(regular.position(i)));
           ref::ClusterCoordinate c;
           c.x = index[i] % samples.width / ref::cluster_tile_size;
