@@ -17,29 +17,13 @@
 #include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 
+#include "shadowcts/float_rounding.h"
 #include "simd/metric/traversal.h"
 
 // Plain C++ used by every target and by the precomputations: defined once per translation unit.
 #ifndef SHADOWCTS_SIMD_METRIC_TRAVERSAL_ONCE
 #define SHADOWCTS_SIMD_METRIC_TRAVERSAL_ONCE
 namespace shadowcts::simd::metric {
-// The float next to f towards -infinity (down) or +infinity, for f not NaN and not already the
-// infinity it goes towards: std::nextafter's answer by the bit pattern, without its library call
-// (two per sample of the traversal's setup). Floats of one sign are ordered as their bits.
-inline float next_float(float f, bool down) {
-  if (f == 0.0f) return down ? -0x1p-149f : 0x1p-149f;
-  const auto bits = std::bit_cast<std::uint32_t>(f);
-  return std::bit_cast<float>((f > 0.0f) == down ? bits - 1 : bits + 1);
-}
-// The largest float <= x and the smallest float >= x (x not NaN).
-inline float float_below(double x) {
-  const float f = float(x);
-  return double(f) > x ? next_float(f, true) : f;
-}
-inline float float_above(double x) {
-  const float f = float(x);
-  return double(f) < x ? next_float(f, false) : f;
-}
 // The window of the float cone tests: at least 2^-16 (see evaluate_in_float), wider where a test
 // widens the double one, so that the lanes it hands back still reach the double path. The planar
 // tests' window is this times S.

@@ -29,6 +29,7 @@
 #include <glm/geometric.hpp>
 
 #include "shadowcts/errors.h"
+#include "shadowcts/float_rounding.h"
 #include "shadowcts/geometry/camera_frame.h"
 #include "shadowcts/huge_pages.h"
 
@@ -361,15 +362,6 @@ HWY_EXPORT(SetUpBatch);
 
 namespace {
 
-// The nearest float at or above c. For c >= 0 (a condition number) the next float up is the next
-// bit pattern: std::nextafter's answer without a library call per plane.
-float rounded_up(double c) {
-  const float f = float(c);
-  if (!(double(f) < c)) return f;
-  if (f < 0.0f) return std::nextafter(f, std::numeric_limits<float>::infinity());
-  return f == 0.0f ? 0x1p-149f : std::bit_cast<float>(std::bit_cast<std::uint32_t>(f) + 1u);
-}
-
 // The lane results of batch entry i into its volume slot; false when a plane was unusable. The
 // canonical vertices are distinct (the triangle has area), so each plane's anchor is the vertex
 // it was built through: the edges' first vertices, p for the triangle, k for culling plane k.
@@ -397,7 +389,7 @@ bool store_volume(const SetupBatch& b, std::size_t i, PackedVolume& p, ref::Setu
   }
   p.extra_mask = mask;
   counts.extra_planes += std::uint64_t(std::popcount(mask));
-  for (int k = 0; k < 4; ++k) p.condition[k] = rounded_up(b.condition[k][i]);
+  for (int k = 0; k < 4; ++k) p.condition[k] = float_above(b.condition[k][i]);
   p.triangle_outside = std::int8_t(orientation);
   p.triangle = b.triangle[i];
   ++counts.volumes;
