@@ -4,6 +4,8 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include <hwy/contrib/sort/vqsort.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -478,7 +480,10 @@ void CullCandidates(const GatheredCones& cones, const shadowcts::softtile::TileB
     }
   }
   // Gathered order, then only the triangles whose cluster's cone may shadow the bound too.
-  std::sort(candidates.begin(), candidates.end());
+  // (Highway's sort: std::sort took 5.6 % of the simd run at foliage.1M. A Sorter owns a buffer:
+  // one per thread.)
+  static thread_local const hwy::Sorter sorter;
+  sorter(candidates.data(), candidates.size(), hwy::SortAscending());
   std::vector<std::uint32_t> clusters;
   for (const std::uint32_t k : candidates)
     if (clusters.empty() || clusters.back() != cones.cluster_of[k])
