@@ -520,39 +520,51 @@ void append(ConeArrays& arrays, const shadowcts::softtile::ShadowCone& cone) {
   arrays.tip_length.push_back(glm::length(cone.tip));
 }
 
-// One node over members [begin, end) with tips tip_of(i) and spreads spread_of(i) (0 for a
-// triangle; infinite where a non-finite tip lies below, which makes every node above it
-// unskippable). A sphere (centre c, radius R) around the members' tips lies
-// inside the cone of half-angle a whose tip is R / sin(a) above c (as shadow_cone() places a cone
-// around a caster's sphere; widened by 1e-9 against rounding); the members' cones, translates of
-// it by points inside it, lie inside it too, and so do the cones below them.
-template <class Tip, class Spread>
-void add_node(ConeGroups& level, std::size_t begin, std::size_t end, const Tip& tip_of,
-              const Spread& spread_of, const glm::dvec3& direction, double sin_radius) {
-  glm::dvec3 lo = tip_of(begin), hi = lo;
-  bool skippable = true;
-  for (std::size_t i = begin; i < end; ++i) {
-    const glm::dvec3 t = tip_of(i);
-    skippable = skippable && std::isfinite(spread_of(i)) && std::isfinite(t.x) &&
-                std::isfinite(t.y) && std::isfinite(t.z);
-    lo = glm::min(lo, t);
-    hi = glm::max(hi, t);
+// A ball that holds the tips of every triangle below a node (from the box around them), and
+// whether each of those tips and the node's cone are finite.
+struct TipBall {
+  glm::dvec3 lo, hi, centre;
+  double radius;
+  bool finite;
+};
+
+// Node `index` of `level` over members [begin, end), given as balls around the triangle tips below
+// each (a triangle: its tip, radius 0). The node's ball is centred in the box around the members'
+// balls' boxes and holds each member's ball; a ball (centre c, radius R) lies inside the cone of
+// half-angle a whose tip is R / sin(a) above c (as shadow_cone() places a cone around a caster's
+// sphere; widened by 1e-9 against rounding), so every triangle's tip below lies inside the node's
+// cone, and so does the triangle's cone, a translate of it by a point inside it. The ball is made
+// from the tips, not from the members' cone tips: each level would raise those again by R / sin(a)
+// (x 29 at the sun's 2 degrees), and nodes above the first levels would hold everything.
+template <class Ball>
+TipBall set_node(ConeGroups& level, std::size_t index, std::size_t begin, std::size_t end,
+                 const Ball& ball_of, const glm::dvec3& direction, double sin_radius) {
+  TipBall members[tree_arity] = {};
+  const std::size_t count = end - begin;
+  for (std::size_t i = 0; i < count; ++i) members[i] = ball_of(begin + i);
+  TipBall node = members[0];
+  for (std::size_t i = 1; i < count; ++i) {
+    node.lo = glm::min(node.lo, members[i].lo);
+    node.hi = glm::max(node.hi, members[i].hi);
+    node.finite = node.finite && members[i].finite;
   }
-  const glm::dvec3 centre = 0.5 * (lo + hi);
+  node.centre = 0.5 * (node.lo + node.hi);
   double radius = 0.0;
-  for (std::size_t i = begin; i < end; ++i)
-    radius = std::max(radius, glm::length(tip_of(i) - centre));
-  radius = radius * (1.0 + 1e-9) + 1e-300;
-  const glm::dvec3 node_tip = centre + direction * (radius * (1.0 + 1e-9) / sin_radius);
+  for (std::size_t i = 0; i < count; ++i)
+    radius = std::max(radius, glm::length(members[i].centre - node.centre) + members[i].radius);
+  node.radius = radius * (1.0 + 1e-9) + 1e-300;
+  const glm::dvec3 node_tip = node.centre + direction * (node.radius * (1.0 + 1e-9) / sin_radius);
+  // The largest distance from the node's tip to a triangle's tip below it.
   double spread = 0.0;
-  for (std::size_t i = begin; i < end; ++i)
-    spread = std::max(spread, glm::length(tip_of(i) - node_tip) + spread_of(i));
+  for (std::size_t i = 0; i < count; ++i)
+    spread = std::max(spread, glm::length(members[i].centre - node_tip) + members[i].radius);
   spread *= 1.0 + 1e-9;
-  skippable = skippable && std::isfinite(node_tip.x) && std::isfinite(node_tip.y) &&
-              std::isfinite(node_tip.z) && std::isfinite(spread);
-  for (int k = 0; k < 3; ++k) level.tip[k].push_back(node_tip[k]);
-  level.tip_length.push_back(glm::length(node_tip));
-  level.spread.push_back(skippable ? spread : HUGE_VAL);
+  node.finite = node.finite && std::isfinite(node.radius) && std::isfinite(node_tip.x) &&
+                std::isfinite(node_tip.y) && std::isfinite(node_tip.z) && std::isfinite(spread);
+  for (int k = 0; k < 3; ++k) level.tip[k][index] = node_tip[k];
+  level.tip_length[index] = glm::length(node_tip);
+  level.spread[index] = node.finite ? spread : HUGE_VAL;
+  return node;
 }
 
 ConeTree cone_tree(const shadowcts::softtile::Gathered& gathered, const glm::dvec3& direction,
@@ -582,30 +594,33 @@ ConeTree cone_tree(const shadowcts::softtile::Gathered& gathered, const glm::dve
     tree.index.push_back(i);
   }
   const ConeArrays& leaves = tree.triangles;
+  std::vector<TipBall> balls, above;  // of the nodes of the level below and of the new level
   std::size_t count = n;
   while (count > 0 && (tree.levels.empty() || count > tree_arity)) {
+    const std::size_t nodes = (count + tree_arity - 1) / tree_arity;
     ConeGroups level;
+    for (std::vector<double>* array :
+         {&level.tip[0], &level.tip[1], &level.tip[2], &level.tip_length, &level.spread})
+      array->resize(nodes);
+    above.resize(nodes);
     const bool over_triangles = tree.levels.empty();
-    for (std::size_t first = 0; first < count; first += tree_arity) {
-      const std::size_t end = std::min(count, first + tree_arity);
-      if (over_triangles) {
-        add_node(
-            level, first, end,
+    tbb::parallel_for(std::size_t(0), nodes, [&](std::size_t node) {
+      const std::size_t first = node * tree_arity, end = std::min(count, first + tree_arity);
+      if (over_triangles)
+        above[node] = set_node(
+            level, node, first, end,
             [&](std::size_t i) {
-              return glm::dvec3(leaves.tip[0][i], leaves.tip[1][i], leaves.tip[2][i]);
+              const glm::dvec3 tip(leaves.tip[0][i], leaves.tip[1][i], leaves.tip[2][i]);
+              return TipBall{tip, tip, tip, 0.0, finite(tip)};
             },
-            [](std::size_t) { return 0.0; }, direction, sin_radius);
-      } else {
-        const ConeGroups& below = tree.levels.back();
-        add_node(
-            level, first, end,
-            [&](std::size_t i) {
-              return glm::dvec3(below.tip[0][i], below.tip[1][i], below.tip[2][i]);
-            },
-            [&](std::size_t i) { return below.spread[i]; }, direction, sin_radius);
-      }
-    }
-    count = level.spread.size();
+            direction, sin_radius);
+      else
+        above[node] = set_node(
+            level, node, first, end, [&](std::size_t i) { return balls[i]; }, direction,
+            sin_radius);
+    });
+    std::swap(balls, above);
+    count = nodes;
     tree.levels.push_back(std::move(level));
   }
   return tree;

@@ -20,10 +20,12 @@ struct ConeArrays {
 // Nodes of the cone tree hold this many triangles (leaves) or child nodes.
 inline constexpr std::size_t tree_arity = 8;
 
-// Nodes of one level of the cone tree. A node's cone (same axis and angle as the members', its tip
-// placed so that it holds every member's tip, hence every member's cone) lets a tile skip all the
-// triangles below it when its bound lies farther outside the node's cone than every member's slack
-// plus rounding allows: then each one's may_shadow is provably false (see cull_candidates).
+// Nodes of one level of the cone tree. A node's cone (same axis and angle as the triangles', its
+// tip placed so that it holds the tip, hence the cone, of every triangle below it; placed over a
+// ball around those tips, not over the child nodes' cone tips, which lie higher) lets a tile skip
+// all the triangles below it when its bound lies farther outside the node's cone than every
+// triangle's slack plus rounding allows: then each one's may_shadow is provably false (see
+// cull_candidates).
 struct ConeGroups {
   // Per node: its cone's tip and |tip|, and the largest distance from it to a triangle's tip below
   // it (infinite where a tip below is not finite: such a node is never skipped).

@@ -312,6 +312,48 @@ TEST(SimdSofttile, PerPixelBitmasksEqualTheReferenceOnEveryTile) {
     expect_tiles_match(c, samples, name);
 }
 
+// The cone tree's nodes: every triangle tip below a node lies inside the node's cone and within
+// its spread of the node's tip (what lets a tile skip the node), and the node's tip stays near
+// those tips: its spread is at most (levels + 2) (1 / sin(a) + 1) times the diameter of the tips'
+// box. A tip raised over tips that were already raised would grow by 1 / sin(a) (29 at 2 degrees)
+// per level, and such nodes never let a tile skip anything.
+TEST(SimdSofttile, ConeTreeNodesHoldTheTipsBelowThemAndStayNearThem) {
+  const Case c = make_fixture("foliage.10k");
+  const ViewSamples samples = generate_view_samples(small_foliage());
+  const ref::Gathered gathered = ref::gather(c, samples);
+  const port::GatheredCones cones = port::gathered_cones(gathered);
+  const port::ConeTree& tree = cones.tree;
+  const std::size_t n = tree.index.size();
+  ASSERT_GT(n, 5000u);
+  ASSERT_GE(tree.levels.size(), 4u);
+  const glm::dvec3 axis = -glm::dvec3(cones.direction[0], cones.direction[1], cones.direction[2]);
+  std::size_t span = port::tree_arity;  // triangles below a node of the level
+  for (std::size_t level = 0; level < tree.levels.size(); ++level, span *= port::tree_arity) {
+    const port::ConeGroups& nodes = tree.levels[level];
+    for (std::size_t node = 0; node < nodes.spread.size(); ++node) {
+      if (!std::isfinite(nodes.spread[node])) continue;  // never skipped
+      const glm::dvec3 tip(nodes.tip[0][node], nodes.tip[1][node], nodes.tip[2][node]);
+      glm::dvec3 lo(HUGE_VAL), hi(-HUGE_VAL);
+      for (std::size_t i = node * span; i < std::min(n, (node + 1) * span); ++i) {
+        const glm::dvec3 t(tree.triangles.tip[0][i], tree.triangles.tip[1][i],
+                           tree.triangles.tip[2][i]);
+        lo = glm::min(lo, t);
+        hi = glm::max(hi, t);
+        const glm::dvec3 v = t - tip;
+        ASSERT_GE(glm::dot(v, axis), glm::length(v) * cones.cos_radius)
+            << "level " << level << " node " << node << ": the tip of triangle " << i
+            << " lies outside the node's cone";
+        ASSERT_LE(glm::length(v), nodes.spread[node])
+            << "level " << level << " node " << node << ": triangle " << i;
+      }
+      const double diameter = glm::length(hi - lo);
+      EXPECT_LE(nodes.spread[node], double(level + 2) * (1.0 / cones.sin_radius + 1.0) * diameter +
+                                        1e-12 * glm::length(tip))
+          << "level " << level << " node " << node << ": the node's tip lies far above its tips";
+    }
+  }
+}
+
 std::string first_difference(const AlgorithmOutput& a, const AlgorithmOutput& b) {
   if (a.counters != b.counters) {
     for (std::size_t i = 0; i < std::min(a.counters.size(), b.counters.size()); ++i)
