@@ -44,6 +44,13 @@ struct VectorEdges {
   V3 e[3];     // valid where accepted
 };
 
+// kRotated false: every fragment's grid is unrotated (cos 1, sin 0), and h is (x, y, tz) without
+// the rotation's products. c x - s y is then x except that -0 - (+-0) may give +0 where x is -0,
+// and likewise for y; a value that differs only in the sign of a zero changes no comparison and no
+// division here or in the rasterization (e.x = 0 is handled apart), so the decisions, counts and
+// masks are the reference's; only triangle_edges(), whose edges are diffed bit for bit, keeps the
+// products.
+template <bool kRotated = true>
 HWY_INLINE VectorEdges vector_edges(D d, const FragmentArrays& f, std::size_t j,
                                     const std::array<glm::vec3, 3>& light_space,
                                     std::uint32_t triangle) {
@@ -58,7 +65,6 @@ HWY_INLINE VectorEdges vector_edges(D d, const FragmentArrays& f, std::size_t j,
   if (hn::AllFalse(d, out.tested)) return out;
   const V px = hn::LoadU(d, f.x.data() + j), py = hn::LoadU(d, f.y.data() + j),
           pz = hn::LoadU(d, f.z.data() + j);
-  const V c = hn::LoadU(d, f.cos_rotation.data() + j), s = hn::LoadU(d, f.sin_rotation.data() + j);
   V3 h[3];
   M any_front = hn::Lt(zero, zero);  // all false
   for (int i = 0; i < 3; ++i) {
@@ -66,8 +72,14 @@ HWY_INLINE VectorEdges vector_edges(D d, const FragmentArrays& f, std::size_t j,
     const V ty = hn::Sub(hn::Set(d, light_space[i].y), py);
     const V tz = hn::Sub(hn::Set(d, light_space[i].z), pz);
     const V x = hn::Mul(tx, inverse_scale), y = hn::Mul(ty, inverse_scale);
-    // Rotating the triangle by the angle rotates the grid by its opposite: the disk is round.
-    h[i] = {hn::Sub(hn::Mul(c, x), hn::Mul(s, y)), hn::Add(hn::Mul(s, x), hn::Mul(c, y)), tz};
+    if constexpr (kRotated) {
+      // Rotating the triangle by the angle rotates the grid by its opposite: the disk is round.
+      const V c = hn::LoadU(d, f.cos_rotation.data() + j),
+              s = hn::LoadU(d, f.sin_rotation.data() + j);
+      h[i] = {hn::Sub(hn::Mul(c, x), hn::Mul(s, y)), hn::Add(hn::Mul(s, x), hn::Mul(c, y)), tz};
+    } else {
+      h[i] = {x, y, tz};
+    }
     any_front = hn::Or(any_front, hn::Gt(tz, zero));
   }
   const V det = dot(h[0], cross(h[1], h[2]));
@@ -121,15 +133,16 @@ std::size_t TriangleEdges(const FragmentArrays& f, const std::array<glm::vec3, 3
   return tests;
 }
 
-std::size_t OccludeFragments(const FragmentArrays& f, const std::array<glm::vec3, 3>& light_space,
-                             std::uint32_t triangle, const DiskRaster::Setup& raster,
-                             DiskRows* masks, std::uint64_t* rasterized) {
+template <bool kRotated>
+HWY_INLINE std::size_t occlude(const FragmentArrays& f, const std::array<glm::vec3, 3>& light_space,
+                               std::uint32_t triangle, const DiskRaster::Setup& raster,
+                               DiskRows* masks, std::uint64_t* rasterized) {
   const D d;
   const std::size_t lanes = hn::Lanes(d);
   std::size_t tests = 0;
   HWY_ALIGN float lane_edges[9][HWY_MAX_BYTES / sizeof(float)];
   for (std::size_t j = 0; j < f.size; j += lanes) {
-    const VectorEdges v = vector_edges(d, f, j, light_space, triangle);
+    const VectorEdges v = vector_edges<kRotated>(d, f, j, light_space, triangle);
     tests += hn::CountTrue(d, v.tested);
     if (hn::AllFalse(d, v.accepted)) continue;
     for (int i = 0; i < 3; ++i) {
@@ -151,6 +164,13 @@ std::size_t OccludeFragments(const FragmentArrays& f, const std::array<glm::vec3
     }
   }
   return tests;
+}
+
+std::size_t OccludeFragments(const FragmentArrays& f, const std::array<glm::vec3, 3>& light_space,
+                             std::uint32_t triangle, const DiskRaster::Setup& raster,
+                             DiskRows* masks, std::uint64_t* rasterized) {
+  return f.rotated ? occlude<true>(f, light_space, triangle, raster, masks, rasterized)
+                   : occlude<false>(f, light_space, triangle, raster, masks, rasterized);
 }
 
 }  // namespace HWY_NAMESPACE
@@ -178,6 +198,9 @@ void FragmentArrays::assign(const std::vector<shadowcts::softtile::FragmentSetup
     sin_rotation[j] = fragments[j].sin_rotation;
   }
   if (size != 0) inverse_scale = fragments[0].inverse_scale;
+  rotated = false;
+  for (std::size_t j = 0; j < size; ++j)
+    rotated = rotated || cos_rotation[j] != 1.0f || sin_rotation[j] != 0.0f;
 }
 
 std::size_t triangle_edges(const FragmentArrays& fragments,

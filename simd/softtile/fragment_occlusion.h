@@ -23,6 +23,7 @@ struct FragmentArrays {
   std::vector<std::uint32_t> receiver;
   float inverse_scale = 1.0f;
   std::size_t size = 0;
+  bool rotated = false;  // some fragment's grid is rotated (cos_rotation != 1 or sin_rotation != 0)
 
   void assign(const std::vector<shadowcts::softtile::FragmentSetup>& fragments,
               const std::vector<std::uint32_t>& receivers);
