@@ -100,6 +100,52 @@ TEST(SimdSofttile, MasksEqualTheReferenceOnAdversarialEdges) {
   }
 }
 
+// Unrotated fragments skip the rotation's products (fragment_occlusion.cpp), which changes the
+// sign of some zeros in the setup: fragments and vertices here share coordinates and signed zeros,
+// so that those zeros arise, and every fragment's mask and count must still be the reference's.
+TEST(SimdSofttile, UnrotatedFragmentsGiveTheReferenceMasksThroughSignedZeros) {
+  const float values[] = {0.0f, -0.0f, 0.25f, -0.25f, 1e-38f, -1e-38f, 0.5f, -1.0f};
+  std::mt19937_64 random(5);
+  const auto pick = [&] { return values[random() % std::size(values)]; };
+  std::vector<ref::FragmentSetup> setups(64);
+  for (ref::FragmentSetup& f : setups) {
+    f.position = {pick(), pick(), random() % 2 == 0 ? 0.0f : -0.0f};
+    f.inverse_scale = 28.636253f;
+  }
+  port::FragmentArrays fragments;
+  fragments.assign(setups, std::vector<std::uint32_t>(setups.size(), 7u));
+  ASSERT_FALSE(fragments.rotated);
+  for (const char* name : {"grid16", "rows15"}) {
+    SCOPED_TRACE(name);
+    const ref::Variant variant = ref::parse_variant(name);
+    const port::DiskRaster raster(variant);
+    std::size_t accepted_total = 0, rejected_total = 0;
+    for_each_target([&] {
+      for (int trial = 0; trial < 400; ++trial) {
+        std::array<glm::vec3, 3> triangle;
+        for (glm::vec3& v : triangle) v = {pick(), pick(), random() % 4 == 0 ? -0.0f : 0.5f};
+        std::vector<port::DiskRows> masks(setups.size(), raster.empty_disk());
+        std::vector<std::uint64_t> rasterized(setups.size(), 0);
+        ASSERT_EQ(port::occlude_fragments(fragments, triangle, 1u, raster, masks.data(),
+                                          rasterized.data()),
+                  setups.size());
+        for (std::size_t j = 0; j < setups.size(); ++j) {
+          ref::DiskBitmask expected(variant);
+          std::array<glm::vec3, 3> edges;
+          const bool accepted = ref::triangle_edges(setups[j], triangle, edges);
+          if (accepted) expected.clear_triangle(edges);
+          (accepted ? accepted_total : rejected_total) += 1;
+          ASSERT_EQ(rasterized[j], accepted ? 1u : 0u) << "trial " << trial << ", fragment " << j;
+          ASSERT_EQ(first_row_difference(expected, masks[j]), "")
+              << "trial " << trial << ", fragment " << j;
+        }
+      }
+    });
+    EXPECT_GT(accepted_total, 1000u);
+    EXPECT_GT(rejected_total, 1000u);
+  }
+}
+
 // The default soft fixture at 128 x 128 pixels (64 tiles): enough penumbra, little CI time.
 Case small_foliage() {
   Case c = make_fixture("foliage.10k");
