@@ -16,11 +16,17 @@
 
 namespace shadowcts::simd::softtile {
 
+// Fragments in blocks of this many consecutive ones (a whole number of vectors on every target
+// but those wider than 16 floats, where blocks are not used).
+inline constexpr std::size_t fragment_block = 16;
+
 // A tile's fragment setups as structure of arrays, with each fragment's receiver triangle, padded
-// to a whole number of 64-bit words of fragments.
+// to a whole number of 64-bit words of fragments, and the lowest light-space z of each block's
+// fragments (NaN ignored; +inf for a block of NaN only).
 struct FragmentArrays {
   std::vector<float> x, y, z, cos_rotation, sin_rotation;
   std::vector<std::uint32_t> receiver;
+  std::vector<float> block_lowest_z;
   float inverse_scale = 1.0f;
   std::size_t size = 0;
   bool rotated = false;  // some fragment's grid is rotated (cos_rotation != 1 or sin_rotation != 0)
@@ -43,7 +49,9 @@ std::size_t triangle_edges(const FragmentArrays& fragments,
 
 // The triangle (light-space vertices, its id `triangle`) cleared from masks[j] of every fragment j
 // that accepts it, as triangle_edges() and then DiskRaster::clear_triangles() would, and counted
-// in rasterized[j]; returns triangle_edges()'s count of tests.
+// in rasterized[j]; returns triangle_edges()'s count of tests. A block of fragments that every
+// vertex lies behind (vertex z <= the block's lowest z) is only counted: no fragment of it has a
+// vertex in front, so none accepts.
 std::size_t occlude_fragments(const FragmentArrays& fragments,
                               const std::array<glm::vec3, 3>& light_space, std::uint32_t triangle,
                               const DiskRaster& raster, DiskRows* masks, std::uint64_t* rasterized);
