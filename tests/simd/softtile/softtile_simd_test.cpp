@@ -364,8 +364,8 @@ TEST(SimdSofttile, PerPixelBitmasksEqualTheReferenceOnEveryTile) {
 // box. A tip raised over tips that were already raised would grow by 1 / sin(a) (29 at 2 degrees)
 // per level, and such nodes never let a tile skip anything.
 TEST(SimdSofttile, ConeTreeNodesHoldTheTipsBelowThemAndStayNearThem) {
-  const Case c = make_fixture("foliage.10k");
-  const ViewSamples samples = generate_view_samples(small_foliage());
+  const Case c = small_foliage();
+  const ViewSamples samples = generate_view_samples(c);
   const ref::Gathered gathered = ref::gather(c, samples);
   const port::GatheredCones cones = port::gathered_cones(gathered);
   const port::ConeTree& tree = cones.tree;
