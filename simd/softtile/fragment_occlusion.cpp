@@ -44,6 +44,15 @@ struct VectorEdges {
   V3 e[3];     // valid where accepted
 };
 
+// The lanes of fragments j.. that exist and whose receiver is not the triangle: the reference's
+// pixel-triangle tests.
+HWY_INLINE M tested_lanes(D d, const FragmentArrays& f, std::size_t j, std::uint32_t triangle) {
+  const hn::RebindToUnsigned<D> du;
+  return hn::And(
+      hn::FirstN(d, f.size - j),
+      hn::RebindMask(d, hn::Ne(hn::LoadU(du, f.receiver.data() + j), hn::Set(du, triangle))));
+}
+
 // kRotated false: every fragment's grid is unrotated (cos 1, sin 0), and h is (x, y, tz) without
 // the rotation's products. c x - s y is then x except that -0 - (+-0) may give +0 where x is -0,
 // and likewise for y; a value that differs only in the sign of a zero changes no comparison and no
@@ -54,13 +63,10 @@ template <bool kRotated = true>
 HWY_INLINE VectorEdges vector_edges(D d, const FragmentArrays& f, std::size_t j,
                                     const std::array<glm::vec3, 3>& light_space,
                                     std::uint32_t triangle) {
-  const hn::RebindToUnsigned<D> du;
   const V zero = hn::Zero(d);
   const V inverse_scale = hn::Set(d, f.inverse_scale);
   VectorEdges out;
-  out.tested = hn::And(
-      hn::FirstN(d, f.size - j),
-      hn::RebindMask(d, hn::Ne(hn::LoadU(du, f.receiver.data() + j), hn::Set(du, triangle))));
+  out.tested = tested_lanes(d, f, j, triangle);
   out.accepted = out.tested;
   if (hn::AllFalse(d, out.tested)) return out;
   const V px = hn::LoadU(d, f.x.data() + j), py = hn::LoadU(d, f.y.data() + j),
@@ -147,13 +153,9 @@ HWY_INLINE std::size_t occlude(const FragmentArrays& f, const std::array<glm::ve
   float top = -std::numeric_limits<float>::infinity();
   for (const glm::vec3& v : light_space)
     if (v.z > top) top = v.z;
-  const hn::RebindToUnsigned<D> du;
   for (std::size_t j = 0; j < f.size; j += lanes) {
     if (lanes <= fragment_block && top <= f.block_lowest_z[j / fragment_block]) {
-      tests += hn::CountTrue(
-          d, hn::And(hn::FirstN(d, f.size - j),
-                     hn::RebindMask(
-                         d, hn::Ne(hn::LoadU(du, f.receiver.data() + j), hn::Set(du, triangle)))));
+      tests += hn::CountTrue(d, tested_lanes(d, f, j, triangle));
       continue;
     }
     const VectorEdges v = vector_edges<kRotated>(d, f, j, light_space, triangle);
