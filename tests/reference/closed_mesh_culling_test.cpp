@@ -6,6 +6,12 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+#include <tuple>
+
+#include <glm/common.hpp>
+#include <glm/vector_relational.hpp>
+
 #include "shadowcts/hard_shadow_comparison.h"
 #include "shadowcts/hard_shadow_oracle.h"
 #include "shadowcts/registry.h"
@@ -64,6 +70,79 @@ TEST(ClosedMeshCulling, NotWhenASampleOrThePointLightIsInsideTheBox) {
   point.position = {0.5f, 0, 0};  // inside the solid
   s.c.light = point;
   EXPECT_EQ(meshes_safe_for_face_culling(s.c, s.samples), (std::vector<bool>{false, false}));
+}
+
+// Closed boxes at random, samples at random and on the boxes' faces, edges and corners, each
+// sample's receiver a triangle of any mesh (its own box's or another's): the culling must match
+// its definition, tested box by box and sample by sample.
+TEST(ClosedMeshCulling, MatchesTheDefinitionOnSamplesOnBoxFacesAndCorners) {
+  std::mt19937 random(7);
+  const auto coordinate = [&] { return float(int(random() % 41) - 20) * 0.25f; };
+  for (int round = 0; round < 40; ++round) {
+    Case c;
+    c.name = "test.boxes";
+    c.source = "test";
+    std::vector<glm::vec3> lo, hi;
+    const int boxes = 1 + int(random() % 12);
+    for (int b = 0; b < boxes; ++b) {
+      glm::vec3 a{coordinate(), coordinate(), coordinate()};
+      glm::vec3 d{coordinate(), coordinate(), coordinate()};
+      if (a.x == d.x) d.x += 0.5f;
+      if (a.y == d.y) d.y += 0.5f;
+      if (a.z == d.z) d.z += 0.5f;
+      lo.push_back(glm::min(a, d));
+      hi.push_back(glm::max(a, d));
+      c.meshes.push_back({"box", random() % 4 != 0, random() % 5 != 0});
+      const auto corner = [&](int k) {
+        return glm::vec3((k & 1) ? hi[b].x : lo[b].x, (k & 2) ? hi[b].y : lo[b].y,
+                         (k & 4) ? hi[b].z : lo[b].z);
+      };
+      // Two triangles per face of the cube (windings do not matter here).
+      for (const auto& [p, q, r, t] : {std::tuple{0, 1, 3, 2},
+                                       {4, 5, 7, 6},
+                                       {0, 1, 5, 4},
+                                       {2, 3, 7, 6},
+                                       {0, 2, 6, 4},
+                                       {1, 3, 7, 5}}) {
+        c.triangles.push_back({corner(p), corner(q), corner(r), std::uint32_t(b)});
+        c.triangles.push_back({corner(p), corner(r), corner(t), std::uint32_t(b)});
+      }
+    }
+    ShadowLight light;
+    light.position = {coordinate(), coordinate(), coordinate()};
+    if (random() % 2 == 0) {
+      light.kind = ShadowLightKind::directional;
+      light.direction = {0, 0.6f, 0.8f};
+    }
+    c.light = light;
+    ViewSamples samples;
+    const int count = int(random() % 60);
+    for (int i = 0; i < count; ++i) {
+      ViewSample v;
+      const int b = int(random() % std::uint32_t(boxes));
+      const int snap = int(random() % 3);  // 0: anywhere, 1: a face, edge or corner of box b
+      v.position = {coordinate(), coordinate(), coordinate()};
+      if (snap == 1)
+        for (int k = 0; k < 3; ++k)
+          if (random() % 2 == 0) v.position[k] = random() % 2 == 0 ? lo[b][k] : hi[b][k];
+      if (snap == 2) v.position = random() % 2 == 0 ? hi[b] : lo[b];
+      v.receiver = std::uint32_t(random() % c.triangles.size());
+      v.sample_class = random() % 6 == 0 ? SampleClass::back_facing : SampleClass::regular;
+      samples.samples.push_back(v);
+    }
+    std::vector<bool> expected(c.meshes.size());
+    for (int b = 0; b < boxes; ++b) {
+      const auto in_box = [&](const glm::vec3& p) {
+        return glm::all(glm::greaterThanEqual(p, lo[b])) && glm::all(glm::lessThanEqual(p, hi[b]));
+      };
+      bool safe = c.meshes[b].closed && c.meshes[b].caster;
+      if (light.kind == ShadowLightKind::point && in_box(light.position)) safe = false;
+      for (const ViewSample& v : samples.samples)
+        if (v.sample_class == SampleClass::regular && in_box(v.position)) safe = false;
+      expected[b] = safe;
+    }
+    EXPECT_EQ(meshes_safe_for_face_culling(c, samples), expected) << "round " << round;
+  }
 }
 
 TEST(ClosedMeshCulling, PlaneBasedAlgorithmsShadowASampleInsideAClosedCaster) {
