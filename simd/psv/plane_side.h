@@ -10,6 +10,7 @@
 
 #include "reference/psv/plane_side.h"
 #include "reference/psv/top_tree.h"
+#include "shadowcts/huge_pages.h"
 
 namespace shadowcts::simd::psv {
 
@@ -18,6 +19,8 @@ namespace ref = shadowcts::psv;
 // The vertices of a volume's triangle, stored per volume beside the tree: its planes' defining
 // points (edge plane k holds vertices k and k + 1 mod 3), read without a visit to the triangle.
 using VolumeCorners = std::array<glm::vec3, 3>;
+// Per volume of a tree, in huge pages: the descents read it at random.
+using VolumeCornerArray = HugePageVector<VolumeCorners>;
 
 class PlaneSide {
  public:

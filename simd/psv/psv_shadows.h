@@ -29,7 +29,7 @@ struct SimdPsvResult {
 // The build phase of ref::build_psv on oneTBB: the same light, plane tests and tree.
 struct SimdPsvBuild {
   ref::PsvBuild build;
-  std::vector<VolumeCorners> corners;  // per volume of build.tree
+  VolumeCornerArray corners;  // per volume of build.tree
   BuildWork work;
 };
 SimdPsvBuild build_psv(const PreparedScene& scene, std::uint64_t seed);

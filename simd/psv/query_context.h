@@ -25,7 +25,7 @@ inline constexpr std::uint32_t max_stack = 32;
 
 struct QueryTree {
   const ref::TopTree& tree;
-  const std::vector<VolumeCorners>& corners;  // per volume
+  const VolumeCornerArray& corners;  // per volume
   const PlaneSide& planes;
   const ref::QueryContext& exact;  // the reference's tests, for what the vector tests leave open
   bool depth_test = false;

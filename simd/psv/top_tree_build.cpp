@@ -31,7 +31,7 @@ TriangleVertices vertices_of(const Triangle& t) {
 
 // One node of the reference's descent (ref::build_top_tree): the next node, or no_node once the
 // descent has reached an empty child or a shadow leaf (d.dropped).
-std::uint32_t descend_step(const ref::TopTree& tree, const std::vector<VolumeCorners>& corners,
+std::uint32_t descend_step(const ref::TopTree& tree, const VolumeCornerArray& corners,
                            const PlaneSide& planes, std::uint32_t node, const TriangleVertices& t,
                            Descent& d) {
   return ref::step_by_location(
@@ -39,8 +39,8 @@ std::uint32_t descend_step(const ref::TopTree& tree, const std::vector<VolumeCor
 }
 
 // The descent from `node` on, continuing `d`.
-void descend(const ref::TopTree& tree, const std::vector<VolumeCorners>& corners,
-             const PlaneSide& planes, std::uint32_t node, const TriangleVertices& t, Descent& d) {
+void descend(const ref::TopTree& tree, const VolumeCornerArray& corners, const PlaneSide& planes,
+             std::uint32_t node, const TriangleVertices& t, Descent& d) {
   while (node != no_node) node = descend_step(tree, corners, planes, node, t, d);
 }
 
@@ -48,7 +48,7 @@ void descend(const ref::TopTree& tree, const std::vector<VolumeCorners>& corners
 // tree's volumes are kept beside it, appended as the tree grows.
 class ParallelDescents final : public ref::DescentEngine {
  public:
-  ParallelDescents(const Case& c, const PlaneSide& planes, std::vector<VolumeCorners>& corners)
+  ParallelDescents(const Case& c, const PlaneSide& planes, VolumeCornerArray& corners)
       : c_(c), planes_(planes), corners_(corners) {}
 
   void descend_batch(const ref::TopTree& tree, const std::vector<std::uint32_t>& triangles,
@@ -91,10 +91,10 @@ class ParallelDescents final : public ref::DescentEngine {
  private:
   const Case& c_;
   const PlaneSide& planes_;
-  std::vector<VolumeCorners>& corners_;
+  VolumeCornerArray& corners_;
   // The batch being committed: its triangles, and the corners of those its descents kept.
   std::vector<std::uint32_t> batch_triangles_;
-  std::vector<VolumeCorners> batch_corners_;
+  VolumeCornerArray batch_corners_;
   std::size_t next_item_ = 0;
 };
 
@@ -133,7 +133,7 @@ std::vector<std::uint32_t> insertion_order(const Case& c, const ref::PlaneSide& 
 
 ref::TopTree build_top_tree(const Case& c, const PlaneSide& planes,
                             const std::vector<std::uint32_t>& order,
-                            ref::BuildStatistics& statistics, std::vector<VolumeCorners>& corners,
+                            ref::BuildStatistics& statistics, VolumeCornerArray& corners,
                             BuildWork& work) {
   corners.clear();
   corners.reserve(order.size());

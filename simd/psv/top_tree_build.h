@@ -24,7 +24,7 @@ std::vector<std::uint32_t> insertion_order(const Case& c, const ref::PlaneSide& 
 // receives the corners of every volume, for the queries.
 ref::TopTree build_top_tree(const Case& c, const PlaneSide& planes,
                             const std::vector<std::uint32_t>& order,
-                            ref::BuildStatistics& statistics, std::vector<VolumeCorners>& corners,
+                            ref::BuildStatistics& statistics, VolumeCornerArray& corners,
                             BuildWork& work);
 
 }  // namespace shadowcts::simd::psv
