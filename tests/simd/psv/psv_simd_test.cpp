@@ -3,11 +3,14 @@
 // visited for every sample, and the same counters (exact_plane_tests excepted: it counts each
 // port's own exact decisions), for every variant, any thread count and any packet size, on the
 // default fixtures, the stiff cases and random scenes at ordinary, tiny and huge scales.
+#include <cmath>
 #include <cstring>
+#include <random>
 #include <string>
 
 #include <gtest/gtest.h>
 #include <hwy/targets.h>
+#include <glm/geometric.hpp>
 
 #include "hand_built_case.h"
 #include "metric_test_cases.h"
@@ -188,6 +191,91 @@ TEST(SimdPsvBuild, BatchesResumeDescentsAndStillBuildTheReferenceTree) {
   EXPECT_GT(actual.work.resumed_descents, 100u);
   const ref::PsvBuild expected = ref::build_psv(f.c, f.samples, f.c.parameters.seed);
   EXPECT_EQ(first_tree_difference(expected.tree, actual.build.tree), "");
+}
+
+// Whether the line test by rounded products is fooled: b - a and p - a exact in double, the
+// products of the cross product (b - a) x (p - a) rounded pairwise equal, yet not equal exactly.
+bool rounded_products_hide_the_miss(const glm::vec3& a, const glm::vec3& b, const glm::vec3& p) {
+  glm::dvec3 u, w;
+  for (int i = 0; i < 3; ++i) {
+    u[i] = double(b[i]) - double(a[i]);
+    w[i] = double(p[i]) - double(a[i]);
+    if (u[i] + double(a[i]) != double(b[i]) || w[i] + double(a[i]) != double(p[i]) ||
+        double(b[i]) - u[i] != double(a[i]) || double(p[i]) - w[i] != double(a[i]))
+      return false;
+  }
+  bool errors_differ = false;
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3;
+    const double first = u[i] * w[j], second = u[j] * w[i];
+    if (first != second) return false;
+    errors_differ = errors_differ || std::fma(u[i], w[j], -first) != std::fma(u[j], w[i], -second);
+  }
+  return errors_differ;
+}
+
+// A vertex p that misses another triangle's edge line (a, b) by less than the rounding of the
+// double products that test it: a nearly parallel to b (b scaled by 2^-28 or 2^-29, one
+// coordinate a float step off) and p = 2b or b / 2. It lies within every float bound of the edge's
+// plane, so the lanes' test by the plane's defining points, or the exact predicate, must decide
+// it: the other two vertices of p's triangle lie on one side of the plane, once on each, so one
+// of the two scenes has p's triangle straddling the first triangle's plane at the root. Also the
+// tiny-coordinate edges whose differences are not even exact in double.
+void expect_vertices_just_off_an_edges_line_off_its_plane() {
+  std::mt19937 random(11);
+  const auto short_float = [&](int lo, int hi) {
+    return float(lo + int(random() % unsigned(hi - lo + 1))) / 16.0f;
+  };
+  int scenes = 0, hidden = 0;
+  for (const ShadowLight& light : {shadowcts::testing::point_light({1.5f, 10.0f, 0.75f}),
+                                   shadowcts::testing::directional_light({0.25f, 1.0f, -0.375f})}) {
+    for (int found = 0; found < 24;) {
+      const glm::vec3 b{short_float(-64, 64), short_float(16, 64), short_float(-64, 64)};
+      const bool tiny = found % 4 == 3;
+      glm::vec3 a = std::ldexp(1.0f, tiny ? -60 : -28 - int(random() % 2)) * b;
+      const int axis = int(random() % 3);
+      a[axis] = std::nextafter(a[axis], 2.0f * a[axis]);
+      const glm::vec3 p = random() % 2 == 0 ? 2.0f * b : 0.5f * b;
+      if (!tiny && !rounded_products_hide_the_miss(a, b, p)) continue;
+      hidden += tiny ? 0 : 1;
+      ++found;
+      // The edge's plane: through the light (or along its direction) and the edge.
+      const glm::dvec3 along = light.kind == ShadowLightKind::point
+                                   ? glm::dvec3(light.position) - glm::dvec3(b)
+                                   : glm::dvec3(light.direction);
+      const glm::dvec3 normal = glm::normalize(glm::cross(glm::dvec3(b) - glm::dvec3(a), along));
+      const glm::vec3 c = b + glm::vec3(0.0f, 0.5f, 0.0f) + glm::vec3(0.25 * normal);
+      for (const float side : {1.0f, -1.0f})
+        for (const bool edge_first : {true, false}) {
+          auto h = shadowcts::testing::make_hand_built_case(light);
+          const glm::vec3 d = p + side * glm::vec3(0.5 * normal) + glm::vec3(0.0f, 0.25f, 0.0f);
+          const glm::vec3 e = p + side * glm::vec3(0.75 * normal) - glm::vec3(0.125f, 0.0f, 0.25f);
+          if (edge_first) {
+            h.add_triangle(a, b, c);
+            h.add_triangle(p, d, e);
+          } else {
+            h.add_triangle(p, d, e);
+            h.add_triangle(a, b, c);
+          }
+          h.add_ground_sample({0.5f, 0.0f, 0.25f});
+          expect_same_tree(h.c, h.samples);
+          ++scenes;
+        }
+    }
+  }
+  EXPECT_EQ(hidden, 36);
+  EXPECT_EQ(scenes, 192);
+}
+
+// On every Highway target: those without fused multiply-adds leave the line test to the scalar
+// one.
+TEST(SimdPsvBuild, VerticesJustOffAnEdgesLineAreOffItsPlane) {
+  for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
+    SCOPED_TRACE(hwy::TargetName(target));
+    hwy::SetSupportedTargetsForTest(target);
+    expect_vertices_just_off_an_edges_line_off_its_plane();
+  }
+  hwy::SetSupportedTargetsForTest(0);
 }
 
 // The build's descents and the queries run in Highway lanes: every target this build has code
