@@ -48,74 +48,76 @@ HWY_INLINE V exact_difference(D d, V b, V a, decltype(hn::FirstN(d, 0))& exact) 
   return s;
 }
 
+// The open vertices of the walks on_their_planes tests, one per lane: the vertex, its node's
+// plane's defining points, and its walk.
+struct OpenVertices {
+  static constexpr std::size_t capacity = 3 * walks + 8;  // and the padding of a last vector
+  HWY_ALIGN double vertex[3][capacity];                   // [axis][item]
+  HWY_ALIGN double point[3][3][capacity];                 // [defining point][axis][item]
+  std::uint8_t walk_of[capacity];
+};
+
 // Of the walks in `check`, those whose open vertices (open[k], bit w: vertex k of walk w) all lie
 // exactly on their node's plane, found from the plane's defining points alone: a vertex is one of
-// them, or lies on the line through two of them (PlaneSide::near_side's surely_on_line, with fused
-// multiply-subtracts for its exact products; targets without them leave that part to the scalar
-// tests). An edge plane holds its edge, a capping plane its triangle. The walks are packed into
-// as few vectors as they fill.
+// them, or lies on the line through the first two (PlaneSide::near_side's surely_on_line, with
+// fused multiply-subtracts for its exact products; targets without them leave that part to the
+// scalar tests). An edge plane holds its edge, a capping plane its triangle.
 template <class D>
 HWY_NOINLINE unsigned on_their_planes(D d, const VolumeCornerArray& corners,
                                       const std::uint32_t (&node)[walks],
                                       const double (&x)[3][walks], const double (&y)[3][walks],
                                       const double (&z)[3][walks], const unsigned (&open)[3],
-                                      unsigned check) {
+                                      unsigned check, OpenVertices& items) {
+  using V = hn::Vec<D>;
   const std::size_t lanes = hn::Lanes(d);
-  // [vertex or defining point][axis][packed walk]; a lane of an open vertex in `vertex_open`.
-  HWY_ALIGN double vertex[3][3][walks], point[3][3][walks], vertex_open[3][walks];
-  std::uint8_t walk_of[walks];
   std::size_t count = 0;
-  for (unsigned bits = check; bits != 0; bits &= bits - 1, ++count) {
+  for (unsigned bits = check; bits != 0; bits &= bits - 1) {
     const auto w = std::size_t(std::countr_zero(bits));
-    walk_of[count] = std::uint8_t(w);
     const VolumeCorners& corner = corners[ref::volume_of(node[w])];
     const std::uint32_t k = node[w] % ref::nodes_per_volume;
     const bool capping = k == ref::capping_plane;
     // An edge plane's two vertices (the first twice), or the triangle's three.
     const glm::vec3* defining[3] = {&corner[capping ? 0 : k], &corner[capping ? 1 : (k + 1) % 3],
                                     &corner[capping ? 2 : k]};
-    for (int i = 0; i < 3; ++i) {
-      vertex[i][0][count] = x[i][w];
-      vertex[i][1][count] = y[i][w];
-      vertex[i][2][count] = z[i][w];
-      vertex_open[i][count] = (open[i] >> w) & 1u ? 1.0 : 0.0;
-      for (int axis = 0; axis < 3; ++axis) point[i][axis][count] = double((*defining[i])[axis]);
+    for (int v = 0; v < 3; ++v) {
+      if (((open[v] >> w) & 1u) == 0) continue;
+      items.vertex[0][count] = x[v][w];
+      items.vertex[1][count] = y[v][w];
+      items.vertex[2][count] = z[v][w];
+      for (int i = 0; i < 3; ++i)
+        for (int axis = 0; axis < 3; ++axis)
+          items.point[i][axis][count] = double((*defining[i])[axis]);
+      items.walk_of[count++] = std::uint8_t(w);
     }
   }
-  for (std::size_t i = count; i < (count + lanes - 1) / lanes * lanes; ++i)
-    for (int k = 0; k < 3; ++k) {
-      vertex_open[k][i] = 1.0;  // never on: NaN coordinates
-      for (int axis = 0; axis < 3; ++axis) vertex[k][axis][i] = point[k][axis][i] = NAN;
+  // The last vector's lanes past the items: computed and ignored.
+  for (std::size_t i = count; i % lanes != 0; ++i)
+    for (int axis = 0; axis < 3; ++axis) {
+      items.vertex[axis][i] = 0.0;
+      for (int point = 0; point < 3; ++point) items.point[point][axis][i] = 0.0;
     }
-  unsigned all_on = 0;
+  unsigned off_their_planes = 0;  // walks with an open vertex not found on the plane
   for (std::size_t j = 0; j < count; j += lanes) {
-    using V = hn::Vec<D>;
-    V corner_point[3][3];
+    const auto valid = hn::FirstN(d, count - j);
+    V p[3], point[3][3];
+    for (int axis = 0; axis < 3; ++axis) {
+      p[axis] = hn::Load(d, items.vertex[axis] + j);
+      for (int i = 0; i < 3; ++i) point[i][axis] = hn::Load(d, items.point[i][axis] + j);
+    }
+    auto on = hn::FirstN(d, 0);
     for (int i = 0; i < 3; ++i)
-      for (int axis = 0; axis < 3; ++axis) corner_point[i][axis] = hn::Load(d, point[i][axis] + j);
+      on = hn::Or(on, hn::And(hn::And(hn::Eq(p[0], point[i][0]), hn::Eq(p[1], point[i][1])),
+                              hn::Eq(p[2], point[i][2])));
 #if HWY_NATIVE_FMA
-    // The edge from the first point to the second; its differences exact.
-    auto edge_exact = hn::FirstN(d, lanes);
-    V edge[3];
-    for (int axis = 0; axis < 3; ++axis)
-      edge[axis] = exact_difference(d, corner_point[1][axis], corner_point[0][axis], edge_exact);
-#endif
-    auto every_open_on = hn::FirstN(d, lanes);
-    for (int k = 0; k < 3; ++k) {
-      V p[3];
-      for (int axis = 0; axis < 3; ++axis) p[axis] = hn::Load(d, vertex[k][axis] + j);
-      auto on = hn::FirstN(d, 0);
-      for (int i = 0; i < 3; ++i)
-        on = hn::Or(
-            on, hn::And(hn::And(hn::Eq(p[0], corner_point[i][0]), hn::Eq(p[1], corner_point[i][1])),
-                        hn::Eq(p[2], corner_point[i][2])));
-#if HWY_NATIVE_FMA
-      // edge x (p - first) = 0: each pair of products equal, compared as exact (product, error)
-      // pairs, none of them near underflow.
-      auto on_line = edge_exact;
-      V w[3];
-      for (int axis = 0; axis < 3; ++axis)
-        w[axis] = exact_difference(d, p[axis], corner_point[0][axis], on_line);
+    if (!hn::AllTrue(d, hn::Or(on, hn::Not(valid)))) {
+      // (second - first) x (p - first) = 0: each pair of products equal, compared as exact
+      // (product, error) pairs, none of them near underflow; every difference exact.
+      auto on_line = hn::FirstN(d, lanes);
+      V edge[3], w[3];
+      for (int axis = 0; axis < 3; ++axis) {
+        edge[axis] = exact_difference(d, point[1][axis], point[0][axis], on_line);
+        w[axis] = exact_difference(d, p[axis], point[0][axis], on_line);
+      }
       const auto representable = [&](V v) {
         return hn::Or(hn::Eq(v, hn::Zero(d)), hn::Ge(hn::Abs(v), hn::Set(d, 0x1p-900)));
       };
@@ -129,16 +131,12 @@ HWY_NOINLINE unsigned on_their_planes(D d, const VolumeCornerArray& corners,
             hn::And(on_line, hn::And(hn::Eq(first, second), hn::Eq(first_error, second_error)));
       }
       on = hn::Or(on, on_line);
-#endif
-      const auto closed = hn::Eq(hn::Load(d, vertex_open[k] + j), hn::Zero(d));
-      every_open_on = hn::And(every_open_on, hn::Or(closed, on));
     }
-    all_on |= lane_bits(d, every_open_on) << j;
+#endif
+    for (unsigned off = lane_bits(d, hn::AndNot(on, valid)); off != 0; off &= off - 1)
+      off_their_planes |= 1u << items.walk_of[j + std::size_t(std::countr_zero(off))];
   }
-  unsigned result = 0;
-  for (std::size_t i = 0; i < count; ++i)
-    if ((all_on >> i) & 1u) result |= 1u << walk_of[i];
-  return result;
+  return check & ~off_their_planes;
 }
 
 void DescendInLanes(const ref::TopTree& tree, const VolumeCornerArray& corners,
@@ -166,6 +164,7 @@ void DescendInLanes(const ref::TopTree& tree, const VolumeCornerArray& corners,
   unsigned live = 0;
   // Walks whose node left a vertex within the bound: its volume's corners were fetched last round.
   unsigned deferred = 0;
+  OpenVertices open_vertices;
   std::size_t next = first;
   const auto start = [&](std::size_t w) {
     if (next == last) return false;
@@ -235,7 +234,7 @@ void DescendInLanes(const ref::TopTree& tree, const VolumeCornerArray& corners,
     // The walks whose corners arrived and that are still open: their open vertices against the
     // plane's defining points.
     if (const unsigned check = deferred & ~(positive & negative) & ~decided; check != 0)
-      decided |= on_their_planes(d, corners, node, x, y, z, open, check);
+      decided |= on_their_planes(d, corners, node, x, y, z, open, check, open_vertices);
     for (unsigned bits = live; bits != 0; bits &= bits - 1) {
       const auto w = std::size_t(std::countr_zero(bits));
       const unsigned lane = 1u << w;
