@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <limits>
+#include <span>
 #include <utility>
 
 #include <tbb/blocked_range.h>
@@ -53,6 +54,74 @@ MeshBoxes mesh_boxes(const Case& c) {
   return boxes;
 }
 
+// A uniform grid over some of the boxes, each cell listing the boxes that meet it (closed). A
+// point's cell is found by comparing it with the cells' float bounds, so the boxes listed for it
+// include every box that holds it.
+class BoxGrid {
+ public:
+  BoxGrid(const MeshBoxes& boxes, const std::vector<std::uint32_t>& which) {
+    for (const std::uint32_t m : which) {
+      lo_ = glm::min(lo_, boxes.lo[m]);
+      hi_ = glm::max(hi_, boxes.hi[m]);
+    }
+    for (int axis = 0; axis < 3; ++axis) {
+      cells_[axis] = hi_[axis] > lo_[axis] ? per_axis : 1;
+      for (int i = 0; i <= cells_[axis]; ++i)
+        split_[axis][i] = i == cells_[axis] ? hi_[axis]
+                                            : lo_[axis] + (hi_[axis] - lo_[axis]) * float(i) /
+                                                              float(cells_[axis]);
+    }
+    std::vector<std::uint32_t> count(per_axis * per_axis * per_axis + 1, 0);
+    const auto for_each_cell = [&](std::uint32_t m, auto&& f) {
+      int first[3], last[3];
+      for (int axis = 0; axis < 3; ++axis) {
+        first[axis] = last[axis] = -1;
+        for (int i = 0; i < cells_[axis]; ++i)
+          if (split_[axis][i] <= boxes.hi[m][axis] && boxes.lo[m][axis] <= split_[axis][i + 1]) {
+            if (first[axis] < 0) first[axis] = i;
+            last[axis] = i;
+          }
+      }
+      for (int i = first[0]; i >= 0 && i <= last[0]; ++i)
+        for (int j = first[1]; j >= 0 && j <= last[1]; ++j)
+          for (int k = first[2]; k >= 0 && k <= last[2]; ++k) f(cell_index(i, j, k));
+    };
+    for (const std::uint32_t m : which)
+      for_each_cell(m, [&](std::size_t cell) { ++count[cell + 1]; });
+    for (std::size_t cell = 1; cell < count.size(); ++cell) count[cell] += count[cell - 1];
+    first_.assign(count.begin(), count.end());
+    listed_.resize(count.back());
+    for (const std::uint32_t m : which)
+      for_each_cell(m, [&](std::size_t cell) { listed_[count[cell]++] = m; });
+  }
+
+  // The boxes that may hold p: none outside the grid.
+  std::span<const std::uint32_t> boxes_near(const glm::vec3& p) const {
+    if (!(p.x >= lo_.x && p.x <= hi_.x && p.y >= lo_.y && p.y <= hi_.y && p.z >= lo_.z &&
+          p.z <= hi_.z))
+      return {};
+    int index[3];
+    for (int axis = 0; axis < 3; ++axis) {
+      // Cell i holds [split i, split i + 1), the last one its upper split too.
+      const float* inner = split_[axis] + 1;
+      index[axis] = int(std::upper_bound(inner, inner + cells_[axis] - 1, p[axis]) - inner);
+    }
+    const std::size_t cell = cell_index(index[0], index[1], index[2]);
+    return {listed_.data() + first_[cell], listed_.data() + first_[cell + 1]};
+  }
+
+ private:
+  static constexpr int per_axis = 16;
+  static std::size_t cell_index(int i, int j, int k) {
+    return (std::size_t(i) * per_axis + std::size_t(j)) * per_axis + std::size_t(k);
+  }
+  glm::vec3 lo_{std::numeric_limits<float>::infinity()};
+  glm::vec3 hi_{-std::numeric_limits<float>::infinity()};
+  int cells_[3] = {1, 1, 1};
+  float split_[3][per_axis + 1] = {};
+  std::vector<std::uint32_t> first_, listed_;
+};
+
 }  // namespace
 
 std::vector<bool> meshes_safe_for_face_culling(const Case& c, const ViewSamples& samples) {
@@ -81,41 +150,26 @@ std::vector<bool> meshes_safe_for_face_culling(const Case& c, const ViewSamples&
               std::atomic_ref<std::uint8_t>(holds_sample[m]).store(1, std::memory_order_relaxed);
           }
         });
-    // The closed casters left: each sample is tested against the boxes that span its x. The box
-    // ends split the x axis into slots, each listing the boxes that overlap it (closed). Scanning
-    // every sample for every closed mesh took half a second on a million-triangle scene.
-    std::vector<std::size_t> open;
-    std::vector<float> ends;
+    // The closed casters left: each sample is tested against the boxes that meet its cell of a
+    // grid over them. Scanning every sample for every closed mesh took half a second on a
+    // million-triangle scene.
+    std::vector<std::uint32_t> open;
     for (std::size_t m = 0; m < n; ++m) {
       if (!c.meshes[m].closed || !c.meshes[m].caster || holds_sample[m]) continue;
       if (c.light && c.light->kind == ShadowLightKind::point && boxes.holds(m, c.light->position))
         continue;
-      open.push_back(m);
-      ends.push_back(boxes.lo[m].x);
-      ends.push_back(boxes.hi[m].x);
+      open.push_back(std::uint32_t(m));
     }
     if (open.empty()) return;
-    std::sort(ends.begin(), ends.end());
-    ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
-    // Slot j: x in [ends[j - 1], ends[j]), without a bound below for j = 0 (no box there) or
-    // above for the last (the boxes that end at the last end).
-    std::vector<std::vector<std::uint32_t>> slot_boxes(ends.size() + 1);
-    for (std::size_t j = 1; j <= ends.size(); ++j) {
-      const float upper = j < ends.size() ? ends[j] : std::numeric_limits<float>::infinity();
-      for (const std::size_t m : open)
-        if (boxes.lo[m].x <= upper && boxes.hi[m].x >= ends[j - 1])
-          slot_boxes[j].push_back(std::uint32_t(m));
-    }
-    for (const std::size_t m : open) holds_sample[m] = 2;  // until a sample lies in its box
+    const BoxGrid grid(boxes, open);
+    for (const std::uint32_t m : open) holds_sample[m] = 2;  // until a sample lies in its box
     tbb::parallel_for(
         tbb::blocked_range<std::size_t>(0, samples.samples.size(), 8192),
         [&](const tbb::blocked_range<std::size_t>& range) {
           for (std::size_t i = range.begin(); i != range.end(); ++i) {
             const ViewSample& s = samples.samples[i];
             if (!is_regular(s)) continue;
-            const std::size_t j = std::size_t(
-                std::upper_bound(ends.begin(), ends.end(), s.position.x) - ends.begin());
-            for (const std::uint32_t m : slot_boxes[j]) {
+            for (const std::uint32_t m : grid.boxes_near(s.position)) {
               std::atomic_ref<std::uint8_t> flag(holds_sample[m]);
               if (flag.load(std::memory_order_relaxed) == 2 && boxes.holds(m, s.position))
                 flag.store(1, std::memory_order_relaxed);
