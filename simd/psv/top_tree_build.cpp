@@ -12,6 +12,7 @@
 #include "reference/psv/top_tree_depth.h"
 #include "shadowcts/hard_shadow_inputs.h"
 #include "simd/psv/descent_lanes.h"
+#include "simd/psv/top_tree_depth.h"
 
 namespace shadowcts::simd::psv {
 namespace {
@@ -61,10 +62,15 @@ class ParallelDescents final : public ref::DescentEngine {
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         descend_in_lanes(tree, corners_, planes_, c_.triangles, triangles.data(),
                                          range.begin(), range.end(), out.data());
-                        // The volumes and corners of those that stay, their triangles in cache.
+                        // The volumes and corners of those that stay, their triangles in cache:
+                        // the reference's make_batch_volume, its depths in lanes.
+                        triangle_light_depths(planes_.exact().light(), c_.triangles,
+                                              triangles.data(), out.data(), range.begin(),
+                                              range.end(), volumes.data());
                         for (std::size_t item = range.begin(); item != range.end(); ++item) {
                           if (out[item].dropped) continue;
-                          ref::make_batch_volume(planes_.exact(), triangles[item], volumes[item]);
+                          planes_.exact().make_volume_planes(triangles[item], volumes[item].nodes,
+                                                             volumes[item].source);
                           const Triangle& t = c_.triangles[triangles[item]];
                           batch_corners_[item] = {t.v0, t.v1, t.v2};
                         }
