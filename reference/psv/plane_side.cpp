@@ -98,12 +98,15 @@ int PlaneSide::side(const TopTree& tree, std::uint32_t node, const glm::dvec3& p
 
 int PlaneSide::exact_side(const TopTree& tree, std::uint32_t node, const glm::dvec3& p) const {
   const Triangle& t = triangles_[volume_triangle(tree, node)];
-  const VolumeSource& source = tree.sources[volume_of(node)];
-  const std::uint32_t k = node % nodes_per_volume;
+  const glm::dvec3 vertices[3] = {vertex(t, 0), vertex(t, 1), vertex(t, 2)};
+  return exact_side(tree.sources[volume_of(node)], node % nodes_per_volume, vertices, p);
+}
+
+int PlaneSide::exact_side(const VolumeSource& source, std::uint32_t k,
+                          const glm::dvec3 (&vertices)[3], const glm::dvec3& p) const {
   if (k == capping_plane)
-    return source.orientation[k] *
-           geometry::orientation(vertex(t, 0), vertex(t, 1), vertex(t, 2), p);
-  const glm::dvec3 lo = vertex(t, source.edge[k][0]), hi = vertex(t, source.edge[k][1]);
+    return source.orientation[k] * geometry::orientation(vertices[0], vertices[1], vertices[2], p);
+  const glm::dvec3 lo = vertices[source.edge[k][0]], hi = vertices[source.edge[k][1]];
   const int sign = light_.directional ? -geometry::orientation_towards(lo, hi, p, light_.direction)
                                       : geometry::orientation(light_.position, lo, hi, p);
   return source.orientation[k] * sign;

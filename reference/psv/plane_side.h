@@ -47,8 +47,15 @@ class PlaneSide {
   const std::vector<Triangle>& triangles() const { return triangles_; }
   // The float filter's constants (shared with the GPU port, shadowcts/geometry/plane_filter.h).
   const geometry::PlaneFilter& filter() const { return filter_; }
-  // Number of side() calls the float filter could not decide.
+  // Number of side() calls the float filter could not decide, and those a port decided with
+  // exact_side from its own copy of the vertices (count_exact_fallbacks).
   std::uint64_t exact_fallbacks() const { return exact_fallbacks_.load(); }
+  void count_exact_fallbacks(std::uint64_t n) const { exact_fallbacks_.fetch_add(n); }
+
+  // Exact sign of plane k (0 to 3) of the volume with recipe `source` and triangle vertices
+  // `vertices` at p.
+  int exact_side(const VolumeSource& source, std::uint32_t k, const glm::dvec3 (&vertices)[3],
+                 const glm::dvec3& p) const;
 
  private:
   int exact_side(const TopTree& tree, std::uint32_t node, const glm::dvec3& p) const;

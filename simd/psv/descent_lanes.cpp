@@ -253,6 +253,7 @@ void DescendInLanes(const ref::TopTree& tree, const VolumeCornerArray& corners,
         const VolumeCorners& corner = corners[ref::volume_of(node[w])];
         __builtin_prefetch(&corner);
         __builtin_prefetch(reinterpret_cast<const char*>(&corner) + sizeof(VolumeCorners) - 1);
+        __builtin_prefetch(&tree.sources[ref::volume_of(node[w])]);  // for an exact test
         continue;
       } else {
         const glm::dvec3 t[3] = {

@@ -6,6 +6,7 @@
 #include <bit>
 #include <cstdint>
 
+#include <tbb/enumerable_thread_specific.h>
 #include <glm/vec3.hpp>
 
 #include "reference/psv/plane_side.h"
@@ -27,6 +28,8 @@ class PlaneSide {
   explicit PlaneSide(const ref::PlaneSide& exact) : exact_(exact) {}
 
   const ref::PlaneSide& exact() const { return exact_; }
+  // The exact predicates this object's tests took (near_side), on every thread.
+  std::uint64_t exact_tests() const;
 
   // A bound on |plane value - exact value| for every point whose coordinates are at most the
   // scene bound M in magnitude: the reference's per-point bound taken at (M, M, M). Rounding to
@@ -75,11 +78,13 @@ class PlaneSide {
 
  private:
   // Within the per-node bound: a defining point of the plane lies on it; otherwise the
-  // reference's tighter per-point filter, then its exact predicate.
+  // reference's tighter per-point filter, then its exact predicate on `corners`.
   int near_side(const ref::TopTree& tree, std::uint32_t node, const VolumeCorners& corners,
                 const glm::dvec3& p) const;
 
   const ref::PlaneSide& exact_;
+  // Per thread: one shared counter cost a contended atomic per exact test.
+  mutable tbb::enumerable_thread_specific<std::uint64_t> exact_tests_{0};
 };
 
 }  // namespace shadowcts::simd::psv

@@ -49,6 +49,7 @@ SimdPsvBuild build_psv(const PreparedScene& scene, std::uint64_t seed) {
     build.tree =
         psv::build_top_tree(c, planes, order, build.statistics, result.corners, result.work);
   });
+  build.planes->count_exact_fallbacks(planes.exact_tests());
   return result;
 }
 
@@ -80,6 +81,7 @@ SimdPsvResult psv_hard_shadows(const PreparedScene& scene, const SimdPsvOptions&
         });
   });
   clock.lap(query_phase);
+  build.planes->count_exact_fallbacks(planes.exact_tests());
 
   // Sums and maxima of integers: the totals do not depend on the partitioning.
   ref::PsvQueryTotals totals;
