@@ -23,14 +23,16 @@ HWY_BEFORE_NAMESPACE();
 namespace shadowcts::simd::psv::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-// Walks in flight per call: as many as one thread's outstanding cache misses profit from (the
-// descents of gate_house.1M took 450 ms with 8, 410 with 16, 380 with 32), a multiple of the
-// lanes (at most 8 doubles a vector), and at most the bits of the walk masks.
-constexpr std::size_t walks = 32;
-static_assert(walks <= 32);
+// Walks in flight per call: as many as one thread's outstanding cache misses profit from (at
+// gate_house.1M the descents took 450 ms with 8 walks, 410 with 16, 380 with 32; later the whole
+// build 410 ms with 32 and 359 with 64), a multiple of the lanes (at most 8 doubles a vector), and
+// at most the bits of a walk mask.
+constexpr std::size_t walks = 64;
+using WalkBits = std::uint64_t;  // bit w: walk w
+static_assert(walks <= 64);
 
 template <class D, class M>
-HWY_INLINE unsigned lane_bits(D d, M mask) {
+HWY_INLINE WalkBits lane_bits(D d, M mask) {
   std::uint8_t bytes[8] = {};
   hn::StoreMaskBits(d, mask, bytes);
   return bytes[0];
@@ -63,15 +65,15 @@ struct OpenVertices {
 // fused multiply-subtracts for its exact products; targets without them leave that part to the
 // scalar tests). An edge plane holds its edge, a capping plane its triangle.
 template <class D>
-HWY_NOINLINE unsigned on_their_planes(D d, const VolumeCornerArray& corners,
+HWY_NOINLINE WalkBits on_their_planes(D d, const VolumeCornerArray& corners,
                                       const std::uint32_t (&node)[walks],
                                       const double (&x)[3][walks], const double (&y)[3][walks],
-                                      const double (&z)[3][walks], const unsigned (&open)[3],
-                                      unsigned check, OpenVertices& items) {
+                                      const double (&z)[3][walks], const WalkBits (&open)[3],
+                                      WalkBits check, OpenVertices& items) {
   using V = hn::Vec<D>;
   const std::size_t lanes = hn::Lanes(d);
   std::size_t count = 0;
-  for (unsigned bits = check; bits != 0; bits &= bits - 1) {
+  for (WalkBits bits = check; bits != 0; bits &= bits - 1) {
     const auto w = std::size_t(std::countr_zero(bits));
     const VolumeCorners& corner = corners[ref::volume_of(node[w])];
     const std::uint32_t k = node[w] % ref::nodes_per_volume;
@@ -96,7 +98,7 @@ HWY_NOINLINE unsigned on_their_planes(D d, const VolumeCornerArray& corners,
       items.vertex[axis][i] = 0.0;
       for (int point = 0; point < 3; ++point) items.point[point][axis][i] = 0.0;
     }
-  unsigned off_their_planes = 0;  // walks with an open vertex not found on the plane
+  WalkBits off_their_planes = 0;  // walks with an open vertex not found on the plane
   for (std::size_t j = 0; j < count; j += lanes) {
     const auto valid = hn::FirstN(d, count - j);
     V p[3], point[3][3];
@@ -133,8 +135,8 @@ HWY_NOINLINE unsigned on_their_planes(D d, const VolumeCornerArray& corners,
       on = hn::Or(on, on_line);
     }
 #endif
-    for (unsigned off = lane_bits(d, hn::AndNot(on, valid)); off != 0; off &= off - 1)
-      off_their_planes |= 1u << items.walk_of[j + std::size_t(std::countr_zero(off))];
+    for (WalkBits off = lane_bits(d, hn::AndNot(on, valid)); off != 0; off &= off - 1)
+      off_their_planes |= WalkBits(1) << items.walk_of[j + std::size_t(std::countr_zero(off))];
   }
   return check & ~off_their_planes;
 }
@@ -161,9 +163,9 @@ void DescendInLanes(const ref::TopTree& tree, const VolumeCornerArray& corners,
   std::uint32_t node[walks];
   std::size_t item[walks];
   ref::Descent state[walks];
-  unsigned live = 0;
+  WalkBits live = 0;
   // Walks whose node left a vertex within the bound: its volume's corners were fetched last round.
-  unsigned deferred = 0;
+  WalkBits deferred = 0;
   OpenVertices open_vertices;
   std::size_t next = first;
   const auto start = [&](std::size_t w) {
@@ -183,10 +185,10 @@ void DescendInLanes(const ref::TopTree& tree, const VolumeCornerArray& corners,
     return true;
   };
   for (std::size_t w = 0; w < walks; ++w)
-    if (start(w)) live |= 1u << w;
+    if (start(w)) live |= WalkBits(1) << w;
 
   while (live != 0) {
-    for (unsigned bits = live; bits != 0; bits &= bits - 1) {
+    for (WalkBits bits = live; bits != 0; bits &= bits - 1) {
       const auto w = std::size_t(std::countr_zero(bits));
       const ref::TopNode& n = tree.nodes[node[w]];
       a[w] = double(n.plane[0]);
@@ -197,7 +199,7 @@ void DescendInLanes(const ref::TopTree& tree, const VolumeCornerArray& corners,
           ref::is_capping_node(node[w]) ? filter.capping_extra_error : filter.edge_extra_error;
     }
     // Per walk: some vertex strictly positive, some strictly negative, every vertex decided.
-    unsigned positive = 0, negative = 0, decided = 0, open[3] = {0, 0, 0};
+    WalkBits positive = 0, negative = 0, decided = 0, open[3] = {0, 0, 0};
     for (std::size_t j = 0; j < walks; j += lanes) {
       const auto va = hn::Load(d, a + j), vb = hn::Load(d, b + j), vc = hn::Load(d, c + j),
                  vd = hn::Load(d, offset + j);
@@ -233,11 +235,11 @@ void DescendInLanes(const ref::TopTree& tree, const VolumeCornerArray& corners,
     }
     // The walks whose corners arrived and that are still open: their open vertices against the
     // plane's defining points.
-    if (const unsigned check = deferred & ~(positive & negative) & ~decided; check != 0)
+    if (const WalkBits check = deferred & ~(positive & negative) & ~decided; check != 0)
       decided |= on_their_planes(d, corners, node, x, y, z, open, check, open_vertices);
-    for (unsigned bits = live; bits != 0; bits &= bits - 1) {
+    for (WalkBits bits = live; bits != 0; bits &= bits - 1) {
       const auto w = std::size_t(std::countr_zero(bits));
-      const unsigned lane = 1u << w;
+      const WalkBits lane = WalkBits(1) << w;
       const bool had_corners = (deferred & lane) != 0;
       deferred &= ~lane;
       int location;
