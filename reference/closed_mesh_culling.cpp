@@ -66,10 +66,15 @@ class BoxGrid {
     }
     for (int axis = 0; axis < 3; ++axis) {
       cells_[axis] = hi_[axis] > lo_[axis] ? per_axis : 1;
-      for (int i = 0; i <= cells_[axis]; ++i)
-        split_[axis][i] = i == cells_[axis] ? hi_[axis]
-                                            : lo_[axis] + (hi_[axis] - lo_[axis]) * float(i) /
-                                                              float(cells_[axis]);
+      // Ascending from lo to hi whatever the roundings (or an infinite width) do: the search
+      // below needs sorted bounds.
+      split_[axis][0] = lo_[axis];
+      for (int i = 1; i < cells_[axis]; ++i) {
+        float split = lo_[axis] + (hi_[axis] - lo_[axis]) * float(i) / float(cells_[axis]);
+        if (!(split >= split_[axis][i - 1])) split = split_[axis][i - 1];
+        split_[axis][i] = std::min(split, hi_[axis]);
+      }
+      split_[axis][cells_[axis]] = hi_[axis];
     }
     std::vector<std::uint32_t> count(per_axis * per_axis * per_axis + 1, 0);
     const auto for_each_cell = [&](std::uint32_t m, auto&& f) {

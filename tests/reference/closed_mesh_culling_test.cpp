@@ -145,6 +145,34 @@ TEST(ClosedMeshCulling, MatchesTheDefinitionOnSamplesOnBoxFacesAndCorners) {
   }
 }
 
+// Boxes near the largest floats, whose spread overflows: a sample in the far box is still found.
+TEST(ClosedMeshCulling, FindsSamplesInBoxesWhoseSpreadOverflows) {
+  Case c;
+  c.name = "test.huge_boxes";
+  c.source = "test";
+  c.meshes = {{"left", true, true}, {"right", true, true}};
+  const float far = 3e38f, near = 1e38f;
+  for (const float sign : {-1.0f, 1.0f}) {
+    const std::uint32_t mesh = sign < 0.0f ? 0 : 1;
+    const glm::vec3 a{sign * near, -1.0f, -1.0f}, b{sign * far, 1.0f, 1.0f};
+    c.triangles.push_back({a, {b.x, a.y, a.z}, {a.x, b.y, b.z}, mesh});
+    c.triangles.push_back({b, {a.x, b.y, b.z}, {b.x, a.y, b.z}, mesh});
+  }
+  ShadowLight light;
+  light.kind = ShadowLightKind::directional;
+  light.direction = {0, 1, 0};
+  c.light = light;
+  ViewSamples samples;
+  for (const float x : {2e38f, 3e38f, 1e38f}) {
+    ViewSample v;
+    v.position = {x, 0.5f, 0.0f};
+    v.receiver = 0;  // the left mesh's: not its own box
+    v.sample_class = SampleClass::regular;
+    samples.samples = {v};
+    EXPECT_EQ(meshes_safe_for_face_culling(c, samples), (std::vector<bool>{true, false})) << x;
+  }
+}
+
 TEST(ClosedMeshCulling, PlaneBasedAlgorithmsShadowASampleInsideAClosedCaster) {
   for (const glm::vec3 direction : {glm::vec3{0, 0.6f, 0.8f}, glm::vec3{-0.48f, 0.6f, 0.64f}}) {
     ShadowLight light;
