@@ -16,44 +16,6 @@
 namespace shadowcts {
 namespace {
 
-struct MeshBoxes {
-  std::vector<glm::vec3> lo, hi;
-  explicit MeshBoxes(std::size_t n)
-      : lo(n, glm::vec3(std::numeric_limits<float>::infinity())),
-        hi(n, glm::vec3(-std::numeric_limits<float>::infinity())) {}
-  // Float comparisons of float coordinates are exact: "inside the box" is decided exactly.
-  bool holds(std::size_t m, const glm::vec3& p) const {
-    return p.x >= lo[m].x && p.x <= hi[m].x && p.y >= lo[m].y && p.y <= hi[m].y && p.z >= lo[m].z &&
-           p.z <= hi[m].z;
-  }
-};
-
-// Per thread, then merged: the minimum and maximum of floats do not depend on the order.
-MeshBoxes mesh_boxes(const Case& c) {
-  const std::size_t n = c.meshes.size();
-  tbb::combinable<MeshBoxes> partial([n] { return MeshBoxes(n); });
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, c.triangles.size(), 16384),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      MeshBoxes& b = partial.local();
-                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                        const Triangle& t = c.triangles[i];
-                        if (t.mesh >= n) continue;
-                        for (const glm::vec3& v : {t.v0, t.v1, t.v2}) {
-                          b.lo[t.mesh] = glm::min(b.lo[t.mesh], v);
-                          b.hi[t.mesh] = glm::max(b.hi[t.mesh], v);
-                        }
-                      }
-                    });
-  MeshBoxes boxes(n);
-  partial.combine_each([&](const MeshBoxes& b) {
-    for (std::size_t m = 0; m < n; ++m) {
-      boxes.lo[m] = glm::min(boxes.lo[m], b.lo[m]);
-      boxes.hi[m] = glm::max(boxes.hi[m], b.hi[m]);
-    }
-  });
-  return boxes;
-}
-
 // A uniform grid over some of the boxes, each cell listing the boxes that meet it (closed). A
 // point's cell is found by comparing it with the cells' float bounds, so the boxes listed for it
 // include every box that holds it.
@@ -128,6 +90,36 @@ class BoxGrid {
 };
 
 }  // namespace
+
+MeshBoxes::MeshBoxes(std::size_t n)
+    : lo(n, glm::vec3(std::numeric_limits<float>::infinity())),
+      hi(n, glm::vec3(-std::numeric_limits<float>::infinity())) {}
+
+// Per thread, then merged: the minimum and maximum of floats do not depend on the order.
+MeshBoxes mesh_boxes(const Case& c) {
+  const std::size_t n = c.meshes.size();
+  tbb::combinable<MeshBoxes> partial([n] { return MeshBoxes(n); });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, c.triangles.size(), 16384),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      MeshBoxes& b = partial.local();
+                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                        const Triangle& t = c.triangles[i];
+                        if (t.mesh >= n) continue;
+                        for (const glm::vec3& v : {t.v0, t.v1, t.v2}) {
+                          b.lo[t.mesh] = glm::min(b.lo[t.mesh], v);
+                          b.hi[t.mesh] = glm::max(b.hi[t.mesh], v);
+                        }
+                      }
+                    });
+  MeshBoxes boxes(n);
+  partial.combine_each([&](const MeshBoxes& b) {
+    for (std::size_t m = 0; m < n; ++m) {
+      boxes.lo[m] = glm::min(boxes.lo[m], b.lo[m]);
+      boxes.hi[m] = glm::max(boxes.hi[m], b.hi[m]);
+    }
+  });
+  return boxes;
+}
 
 std::vector<bool> meshes_safe_for_face_culling(const Case& c, const ViewSamples& samples) {
   const std::size_t n = c.meshes.size();

@@ -28,6 +28,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "reference/closed_mesh_culling.h"
 #include "shadowcts/errors.h"
 #include "shadowcts/float_rounding.h"
 #include "shadowcts/geometry/camera_frame.h"
@@ -248,49 +249,18 @@ std::vector<bool> front_face_culling_meshes(const PreparedScene& scene, const Hi
   const std::size_t meshes = c.meshes.size();
   // meshes_safe_for_face_culling: closed casters whose box holds no regular sample and no point
   // light. Float boxes; their double images are the double boxes of the reference.
-  // Per thread, then merged: min and max of floats do not depend on the order.
-  using Boxes = std::pair<std::vector<glm::vec3>, std::vector<glm::vec3>>;
-  tbb::combinable<Boxes> partial([&] {
-    return Boxes(
-        std::vector<glm::vec3>(meshes, glm::vec3(std::numeric_limits<float>::infinity())),
-        std::vector<glm::vec3>(meshes, glm::vec3(-std::numeric_limits<float>::infinity())));
-  });
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, c.triangles.size(), 16384),
+  const MeshBoxes boxes = mesh_boxes(c);
+  std::vector<std::uint8_t> safe(meshes, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, meshes, 1),
                     [&](const tbb::blocked_range<std::size_t>& r) {
-                      Boxes& b = partial.local();
-                      for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                        const Triangle& t = c.triangles[i];
-                        if (t.mesh >= meshes) continue;  // reported by the setup
-                        for (const glm::vec3& v : {t.v0, t.v1, t.v2}) {
-                          b.first[t.mesh] = glm::min(b.first[t.mesh], v);
-                          b.second[t.mesh] = glm::max(b.second[t.mesh], v);
-                        }
+                      for (std::size_t m = r.begin(); m != r.end(); ++m) {
+                        if (!c.meshes[m].closed || !c.meshes[m].caster) continue;
+                        if (c.light && c.light->kind == ShadowLightKind::point &&
+                            boxes.holds(m, c.light->position))
+                          continue;
+                        safe[m] = !holds_a_sample(h, boxes.lo[m], boxes.hi[m]);
                       }
                     });
-  std::vector<glm::vec3> flo(meshes, glm::vec3(std::numeric_limits<float>::infinity()));
-  std::vector<glm::vec3> fhi(meshes, glm::vec3(-std::numeric_limits<float>::infinity()));
-  partial.combine_each([&](const Boxes& b) {
-    for (std::size_t m = 0; m < meshes; ++m) {
-      flo[m] = glm::min(flo[m], b.first[m]);
-      fhi[m] = glm::max(fhi[m], b.second[m]);
-    }
-  });
-  std::vector<std::uint8_t> safe(meshes, 0);
-  tbb::parallel_for(
-      tbb::blocked_range<std::size_t>(0, meshes, 1), [&](const tbb::blocked_range<std::size_t>& r) {
-        for (std::size_t m = r.begin(); m != r.end(); ++m) {
-          if (!c.meshes[m].closed || !c.meshes[m].caster) continue;
-          const glm::vec3& lo = flo[m];
-          const glm::vec3& hi = fhi[m];
-          const auto in_box = [&](const glm::vec3& p) {
-            return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y && p.z >= lo.z &&
-                   p.z <= hi.z;
-          };
-          if (c.light && c.light->kind == ShadowLightKind::point && in_box(c.light->position))
-            continue;
-          safe[m] = !holds_a_sample(h, lo, hi);
-        }
-      });
   // The rest as the reference does it.
   const std::uint32_t width = samples.width, height = samples.height;
   std::vector<bool> culled(meshes, false);
@@ -302,7 +272,7 @@ std::vector<bool> front_face_culling_meshes(const PreparedScene& scene, const Hi
   const glm::dvec3 eye(c.camera.position);
   for (std::size_t m = 0; m < meshes; ++m) {
     if (!safe[m]) continue;
-    const glm::dvec3 lo(flo[m]), hi(fhi[m]);
+    const glm::dvec3 lo(boxes.lo[m]), hi(boxes.hi[m]);
     bool clear = false;
     for (int k = 0; k < 3; ++k) clear = clear || eye[k] + reach < lo[k] || eye[k] - reach > hi[k];
     culled[m] = clear;
@@ -328,7 +298,7 @@ std::vector<bool> front_face_culling_meshes(const PreparedScene& scene, const Hi
                         if (!(r > 0.0)) continue;
                         const glm::dvec3 p(regular.position(i));
                         std::erase_if(left, [&](std::size_t m) {
-                          const glm::dvec3 lo(flo[m]), hi(fhi[m]);
+                          const glm::dvec3 lo(boxes.lo[m]), hi(boxes.hi[m]);
                           bool far = false;
                           for (int k = 0; k < 3; ++k)
                             far = far || lo[k] - p[k] > r || p[k] - hi[k] > r;
