@@ -78,10 +78,17 @@ std::vector<std::uint32_t> prepare_build(const Case& c, const ViewSamples& sampl
   check_receivers(c, samples);
   build.planes =
       std::make_unique<PlaneSide>(build.light, c.triangles, coordinate_bound(c, samples));
+  std::vector<float> x, y, z;
+  for (const ViewSample& s : samples.samples)
+    if (s.sample_class == SampleClass::regular) {
+      x.push_back(s.position.x);
+      y.push_back(s.position.y);
+      z.push_back(s.position.z);
+    }
   return insertion_order(c, *build.planes,
                          culling_clear_of_segment_starts(c, samples, build.light,
                                                          meshes_safe_for_face_culling(c, samples)),
-                         seed, build.statistics);
+                         CasterReach(build.light, x, y, z), seed, build.statistics);
 }
 
 }  // namespace
@@ -108,6 +115,7 @@ Counters psv_counters(const PsvBuild& build, const PsvQueryTotals& totals,
   return {{"triangles_inserted", build.statistics.volumes},
           {"triangles_culled_front_facing", build.statistics.culled_front_facing},
           {"triangles_culled_flat", build.statistics.culled_flat},
+          {"triangles_culled_out_of_reach", build.statistics.culled_out_of_reach},
           {"triangles_dropped_in_shadow", build.statistics.dropped_in_shadow},
           {"tree_nodes", build.tree.nodes.size()},
           {"tree_height", build.statistics.height},

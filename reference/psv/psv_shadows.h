@@ -38,10 +38,10 @@ struct PsvResult {
   std::vector<std::uint8_t> shadowed;
   std::vector<std::uint32_t> nodes_visited;  // per view sample (0 for non-regular samples)
   // In this order: triangles_inserted, triangles_culled_front_facing, triangles_culled_flat,
-  // triangles_dropped_in_shadow, tree_nodes, tree_height, queries, nodes_visited_total,
-  // nodes_visited_max, stack_capacity, stack_high_water, stack_overflows, hybrid_switches,
-  // exact_plane_tests (plane tests of the build and the queries that the float filter could not
-  // decide and an exact predicate answered).
+  // triangles_culled_out_of_reach, triangles_dropped_in_shadow, tree_nodes, tree_height, queries,
+  // nodes_visited_total, nodes_visited_max, stack_capacity, stack_high_water, stack_overflows,
+  // hybrid_switches, exact_plane_tests (plane tests of the build and the queries that the float
+  // filter could not decide and an exact predicate answered).
   Counters counters;
   // "build" (insertion order, TOP tree, query context) and "query" (the per-sample queries).
   PhaseTimes phase_ms;

@@ -38,7 +38,8 @@ float triangle_wedge(const PlaneSide& planes, const TopNode& node, const Triangl
 
 std::vector<std::uint32_t> insertion_order(const Case& c, const PlaneSide& planes,
                                            const std::vector<bool>& face_culling,
-                                           std::uint64_t seed, BuildStatistics& statistics) {
+                                           const CasterReach& reach, std::uint64_t seed,
+                                           BuildStatistics& statistics) {
   std::vector<std::uint32_t> order;
   for (std::size_t i = 0; i < c.triangles.size(); ++i) {
     if (!casts_shadow(c, i)) continue;
@@ -55,6 +56,11 @@ std::vector<std::uint32_t> insertion_order(const Case& c, const PlaneSide& plane
     // Only where no sample and no light can be inside the solid (face_culling).
     if (face_culling[t.mesh] && light_side > 0) {
       ++statistics.culled_front_facing;
+      continue;
+    }
+    // A triangle no sample's segment meets cannot shadow anything (caster_reach.h).
+    if (!reach.may_reach(t.v0, t.v1, t.v2)) {
+      ++statistics.culled_out_of_reach;
       continue;
     }
     order.push_back(std::uint32_t(i));

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "reference/caster_reach.h"
 #include "reference/psv/plane_side.h"
 #include "reference/psv/top_tree.h"
 #include "shadowcts/case.h"
@@ -14,6 +15,7 @@ struct BuildStatistics {
   std::uint64_t casters = 0;              // caster triangles of non-zero area
   std::uint64_t culled_front_facing = 0;  // closed meshes only
   std::uint64_t culled_flat = 0;          // the light lies in the triangle's plane: no volume
+  std::uint64_t culled_out_of_reach = 0;  // meets no sample's segment (caster_reach.h)
   std::uint64_t dropped_in_shadow = 0;    // reached a shadow leaf: inside another volume
   std::uint64_t volumes = 0;
   std::uint64_t height = 0;  // nodes on the longest root-to-leaf path
@@ -21,13 +23,14 @@ struct BuildStatistics {
 
 // The triangles inserted, in insertion order: the casters of `c` that have a volume (non-zero
 // area, the light not in their plane, not front-facing in a closed mesh that may cull — see
-// meshes_safe_for_face_culling and culling_clear_of_segment_starts), permuted by a Fisher-Yates
-// shuffle driven by std::mt19937_64(seed) (the paper's randomized build; the same order on every
-// platform).
+// meshes_safe_for_face_culling and culling_clear_of_segment_starts) and may reach a sample,
+// permuted by a Fisher-Yates shuffle driven by std::mt19937_64(seed) (the paper's randomized
+// build; the same order on every platform).
 // `face_culling`: per mesh, whether its light-facing triangles may be dropped.
 std::vector<std::uint32_t> insertion_order(const Case& c, const PlaneSide& planes,
                                            const std::vector<bool>& face_culling,
-                                           std::uint64_t seed, BuildStatistics& statistics);
+                                           const CasterReach& reach, std::uint64_t seed,
+                                           BuildStatistics& statistics);
 
 // Builds the tree of the triangles of `order` (indices into c.triangles, which `planes` must
 // refer to). A triangle descends from the root to the positive, negative or intersection child

@@ -43,9 +43,11 @@ SimdPsvBuild build_psv(const PreparedScene& scene, std::uint64_t seed) {
   const PlaneSide planes(*build.planes);
   const std::vector<bool> face_culling = ref::culling_clear_of_segment_starts(
       c, scene.view_samples, build.light, meshes_safe_for_face_culling(c, scene.view_samples));
+  const RegularSamples& s = scene.samples;
   run_with_thread_limit(c.parameters.threads, [&] {
     const std::vector<std::uint32_t> order =
-        psv::insertion_order(c, *build.planes, face_culling, seed, build.statistics);
+        psv::insertion_order(c, *build.planes, face_culling,
+                             CasterReach(build.light, s.px, s.py, s.pz), seed, build.statistics);
     build.tree =
         psv::build_top_tree(c, planes, order, build.statistics, result.corners, result.work);
   });

@@ -15,10 +15,12 @@ namespace shadowcts::simd::psv {
 
 using BuildWork = ref::BatchWork;
 
-// ref::insertion_order with the light sides decided in parallel: the same order and statistics.
+// ref::insertion_order with the light sides and reaches decided in parallel: the same order and
+// statistics.
 std::vector<std::uint32_t> insertion_order(const Case& c, const ref::PlaneSide& planes,
                                            const std::vector<bool>& face_culling,
-                                           std::uint64_t seed, ref::BuildStatistics& statistics);
+                                           const CasterReach& reach, std::uint64_t seed,
+                                           ref::BuildStatistics& statistics);
 
 // ref::build_top_tree in parallel batches: the same tree, sources and statistics. `corners`
 // receives the corners of every volume, for the queries.

@@ -37,7 +37,7 @@ BuiltTree build(Case c, std::uint64_t seed) {
   b.c = std::move(c);
   b.light = hard_shadow_light(b.c);
   b.planes = std::make_unique<PlaneSide>(b.light, b.c.triangles, b.c.scale());
-  b.order = insertion_order(b.c, *b.planes, closed_meshes(b.c), seed, b.statistics);
+  b.order = insertion_order(b.c, *b.planes, closed_meshes(b.c), CasterReach(), seed, b.statistics);
   b.tree = build_top_tree(b.c, *b.planes, b.order, b.statistics);
   return b;
 }
@@ -184,9 +184,9 @@ TEST(TopTreeBuild, InsertionOrderIsASeededPermutation) {
   const PlaneSide planes(light, h.c.triangles, h.c.scale());
   BuildStatistics s1, s2, s3;
   const std::vector<bool> culling = closed_meshes(h.c);
-  const auto one = insertion_order(h.c, planes, culling, 1, s1);
-  EXPECT_EQ(one, insertion_order(h.c, planes, culling, 1, s2));
-  const auto other = insertion_order(h.c, planes, culling, 2, s3);
+  const auto one = insertion_order(h.c, planes, culling, CasterReach(), 1, s1);
+  EXPECT_EQ(one, insertion_order(h.c, planes, culling, CasterReach(), 1, s2));
+  const auto other = insertion_order(h.c, planes, culling, CasterReach(), 2, s3);
   EXPECT_NE(one, other);
   auto sorted_one = one, sorted_other = other;
   std::sort(sorted_one.begin(), sorted_one.end());

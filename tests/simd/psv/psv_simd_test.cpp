@@ -62,6 +62,7 @@ std::string first_statistics_difference(const ref::BuildStatistics& e,
   if (e.casters != a.casters) return "casters";
   if (e.culled_front_facing != a.culled_front_facing) return "culled_front_facing";
   if (e.culled_flat != a.culled_flat) return "culled_flat";
+  if (e.culled_out_of_reach != a.culled_out_of_reach) return "culled_out_of_reach";
   if (e.dropped_in_shadow != a.dropped_in_shadow) return "dropped_in_shadow";
   if (e.volumes != a.volumes) return "volumes";
   if (e.height != a.height) return "height";
