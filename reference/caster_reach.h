@@ -47,12 +47,13 @@ class CasterReach {
     double lo[2] = {0.0, 0.0}, hi[2] = {0.0, 0.0};
     double scale[2] = {0.0, 0.0};  // cells per unit
     int cells = 1;                 // per side
-    std::vector<double> lowest;    // per cell: the lowest height of a sample there (+inf: none)
-    int cell(int side, double u) const;
+    std::vector<float> lowest;     // per cell: the lowest height of a sample there (+inf: none)
+    float lowest_of_all = 0.0f;    // over every cell
+    inline int cell(int side, double u) const;
   };
   // Projected coordinates and height of point p on grid g (directional or point light).
-  void project(const Grid& g, const glm::dvec3& p, double uv[2], double& height) const;
-  bool covers(const Grid& g, const double lo[2], const double hi[2], double top) const;
+  inline void project(const Grid& g, const glm::dvec3& p, double uv[2], double& height) const;
+  inline bool covers(const Grid& g, const double lo[2], const double hi[2], double top) const;
 
   HardShadowLight light_;
   double ratio_[3] = {0.0, 0.0, 0.0};  // directional: d_i / d_axis

@@ -119,7 +119,9 @@ std::vector<std::uint32_t> insertion_order(const Case& c, const ref::PlaneSide& 
                         if (!casts_shadow(c, i)) continue;
                         const Triangle& t = c.triangles[i];
                         light_side[i] = std::int8_t(planes.light_side(t));
-                        reaches[i] = reach.may_reach(t.v0, t.v1, t.v2) ? 1 : 0;
+                        // Only where the reference asks (not flat, not culled as front-facing).
+                        if (light_side[i] != 0 && !(face_culling[t.mesh] && light_side[i] > 0))
+                          reaches[i] = reach.may_reach(t.v0, t.v1, t.v2) ? 1 : 0;
                       }
                     });
   std::vector<std::uint32_t> order;
