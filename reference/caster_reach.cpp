@@ -4,10 +4,14 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <stdexcept>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
+
+#include "shadowcts/geometry/triangle_area.h"
 
 namespace shadowcts {
 namespace {
@@ -62,6 +66,13 @@ void CasterReach::project(const Grid& g, const glm::dvec3& p, double uv[2], doub
   height = -g.sign * p[g.axis];
 }
 
+int CasterReach::face_of(const glm::dvec3& p) const {
+  if (light_.directional) return 0;
+  const glm::dvec3 q = p - light_.position;
+  const int axis = dominant_axis(q);
+  return 2 * axis + (q[axis] < 0.0 ? 1 : 0);
+}
+
 CasterReach::CasterReach(const HardShadowLight& light, std::span<const float> x,
                          std::span<const float> y, std::span<const float> z)
     : light_(light), keeps_all_(false) {
@@ -80,12 +91,6 @@ CasterReach::CasterReach(const HardShadowLight& light, std::span<const float> x,
     faces[0].sign = light_.direction[axis] > 0.0 ? 1.0 : -1.0;
     for (int i = 0; i < 3; ++i) ratio_[i] = light_.direction[i] / light_.direction[axis];
   }
-  const auto face_of = [&](const glm::dvec3& p) {
-    if (light_.directional) return 0;
-    const glm::dvec3 q = p - light_.position;
-    const int axis = dominant_axis(q);
-    return 2 * axis + (q[axis] < 0.0 ? 1 : 0);
-  };
 
   // Per face: the samples' count and the box of their projections. Sums, minima and maxima:
   // the same for any partitioning.
@@ -136,9 +141,9 @@ CasterReach::CasterReach(const HardShadowLight& light, std::span<const float> x,
     keeps_all_ = true;
     return;
   }
-  int grid_of_face[6];
+  samples_ = n;
   for (int f = 0; f < 6; ++f) {
-    grid_of_face[f] = -1;
+    grid_of_face_[f] = -1;
     if (boxes.count[f] == 0) continue;
     Grid g = faces[f];
     g.cells = cells_for(boxes.count[f]);
@@ -149,7 +154,7 @@ CasterReach::CasterReach(const HardShadowLight& light, std::span<const float> x,
       g.scale[k] = std::isfinite(scale) ? scale : 0.0;  // one column or row when they coincide
     }
     g.lowest.assign(std::size_t(g.cells) * std::size_t(g.cells), float(infinity));
-    grid_of_face[f] = int(grids_.size());
+    grid_of_face_[f] = int(grids_.size());
     grids_.push_back(std::move(g));
   }
   // Each cell's lowest sample by atomic minima: the same for any order.
@@ -158,7 +163,7 @@ CasterReach::CasterReach(const HardShadowLight& light, std::span<const float> x,
                       double uv[2], height;
                       for (std::size_t s = range.begin(); s != range.end(); ++s) {
                         const glm::dvec3 p = sample(s);
-                        Grid& g = grids_[std::size_t(grid_of_face[face_of(p)])];
+                        Grid& g = grids_[std::size_t(grid_of(p))];
                         project(g, p, uv, height);
                         std::atomic_ref<float> lowest(
                             g.lowest[std::size_t(g.cell(1, uv[1])) * std::size_t(g.cells) +
@@ -184,26 +189,22 @@ bool CasterReach::covers(const Grid& g, const double lo[2], const double hi[2], 
   return false;
 }
 
-bool CasterReach::may_reach(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) const {
-  if (keeps_all_) return true;
-  const glm::dvec3 v[3] = {glm::dvec3(a), glm::dvec3(b), glm::dvec3(c)};
+CasterReach::Footprint CasterReach::footprint(const Grid& g, const glm::dvec3 v[3], double lo[2],
+                                              double hi[2], double& top, double below) const {
   double uv[2], height;
   if (light_.directional) {
-    if (grids_.empty()) return false;
-    const Grid& g = grids_.front();
-    // Exact: the triangle's highest point is a vertex. Below every sample: nothing to project.
-    const double top =
-        std::max({v[0][g.axis] * g.sign, v[1][g.axis] * g.sign, v[2][g.axis] * g.sign});
-    if (top < g.lowest_of_all) return false;
-    double lo[2] = {infinity, infinity}, hi[2] = {-infinity, -infinity};
+    // Exact: the triangle's highest point is a vertex.
+    top = std::max({v[0][g.axis] * g.sign, v[1][g.axis] * g.sign, v[2][g.axis] * g.sign});
+    if (top < below) return Footprint::none;
     double bound = sample_bound_;
-    for (const glm::dvec3& p : v) {
-      project(g, p, uv, height);
+    for (int k = 0; k < 2; ++k) lo[k] = infinity, hi[k] = -infinity;
+    for (int i = 0; i < 3; ++i) {
+      project(g, v[i], uv, height);
       for (int k = 0; k < 2; ++k) {
         lo[k] = std::min(lo[k], uv[k]);
         hi[k] = std::max(hi[k], uv[k]);
       }
-      bound = std::max({bound, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+      bound = std::max({bound, std::fabs(v[i].x), std::fabs(v[i].y), std::fabs(v[i].z)});
     }
     // Every projection here is within 3 B 2^-53 of the exact linear map with the rounded ratios
     // (B: the largest coordinate), and that map moves by at most 2 B 2^-53 along a segment
@@ -213,44 +214,187 @@ bool CasterReach::may_reach(const glm::vec3& a, const glm::vec3& b, const glm::v
       lo[k] -= margin;
       hi[k] += margin;
     }
-    return covers(g, lo, hi, top);
+    return Footprint::box;
   }
-  for (const Grid& g : grids_) {
-    // The triangle meets a segment of this face's samples only at points in front of the light
-    // on this axis (the segment's points other than the light itself are). Signs are exact.
-    double m[3];
-    int positive = 0, negative = 0;
-    for (int k = 0; k < 3; ++k) {
-      m[k] = g.sign * (v[k][g.axis] - light_.position[g.axis]);
-      positive += m[k] > 0.0;
-      negative += m[k] < 0.0;
-    }
-    if (negative == 3) continue;
-    if (positive < 3) return true;  // reaches behind the face's plane: not projected
-    // Farther from the light than every sample of the face: nothing to project.
-    const double top =
-        -std::min({v[0][g.axis] * g.sign, v[1][g.axis] * g.sign, v[2][g.axis] * g.sign});
-    if (top < g.lowest_of_all) continue;
-    double lo[2] = {infinity, infinity}, hi[2] = {-infinity, -infinity};
-    for (const glm::dvec3& p : v) {
-      project(g, p, uv, height);
-      for (int k = 0; k < 2; ++k) {
-        lo[k] = std::min(lo[k], uv[k]);
-        hi[k] = std::max(hi[k], uv[k]);
-      }
-    }
-    // A quotient of two once-rounded differences is within 3.1 ulp of the exact ratio: the
-    // vertices' by |value| 2^-51, the samples' (|value| <= 1 on their own face) by 2^-51.
+  // The triangle meets a segment of this face's samples only at points in front of the light on
+  // this axis (the segment's points other than the light itself are). Signs are exact.
+  int positive = 0, negative = 0;
+  for (int i = 0; i < 3; ++i) {
+    const double m = g.sign * (v[i][g.axis] - light_.position[g.axis]);
+    positive += m > 0.0;
+    negative += m < 0.0;
+  }
+  if (negative == 3) return Footprint::none;
+  if (positive < 3) return Footprint::straddles;
+  top = -std::min({v[0][g.axis] * g.sign, v[1][g.axis] * g.sign, v[2][g.axis] * g.sign});
+  if (top < below) return Footprint::none;
+  for (int k = 0; k < 2; ++k) lo[k] = infinity, hi[k] = -infinity;
+  for (int i = 0; i < 3; ++i) {
+    project(g, v[i], uv, height);
     for (int k = 0; k < 2; ++k) {
-      const double margin = (std::max(std::fabs(lo[k]), std::fabs(hi[k])) + 1.0) * 0x1p-49;
-      lo[k] -= margin;
-      hi[k] += margin;
+      lo[k] = std::min(lo[k], uv[k]);
+      hi[k] = std::max(hi[k], uv[k]);
     }
-    // The meeting point is no farther along the axis than the sample and no nearer than the
-    // nearest vertex.
-    if (covers(g, lo, hi, top)) return true;
+  }
+  // A quotient of two once-rounded differences is within 3.1 ulp of the exact ratio: the
+  // vertices' by |value| 2^-51, the samples' (|value| <= 1 on their own face) by 2^-51.
+  for (int k = 0; k < 2; ++k) {
+    const double margin = (std::max(std::fabs(lo[k]), std::fabs(hi[k])) + 1.0) * 0x1p-49;
+    lo[k] -= margin;
+    hi[k] += margin;
+  }
+  return Footprint::box;
+}
+
+bool CasterReach::may_reach(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) const {
+  if (keeps_all_) return true;
+  const glm::dvec3 v[3] = {glm::dvec3(a), glm::dvec3(b), glm::dvec3(c)};
+  double lo[2], hi[2], top;
+  for (const Grid& g : grids_) {
+    // Below every sample of the plane (farther from the light): nothing to project.
+    switch (footprint(g, v, lo, hi, top, g.lowest_of_all)) {
+      case Footprint::none:
+        break;
+      case Footprint::straddles:
+        return true;  // reaches behind the face's plane: not projected
+      case Footprint::box:
+        // The meeting point is no lower than the sample and no higher than the triangle's top.
+        if (covers(g, lo, hi, top)) return true;
+        break;
+    }
   }
   return false;
+}
+
+std::vector<std::uint8_t> CasterReach::samples_reached(
+    std::span<const Triangle> triangles, std::span<const std::uint8_t> casters,
+    std::span<const float> x, std::span<const float> y, std::span<const float> z,
+    std::span<const std::uint32_t> receivers) const {
+  const std::size_t n = x.size();
+  if (keeps_all_) return std::vector<std::uint8_t>(n, 1);
+  if (n != samples_) throw std::invalid_argument("CasterReach: not the samples it was built on");
+  // Per plane, pyramids of the highest casters over each cell: level l has cells >> l a side. A
+  // caster raises the cells of the coarsest level that holds its box in 4 x 4 of them (at most 16
+  // cells, whatever its size); a sample reads its cell's ancestor on every level. "Level" casters
+  // (every vertex at one height: a floor across the plane's axis) are kept apart, the two highest
+  // heights per cell, because a level caster never shadows a sample whose receiver is level at
+  // its height: they are coplanar, and the receiver half-space rule counts only points strictly
+  // on the light's side of the receiver's plane. Maxima: the same for any order.
+  struct Highest {
+    float other = -INFINITY, level = -INFINITY, level_second = -INFINITY;
+  };
+  struct Pyramid {
+    std::vector<std::vector<Highest>> levels;
+    std::unique_ptr<std::atomic<bool>[]> used;  // per level: some caster raised a cell there
+    std::atomic<bool> open{false};  // a caster straddles the face's plane: every sample reached
+  };
+  std::vector<Pyramid> pyramids(grids_.size());
+  for (std::size_t f = 0; f < grids_.size(); ++f) {
+    for (int side = grids_[f].cells; side >= 1; side /= 2)
+      pyramids[f].levels.emplace_back(std::size_t(side) * std::size_t(side));
+    pyramids[f].used = std::make_unique<std::atomic<bool>[]>(pyramids[f].levels.size());
+  }
+  const auto raise = [](float& cell, float h) {
+    std::atomic_ref<float> highest(cell);
+    for (float now = highest.load(std::memory_order_relaxed); h > now;)
+      if (highest.compare_exchange_weak(now, h, std::memory_order_relaxed)) break;
+  };
+  // Calls visit(cell, top, is_level) for every cell a caster raises (only level casters' cells
+  // when `levels_only`).
+  std::atomic<bool> any_level{false};
+  const auto each_cell = [&](const Triangle& t, bool levels_only, const auto& visit) {
+    const glm::dvec3 v[3] = {glm::dvec3(t.v0), glm::dvec3(t.v1), glm::dvec3(t.v2)};
+    double lo[2], hi[2], top;
+    for (std::size_t f = 0; f < grids_.size(); ++f) {
+      const Grid& g = grids_[f];
+      const bool level = v[0][g.axis] == v[1][g.axis] && v[1][g.axis] == v[2][g.axis];
+      if ((levels_only && !level) || pyramids[f].open.load(std::memory_order_relaxed)) continue;
+      const Footprint where = footprint(g, v, lo, hi, top, -infinity);
+      if (where == Footprint::straddles) pyramids[f].open = true;
+      if (where != Footprint::box || hi[0] < g.lo[0] || lo[0] > g.hi[0] || hi[1] < g.lo[1] ||
+          lo[1] > g.hi[1])
+        continue;
+      const int x0 = g.cell(0, lo[0]), x1 = g.cell(0, hi[0]);
+      const int y0 = g.cell(1, lo[1]), y1 = g.cell(1, hi[1]);
+      int l = 0;
+      while ((x1 >> l) - (x0 >> l) > 3 || (y1 >> l) - (y0 >> l) > 3) ++l;
+      const std::size_t side = std::size_t(g.cells >> l);
+      std::vector<Highest>& cells = pyramids[f].levels[std::size_t(l)];
+      if (!pyramids[f].used[l].load(std::memory_order_relaxed)) pyramids[f].used[l] = true;
+      for (int cy = y0 >> l; cy <= y1 >> l; ++cy)
+        for (int cx = x0 >> l; cx <= x1 >> l; ++cx)
+          visit(cells[std::size_t(cy) * side + std::size_t(cx)], float(top), level);
+    }
+  };
+  // Heights are float coordinates: exact.
+  // In index order: neighbouring triangles share cells.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), 4096),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      bool level_seen = false;
+                      for (std::size_t i = range.begin(); i != range.end(); ++i)
+                        if (casters[i])
+                          each_cell(triangles[i], false, [&](Highest& cell, float top, bool level) {
+                            level_seen = level_seen || level;
+                            raise(level ? cell.level : cell.other, top);
+                          });
+                      if (level_seen) any_level = true;
+                    });
+  if (any_level)
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), 4096),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        for (std::size_t i = range.begin(); i != range.end(); ++i)
+                          if (casters[i])
+                            each_cell(triangles[i], true, [&](Highest& cell, float top, bool) {
+                              if (top < cell.level) raise(cell.level_second, top);
+                            });
+                      });
+  std::vector<std::uint8_t> reached(n, 0);
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, n, 16384),
+      [&](const tbb::blocked_range<std::size_t>& range) {
+        double uv[2], height;
+        std::uint32_t last_receiver = no_receiver;
+        const Grid* last_grid = nullptr;
+        float plane = NAN;
+        for (std::size_t s = range.begin(); s != range.end(); ++s) {
+          const glm::dvec3 p(x[s], y[s], z[s]);
+          const std::size_t f = std::size_t(grid_of(p));
+          const Pyramid& pyramid = pyramids[f];
+          if (pyramid.open) {
+            reached[s] = 1;
+            continue;
+          }
+          const Grid& g = grids_[f];
+          project(g, p, uv, height);
+          // The height of the receiver's plane when it is level (and not of zero area, which has
+          // no plane: the rule is void); NaN, equal to nothing, otherwise. Neighbouring samples
+          // mostly share their receiver and plane.
+          if (receivers[s] != last_receiver || &g != last_grid) {
+            last_receiver = receivers[s];
+            last_grid = &g;
+            plane = NAN;
+            if (last_receiver < triangles.size()) {
+              const Triangle& r = triangles[last_receiver];
+              if (r.v0[g.axis] == r.v1[g.axis] && r.v1[g.axis] == r.v2[g.axis] &&
+                  !triangle_has_zero_area(r.v0, r.v1, r.v2))
+                plane = float((light_.directional ? g.sign : -g.sign) * double(r.v0[g.axis]));
+            }
+          }
+          const int cx = g.cell(0, uv[0]), cy = g.cell(1, uv[1]);
+          float highest = -INFINITY;
+          for (std::size_t l = 0; l < pyramid.levels.size(); ++l) {
+            if (!pyramid.used[l].load(std::memory_order_relaxed)) continue;
+            const Highest& cell =
+                pyramid.levels[l][std::size_t(cy >> l) * std::size_t(g.cells >> l) +
+                                  std::size_t(cx >> l)];
+            highest = std::max(
+                {highest, cell.other, cell.level == plane ? cell.level_second : cell.level});
+          }
+          // Some caster over the cell reaches as high as the sample.
+          reached[s] = double(highest) >= height ? 1 : 0;
+        }
+      });
+  return reached;
 }
 
 }  // namespace shadowcts

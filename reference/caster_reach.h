@@ -18,6 +18,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "shadowcts/case.h"
 #include "shadowcts/hard_shadow_inputs.h"
 
 namespace shadowcts {
@@ -33,6 +34,16 @@ class CasterReach {
 
   // false only if no point of the closed triangle abc lies on any sample's segment. Thread-safe.
   bool may_reach(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) const;
+
+  // Per sample of `x`, `y`, `z`, which must be the samples it was built on, with its receiver
+  // (an index into `triangles`, or no_receiver): 0 only if none of the triangles with
+  // `casters[t]` set shadows it under the receiver half-space rule, so that it is lit by them.
+  // Deterministic for any thread count.
+  std::vector<std::uint8_t> samples_reached(std::span<const Triangle> triangles,
+                                            std::span<const std::uint8_t> casters,
+                                            std::span<const float> x, std::span<const float> y,
+                                            std::span<const float> z,
+                                            std::span<const std::uint32_t> receivers) const;
 
   // The projection planes in use (1 for a directional light, up to 6 for a point light).
   std::size_t planes() const { return grids_.size(); }
@@ -51,15 +62,26 @@ class CasterReach {
     float lowest_of_all = 0.0f;    // over every cell
     inline int cell(int side, double u) const;
   };
+  // Where a triangle lands on a grid: nowhere it could meet a segment of the grid's samples
+  // (behind the face, or with its top below `below`), across the face's plane (not projected),
+  // or in the box [lo, hi] (rounding margins included) with its highest point at `top`.
+  enum class Footprint { none, straddles, box };
+  [[gnu::always_inline]] inline Footprint footprint(const Grid& g, const glm::dvec3 v[3],
+                                                    double lo[2], double hi[2], double& top,
+                                                    double below) const;
   // Projected coordinates and height of point p on grid g (directional or point light).
   inline void project(const Grid& g, const glm::dvec3& p, double uv[2], double& height) const;
   inline bool covers(const Grid& g, const double lo[2], const double hi[2], double top) const;
+  int face_of(const glm::dvec3& p) const;  // directional: 0; point light: its cube face
+  int grid_of(const glm::dvec3& p) const { return grid_of_face_[face_of(p)]; }
 
   HardShadowLight light_;
   double ratio_[3] = {0.0, 0.0, 0.0};  // directional: d_i / d_axis
   double sample_bound_ = 0.0;          // the largest absolute sample coordinate
   bool keeps_all_ = true;  // default-constructed, or a sample at the point light (no projection)
   std::vector<Grid> grids_;
+  int grid_of_face_[6] = {-1, -1, -1, -1, -1, -1};
+  std::size_t samples_ = 0;
 };
 
 }  // namespace shadowcts

@@ -11,6 +11,7 @@
 #include <tbb/parallel_for.h>
 #include <glm/common.hpp>
 
+#include "reference/sample_access.h"
 #include "shadowcts/thread_limit.h"
 
 namespace shadowcts {
@@ -121,7 +122,10 @@ MeshBoxes mesh_boxes(const Case& c) {
   return boxes;
 }
 
-std::vector<bool> meshes_safe_for_face_culling(const Case& c, const ViewSamples& samples) {
+namespace {
+
+template <class Samples>
+std::vector<bool> safe_meshes(const Case& c, const Samples& samples) {
   const std::size_t n = c.meshes.size();
   std::vector<bool> safe(n, false);
   bool any_closed_caster = false;
@@ -131,19 +135,15 @@ std::vector<bool> meshes_safe_for_face_culling(const Case& c, const ViewSamples&
   std::vector<std::uint8_t> holds_sample(n, 0);
   run_with_thread_limit(c.parameters.threads, [&] {
     const MeshBoxes boxes = mesh_boxes(c);
-    const auto is_regular = [&](const ViewSample& s) {
-      return s.sample_class == SampleClass::regular;
-    };
     // A visible mesh's box holds its own samples, as a rule: one test per sample finds most
     // meshes that hold one. Setting a flag to 1 from any thread gives the same flags.
     tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, samples.samples.size(), 8192),
+        tbb::blocked_range<std::size_t>(0, samples.size(), 8192),
         [&](const tbb::blocked_range<std::size_t>& range) {
           for (std::size_t i = range.begin(); i != range.end(); ++i) {
-            const ViewSample& s = samples.samples[i];
-            if (!is_regular(s) || s.receiver >= c.triangles.size()) continue;
-            const std::uint32_t m = c.triangles[s.receiver].mesh;
-            if (m < n && boxes.holds(m, s.position))
+            if (!samples.regular(i) || samples.receiver(i) >= c.triangles.size()) continue;
+            const std::uint32_t m = c.triangles[samples.receiver(i)].mesh;
+            if (m < n && boxes.holds(m, samples.position(i)))
               std::atomic_ref<std::uint8_t>(holds_sample[m]).store(1, std::memory_order_relaxed);
           }
         });
@@ -160,22 +160,31 @@ std::vector<bool> meshes_safe_for_face_culling(const Case& c, const ViewSamples&
     if (open.empty()) return;
     const BoxGrid grid(boxes, open);
     for (const std::uint32_t m : open) holds_sample[m] = 2;  // until a sample lies in its box
-    tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, samples.samples.size(), 8192),
-        [&](const tbb::blocked_range<std::size_t>& range) {
-          for (std::size_t i = range.begin(); i != range.end(); ++i) {
-            const ViewSample& s = samples.samples[i];
-            if (!is_regular(s)) continue;
-            for (const std::uint32_t m : grid.boxes_near(s.position)) {
-              std::atomic_ref<std::uint8_t> flag(holds_sample[m]);
-              if (flag.load(std::memory_order_relaxed) == 2 && boxes.holds(m, s.position))
-                flag.store(1, std::memory_order_relaxed);
-            }
-          }
-        });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size(), 8192),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                          if (!samples.regular(i)) continue;
+                          const glm::vec3 p = samples.position(i);
+                          for (const std::uint32_t m : grid.boxes_near(p)) {
+                            std::atomic_ref<std::uint8_t> flag(holds_sample[m]);
+                            if (flag.load(std::memory_order_relaxed) == 2 && boxes.holds(m, p))
+                              flag.store(1, std::memory_order_relaxed);
+                          }
+                        }
+                      });
   });
   for (std::size_t m = 0; m < n; ++m) safe[m] = holds_sample[m] == 2;
   return safe;
+}
+
+}  // namespace
+
+std::vector<bool> meshes_safe_for_face_culling(const Case& c, const ViewSamples& samples) {
+  return safe_meshes(c, ViewSampleAccess{samples});
+}
+
+std::vector<bool> meshes_safe_for_face_culling(const Case& c, const RegularSamples& samples) {
+  return safe_meshes(c, RegularSampleAccess{samples});
 }
 
 }  // namespace shadowcts

@@ -10,6 +10,7 @@
 #include <glm/vec3.hpp>
 
 #include "shadowcts/case.h"
+#include "shadowcts/prepared_scene.h"
 #include "shadowcts/view_samples.h"
 
 namespace shadowcts {
@@ -31,5 +32,7 @@ MeshBoxes mesh_boxes(const Case& c);
 // Per mesh: closed, a caster, and its bounding box (closed) holds no regular sample and no point
 // light, so no sample or light can be inside the solid.
 std::vector<bool> meshes_safe_for_face_culling(const Case& c, const ViewSamples& samples);
+// The same from the prepared scene's regular samples (the same answer).
+std::vector<bool> meshes_safe_for_face_culling(const Case& c, const RegularSamples& samples);
 
 }  // namespace shadowcts

@@ -119,9 +119,10 @@ PsvQueryInput psv_query_input(const Case& c, const ViewSamples& samples, const p
   input.root = tree.root;
   input.triangles.reserve(c.triangles.size());
   for (const Triangle& t : c.triangles) input.triangles.push_back({t.v0, t.v1, t.v2});
-  for (std::size_t i = 0; i < samples.samples.size(); ++i) {
+  for (std::size_t i = 0, rank = 0; i < samples.samples.size(); ++i) {
     const ViewSample& sample = samples.samples[i];
     if (sample.sample_class != SampleClass::regular) continue;
+    if (!build.reached[rank++]) continue;  // lit: no inserted triangle can reach it
     regular_samples.push_back(i);
     input.sample_positions.push_back(sample.position);
     input.sample_receivers.push_back(sample.receiver);  // no_receiver is psv_no_node

@@ -27,7 +27,8 @@ psv::PsvBuild build_psv_on_device(const Case& c, const ViewSamples& samples, std
                                   std::uint64_t& device_exact_tests);
 
 // The kernel's input for a built tree: its nodes and volume sources byte for byte, the case's
-// triangles, the regular samples (their view-sample indices appended to regular_samples).
+// triangles, the regular samples the build says need a query (PsvBuild::reached; their
+// view-sample indices appended to regular_samples).
 PsvQueryInput psv_query_input(const Case& c, const ViewSamples& samples, const psv::PsvBuild& build,
                               const psv::PsvOptions& options,
                               std::vector<std::size_t>& regular_samples);

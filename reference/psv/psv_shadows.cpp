@@ -79,16 +79,26 @@ std::vector<std::uint32_t> prepare_build(const Case& c, const ViewSamples& sampl
   build.planes =
       std::make_unique<PlaneSide>(build.light, c.triangles, coordinate_bound(c, samples));
   std::vector<float> x, y, z;
+  std::vector<std::uint32_t> receivers;
   for (const ViewSample& s : samples.samples)
     if (s.sample_class == SampleClass::regular) {
       x.push_back(s.position.x);
       y.push_back(s.position.y);
       z.push_back(s.position.z);
+      receivers.push_back(s.receiver);
     }
-  return insertion_order(c, *build.planes,
-                         culling_clear_of_segment_starts(c, samples, build.light,
-                                                         meshes_safe_for_face_culling(c, samples)),
-                         CasterReach(build.light, x, y, z), seed, build.statistics);
+  const CasterReach reach(build.light, x, y, z);
+  std::vector<std::uint32_t> order =
+      insertion_order(c, *build.planes,
+                      culling_clear_of_segment_starts(c, samples, build.light,
+                                                      meshes_safe_for_face_culling(c, samples)),
+                      reach, seed, build.statistics);
+  std::vector<std::uint8_t> inserted(c.triangles.size(), 0);
+  for (const std::uint32_t t : order) inserted[t] = 1;
+  build.reached = reach.samples_reached(c.triangles, inserted, x, y, z, receivers);
+  build.statistics.samples_out_of_reach =
+      std::uint64_t(std::count(build.reached.begin(), build.reached.end(), std::uint8_t(0)));
+  return order;
 }
 
 }  // namespace
@@ -120,6 +130,7 @@ Counters psv_counters(const PsvBuild& build, const PsvQueryTotals& totals,
           {"tree_nodes", build.tree.nodes.size()},
           {"tree_height", build.statistics.height},
           {"queries", totals.queries},
+          {"samples_out_of_reach", build.statistics.samples_out_of_reach},
           {"nodes_visited_total", totals.nodes_visited_total},
           {"nodes_visited_max", totals.nodes_visited_max},
           {"stack_capacity", uses_stack ? options.stack_capacity : 0},
@@ -140,6 +151,11 @@ PsvResult psv_hard_shadows(const Case& c, const ViewSamples& samples, const PsvO
   PsvResult result;
   result.shadowed.assign(samples.samples.size(), 0);
   result.nodes_visited.assign(samples.samples.size(), 0);
+  // Which view samples need a query: the regular samples some inserted triangle may reach.
+  std::vector<std::uint8_t> needs_query(samples.samples.size(), 0);
+  for (std::size_t i = 0, rank = 0; i < samples.samples.size(); ++i)
+    if (samples.samples[i].sample_class == SampleClass::regular)
+      needs_query[i] = build.reached[rank++];
   std::atomic<std::uint64_t> queries{0}, visited_total{0}, visited_max{0}, high_water{0},
       overflows{0}, switches{0};
   phase_progress::begin(samples.samples.size(), "view samples");  // the queries
@@ -152,7 +168,7 @@ PsvResult psv_hard_shadows(const Case& c, const ViewSamples& samples, const PsvO
                         std::vector<std::uint32_t> stack(options.stack_capacity);
                         for (std::size_t i = range.begin(); i != range.end(); ++i) {
                           const ViewSample& sample = samples.samples[i];
-                          if (sample.sample_class != SampleClass::regular) continue;
+                          if (!needs_query[i]) continue;  // not regular, or lit: out of reach
                           QueryPoint p;
                           p.position = glm::dvec3(sample.position);
                           p.receiver = sample.receiver;

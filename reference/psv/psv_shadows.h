@@ -38,10 +38,12 @@ struct PsvResult {
   std::vector<std::uint8_t> shadowed;
   std::vector<std::uint32_t> nodes_visited;  // per view sample (0 for non-regular samples)
   // In this order: triangles_inserted, triangles_culled_front_facing, triangles_culled_flat,
-  // triangles_culled_out_of_reach, triangles_dropped_in_shadow, tree_nodes, tree_height, queries,
-  // nodes_visited_total, nodes_visited_max, stack_capacity, stack_high_water, stack_overflows,
-  // hybrid_switches, exact_plane_tests (plane tests of the build and the queries that the float
-  // filter could not decide and an exact predicate answered).
+  // triangles_culled_out_of_reach, triangles_dropped_in_shadow, tree_nodes, tree_height,
+  // queries (the regular samples queried), samples_out_of_reach (regular samples lit without a
+  // query: PsvBuild::reached), nodes_visited_total, nodes_visited_max, stack_capacity,
+  // stack_high_water, stack_overflows, hybrid_switches, exact_plane_tests (plane tests of the
+  // build and the queries that the float filter could not decide and an exact predicate
+  // answered).
   Counters counters;
   // "build" (insertion order, TOP tree, query context) and "query" (the per-sample queries).
   PhaseTimes phase_ms;
@@ -59,6 +61,9 @@ struct PsvBuild {
   std::unique_ptr<PlaneSide> planes;  // refers to c.triangles
   BuildStatistics statistics;
   TopTree tree;
+  // Per regular sample (in view-sample order): 0 where no triangle of the insertion order can
+  // meet its segment (CasterReach::samples_reached), so it is lit without a query.
+  std::vector<std::uint8_t> reached;
 };
 // Throws InputError when the case has no point or directional light.
 PsvBuild build_psv(const Case& c, const ViewSamples& samples, std::uint64_t seed);

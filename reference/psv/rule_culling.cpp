@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include <tbb/blocked_range.h>
 #include <tbb/combinable.h>
@@ -11,6 +12,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "reference/sample_access.h"
 #include "shadowcts/geometry/receiver_half_space.h"
 #include "shadowcts/thread_limit.h"
 
@@ -50,11 +52,9 @@ Orientation receiver_orientation(const Triangle& r) {
   return o;
 }
 
-}  // namespace
-
-std::vector<bool> culling_clear_of_segment_starts(const Case& c, const ViewSamples& samples,
-                                                  const HardShadowLight& light,
-                                                  std::vector<bool> safe) {
+template <class Samples>
+std::vector<bool> clear_of_segment_starts(const Case& c, const Samples& samples,
+                                          const HardShadowLight& light, std::vector<bool> safe) {
   std::vector<Box> boxes(safe.size());
   bool any = false;
   for (const Triangle& t : c.triangles) {
@@ -69,24 +69,25 @@ std::vector<bool> culling_clear_of_segment_starts(const Case& c, const ViewSampl
   // Samples in parallel, each range switching off in its own copy the meshes whose boxes meet a
   // segment start's box; a mesh stays safe only where no range switched it off.
   const std::vector<char> initially(safe.begin(), safe.end());
+  std::vector<std::uint32_t> candidates;  // the meshes safe so far: most are not
+  for (std::size_t m = 0; m < safe.size(); ++m)
+    if (safe[m]) candidates.push_back(std::uint32_t(m));
   tbb::combinable<std::vector<char>> still_safe([&] { return initially; });
   std::atomic<bool> none_safe{false};  // a directional light's p* may lie anywhere on its ray
   run_with_thread_limit(c.parameters.threads, [&] {
     tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, samples.samples.size(), 4096),
+        tbb::blocked_range<std::size_t>(0, samples.size(), 4096),
         [&](const tbb::blocked_range<std::size_t>& range) {
           std::vector<char>& mine = still_safe.local();
           const auto switch_off_meeting = [&](const Box& start) {
-            for (std::size_t m = 0; m < mine.size(); ++m)
+            for (const std::uint32_t m : candidates)
               if (mine[m] && overlap(start, boxes[m])) mine[m] = 0;
           };
           for (std::size_t i = range.begin(); i != range.end() && !none_safe.load(); ++i) {
-            const ViewSample& s = samples.samples[i];
-            if (s.sample_class != SampleClass::regular || s.receiver >= c.triangles.size())
-              continue;
-            const Triangle& r = c.triangles[s.receiver];
+            if (!samples.regular(i) || samples.receiver(i) >= c.triangles.size()) continue;
+            const Triangle& r = c.triangles[samples.receiver(i)];
             const Orientation o = receiver_orientation(r);
-            const glm::dvec3 p(s.position);
+            const glm::dvec3 p(samples.position(i));
             double f_light = 0.0, e_light = 0.0, f_p = 0.0, e_p = 0.0;
             o.value(light.directional ? light.direction : light.position - o.a, f_light, e_light);
             if (!(std::fabs(f_light) > e_light)) {
@@ -125,6 +126,20 @@ std::vector<bool> culling_clear_of_segment_starts(const Case& c, const ViewSampl
     for (std::size_t m = 0; m < safe.size(); ++m) safe[m] = safe[m] && mine[m] != 0;
   });
   return safe;
+}
+
+}  // namespace
+
+std::vector<bool> culling_clear_of_segment_starts(const Case& c, const ViewSamples& samples,
+                                                  const HardShadowLight& light,
+                                                  std::vector<bool> safe) {
+  return clear_of_segment_starts(c, ViewSampleAccess{samples}, light, std::move(safe));
+}
+
+std::vector<bool> culling_clear_of_segment_starts(const Case& c, const RegularSamples& samples,
+                                                  const HardShadowLight& light,
+                                                  std::vector<bool> safe) {
+  return clear_of_segment_starts(c, RegularSampleAccess{samples}, light, std::move(safe));
 }
 
 }  // namespace shadowcts::psv

@@ -10,6 +10,7 @@
 
 #include "shadowcts/case.h"
 #include "shadowcts/hard_shadow_inputs.h"
+#include "shadowcts/prepared_scene.h"
 #include "shadowcts/view_samples.h"
 
 namespace shadowcts::psv {
@@ -18,6 +19,10 @@ namespace shadowcts::psv {
 // bounding box may hold the p* of a regular sample. p* is bounded in double with a proven error
 // margin, so culling is lost only where some p* lies within rounding of a box.
 std::vector<bool> culling_clear_of_segment_starts(const Case& c, const ViewSamples& samples,
+                                                  const HardShadowLight& light,
+                                                  std::vector<bool> safe);
+// The same from the prepared scene's regular samples (the same answer).
+std::vector<bool> culling_clear_of_segment_starts(const Case& c, const RegularSamples& samples,
                                                   const HardShadowLight& light,
                                                   std::vector<bool> safe);
 

@@ -12,11 +12,12 @@
 namespace shadowcts::psv {
 
 struct BuildStatistics {
-  std::uint64_t casters = 0;              // caster triangles of non-zero area
-  std::uint64_t culled_front_facing = 0;  // closed meshes only
-  std::uint64_t culled_flat = 0;          // the light lies in the triangle's plane: no volume
-  std::uint64_t culled_out_of_reach = 0;  // meets no sample's segment (caster_reach.h)
-  std::uint64_t dropped_in_shadow = 0;    // reached a shadow leaf: inside another volume
+  std::uint64_t casters = 0;               // caster triangles of non-zero area
+  std::uint64_t culled_front_facing = 0;   // closed meshes only
+  std::uint64_t culled_flat = 0;           // the light lies in the triangle's plane: no volume
+  std::uint64_t culled_out_of_reach = 0;   // meets no sample's segment (caster_reach.h)
+  std::uint64_t samples_out_of_reach = 0;  // regular samples no inserted triangle can reach
+  std::uint64_t dropped_in_shadow = 0;     // reached a shadow leaf: inside another volume
   std::uint64_t volumes = 0;
   std::uint64_t height = 0;  // nodes on the longest root-to-leaf path
 };

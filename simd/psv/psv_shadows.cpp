@@ -41,13 +41,19 @@ SimdPsvBuild build_psv(const PreparedScene& scene, std::uint64_t seed) {
   build.planes =
       std::make_unique<ref::PlaneSide>(build.light, c.triangles, coordinate_bound(scene));
   const PlaneSide planes(*build.planes);
+  // The culling tests read the prepared samples: a twentieth of the view samples' bytes.
   const std::vector<bool> face_culling = ref::culling_clear_of_segment_starts(
-      c, scene.view_samples, build.light, meshes_safe_for_face_culling(c, scene.view_samples));
+      c, scene.samples, build.light, meshes_safe_for_face_culling(c, scene.samples));
   const RegularSamples& s = scene.samples;
   run_with_thread_limit(c.parameters.threads, [&] {
+    const CasterReach reach(build.light, s.px, s.py, s.pz);
     const std::vector<std::uint32_t> order =
-        psv::insertion_order(c, *build.planes, face_culling,
-                             CasterReach(build.light, s.px, s.py, s.pz), seed, build.statistics);
+        psv::insertion_order(c, *build.planes, face_culling, reach, seed, build.statistics);
+    std::vector<std::uint8_t> inserted(c.triangles.size(), 0);
+    for (const std::uint32_t t : order) inserted[t] = 1;
+    build.reached = reach.samples_reached(c.triangles, inserted, s.px, s.py, s.pz, s.receiver);
+    build.statistics.samples_out_of_reach =
+        std::uint64_t(std::count(build.reached.begin(), build.reached.end(), std::uint8_t(0)));
     build.tree =
         psv::build_top_tree(c, planes, order, build.statistics, result.corners, result.work);
   });
@@ -69,9 +75,9 @@ SimdPsvResult psv_hard_shadows(const PreparedScene& scene, const SimdPsvOptions&
   std::vector<std::uint8_t> shadowed(samples.size(), 0);
   std::vector<std::uint32_t> visited(samples.size(), 0);
   const std::uint32_t packet = std::clamp<std::uint32_t>(options.packet, 1, max_packet);
-  const Packets packets = tile_packets(samples, scene.source.camera.width, packet);
+  const Packets packets = tile_packets(samples, build.reached, scene.source.camera.width, packet);
   tbb::combinable<ref::PsvQueryTotals> partial;
-  phase_progress::begin(samples.size(), "regular samples");  // the queries
+  phase_progress::begin(packets.sample.size(), "regular samples");  // the queries
   run_with_thread_limit(scene.source.parameters.threads, [&] {
     // Whole packets per range: a packet never depends on the partitioning.
     tbb::parallel_for(

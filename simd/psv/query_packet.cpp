@@ -217,8 +217,8 @@ void query_packets(const QueryTree& q, const ref::PsvOptions& options, const Har
   (q, options, light, samples, packets, first, last, shadowed, nodes_visited, totals);
 }
 
-Packets tile_packets(const RegularSamples& samples, std::uint32_t width,
-                     std::uint32_t packet_size) {
+Packets tile_packets(const RegularSamples& samples, const std::vector<std::uint8_t>& queried,
+                     std::uint32_t width, std::uint32_t packet_size) {
   constexpr std::uint32_t tile = 4;
   width = std::max<std::uint32_t>(width, 1);
   const std::uint32_t tiles_across = (width + tile - 1) / tile;
@@ -241,6 +241,7 @@ Packets tile_packets(const RegularSamples& samples, std::uint32_t width,
       packets.sample[band + count[samples.index[i] % width / tile]++] = std::uint32_t(i);
     band = end;
   }
+  std::erase_if(packets.sample, [&](std::uint32_t i) { return !queried[i]; });
   for (std::size_t i = 0; i < packets.sample.size(); ++i) {
     const bool new_tile = i == 0 || tile_of(samples.index[packets.sample[i]]) !=
                                         tile_of(samples.index[packets.sample[i - 1]]);

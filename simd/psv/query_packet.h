@@ -11,14 +11,16 @@
 
 namespace shadowcts::simd::psv {
 
-// The regular samples grouped into packets: the samples of a 4 x 4 pixel tile, at most
+// The regular samples to query grouped into packets: the samples of a 4 x 4 pixel tile, at most
 // `packet_size` (1 to max_packet) per packet; samples close on screen mostly take the same path
 // down the tree. Packet k holds sample[begin[k] .. begin[k + 1]).
 struct Packets {
   std::vector<std::uint32_t> sample;  // regular sample indices, tile by tile
   std::vector<std::uint32_t> begin;   // one more than the number of packets
 };
-Packets tile_packets(const RegularSamples& samples, std::uint32_t width, std::uint32_t packet_size);
+// `queried`: per regular sample, whether it is queried (PsvBuild::reached).
+Packets tile_packets(const RegularSamples& samples, const std::vector<std::uint8_t>& queried,
+                     std::uint32_t width, std::uint32_t packet_size);
 
 // Packets [first, last): per regular sample, shadowed (1) or lit (0) and the nodes visited; the
 // totals of those queries are added to `totals` (a stack query that overflows is answered by the

@@ -21,6 +21,7 @@ struct Scene {
   HardShadowLight light;
   std::vector<glm::vec3> samples;
   std::vector<Triangle> triangles;
+  std::vector<std::uint32_t> receivers = {};  // per sample; none: no_receiver for every sample
 };
 
 CasterReach reach_of(const Scene& s) {
@@ -142,6 +143,95 @@ TEST(CasterReach, DropsOnlyTrianglesThatMeetNoSegment) {
     }
   // Not vacuous: most triangles of these scenes reach no sample.
   EXPECT_GT(dropped, triangles / 4);
+}
+
+// Checks every sample marked unreached against every caster exactly; returns how many were.
+std::size_t expect_unreached_samples_are_lit(Scene s) {
+  s.receivers.resize(s.samples.size(), no_receiver);
+  const CasterReach reach = reach_of(s);
+  std::vector<float> x, y, z;
+  for (const glm::vec3& p : s.samples) {
+    x.push_back(p.x);
+    y.push_back(p.y);
+    z.push_back(p.z);
+  }
+  const std::vector<std::uint8_t> casters(s.triangles.size(), 1);
+  const std::vector<std::uint8_t> reached =
+      reach.samples_reached(s.triangles, casters, x, y, z, s.receivers);
+  EXPECT_EQ(reached.size(), s.samples.size());
+  const ExactShadowPredicate exact(s.light, bound_of(s));
+  std::size_t unreached = 0;
+  for (std::size_t i = 0; i < s.samples.size(); ++i) {
+    if (reached[i]) continue;
+    ++unreached;
+    // The receiver half-space rule, as the oracle applies it.
+    const std::uint32_t r = s.receivers[i];
+    ReceiverPlane plane;
+    if (r != no_receiver) plane = exact.receiver_plane(s.triangles[r]);
+    for (std::size_t t = 0; t < s.triangles.size(); ++t)
+      if (t != r && exact.blocks(s.triangles[t],
+                                 MovedPoint{glm::dvec3(s.samples[i]), 0.0, {0, 0, 0}}, plane)) {
+        ADD_FAILURE() << "sample " << i << " marked unreached but triangle " << t
+                      << " meets its segment";
+        return unreached;
+      }
+  }
+  return unreached;
+}
+
+TEST(CasterReach, SamplesMarkedUnreachedMeetNoCaster) {
+  std::size_t unreached = 0, samples = 0;
+  std::uint32_t seed = 100;
+  for (const HardShadowLight& light :
+       {directional_light({0, 1, 0}), directional_light({-0.5f, 0.25f, 1}), point_light({0, 20, 0}),
+        point_light({3.5f, -2, 1.25f}), point_light({-40, 8, 30})})
+    for (const float size : {0.5f, 4.0f, 16.0f}) {
+      Scene s = random_scene(seed++, light, {2, -3, 1}, size);
+      // Fewer casters, so that some samples are out of their reach.
+      s.triangles.resize(s.triangles.size() / 8);
+      unreached += expect_unreached_samples_are_lit(s);
+      samples += s.samples.size();
+    }
+  EXPECT_GT(unreached, samples / 8);  // not vacuous
+}
+
+// A tessellated floor (y = 0, a caster) with samples on it, a plate above part of it, a coplanar
+// plate and a plate below: only the samples under the raised plate can be shadowed. The floor's
+// own triangles and the coplanar plate never shadow a floor sample (the receiver half-space
+// rule), so those samples need no query; a sample whose receiver is tilted gets no such pass.
+TEST(CasterReach, LevelCastersDoNotReachSamplesOnTheirOwnLevel) {
+  for (const HardShadowLight& light :
+       {point_light({0.5f, 10, 0.25f}), directional_light({0.25f, 1, 0.5f})}) {
+    Scene s;
+    s.light = light;
+    for (int i = -4; i < 4; ++i)
+      for (int k = -4; k < 4; ++k) {
+        const float x = float(i), z = float(k);
+        s.triangles.push_back({{x, 0, z}, {x + 1, 0, z}, {x, 0, z + 1}, 0});
+        s.triangles.push_back({{x + 1, 0, z}, {x + 1, 0, z + 1}, {x, 0, z + 1}, 0});
+      }
+    std::mt19937 random(3);
+    std::uniform_real_distribution<float> coordinate(-3.9f, 3.9f);
+    for (int i = 0; i < 400; ++i) {
+      const glm::vec3 p(coordinate(random), 0.0f, coordinate(random));
+      const int qi = int(std::floor(p.x)) + 4, qk = int(std::floor(p.z)) + 4;
+      const bool upper = (p.x - std::floor(p.x)) + (p.z - std::floor(p.z)) > 1.0f;
+      s.samples.push_back(p);
+      s.receivers.push_back(std::uint32_t(2 * (qi * 8 + qk) + (upper ? 1 : 0)));
+    }
+    const std::uint32_t floor_triangles = std::uint32_t(s.triangles.size());
+    s.triangles.push_back({{1, 2, 1}, {2, 2, 1}, {1, 2, 2}, 0});        // raised plate
+    s.triangles.push_back({{-3, 0, -3}, {-1, 0, -3}, {-3, 0, -1}, 0});  // coplanar plate
+    s.triangles.push_back({{-3, -1, 1}, {0, -1, 1}, {-3, -1, 3}, 0});   // below the floor
+    const std::size_t unreached = expect_unreached_samples_are_lit(s);
+    // Most floor samples are out of reach of everything here.
+    EXPECT_GT(unreached, s.samples.size() / 2);
+    EXPECT_LT(unreached, s.samples.size());
+    // A tilted receiver: its samples are reached (the floor's triangles may shadow them).
+    s.triangles.push_back({{-4, 0, -4}, {-3, 0.5f, -4}, {-4, 0, -3}, 0});
+    for (std::uint32_t& r : s.receivers) r = floor_triangles + 3;
+    EXPECT_EQ(expect_unreached_samples_are_lit(s), 0u);
+  }
 }
 
 TEST(CasterReach, KeepsTrianglesOnTheSegmentAndDropsThoseBeyondIt) {

@@ -9,6 +9,8 @@
 #include "hand_built_case.h"
 #include "reference/psv/psv_algorithm.h"
 #include "reference/psv/psv_shadows.h"
+#include "reference/psv/query_stack.h"
+#include "reference/psv/top_tree_depth.h"
 #include "shadowcts/hard_shadow_comparison.h"
 #include "shadowcts/hard_shadow_oracle.h"
 
@@ -134,7 +136,9 @@ INSTANTIATE_TEST_SUITE_P(RandomCases, PsvQueries, ::testing::Range(0, 4));
 
 // Figure 3 of Mora 2016: lit points closer to the light than every occluder. A point light behind
 // the camera, a field of floating quads beyond the visible near ground: PSV scans the tree for
-// the near ground, D-PSV stops at the root.
+// the near ground, D-PSV stops at the root. Those samples are also out of every quad's reach
+// (samples_out_of_reach), so psv_hard_shadows does not query them at all: the two queries are
+// asked directly here.
 TEST(PsvDepthTest, FewerNodesForLitSamplesWithTheLightBehindTheCamera) {
   Case c;
   c.name = "light_behind_camera";
@@ -165,6 +169,16 @@ TEST(PsvDepthTest, FewerNodesForLitSamplesWithTheLightBehindTheCamera) {
   const PsvResult dpsv = run(c, samples, QueryKind::depth, 64);
   EXPECT_EQ(robust_mismatches(psv.shadowed, truth), 0u);
   EXPECT_EQ(dpsv.shadowed, psv.shadowed);
+  const PsvBuild build = build_psv(c, samples, 1);
+  const QueryContext plain(build.tree, *build.planes, false);
+  const QueryContext depth_tested(build.tree, *build.planes, true);
+  std::vector<std::uint32_t> stack(64);
+  EXPECT_GT(counter(psv, "samples_out_of_reach"), 0u);
+  // Nearer to the light than every vertex of a quad: nearer than every occluder.
+  double nearest = INFINITY;
+  for (std::size_t t = 1; t < c.triangles.size(); ++t)
+    for (const glm::vec3& v : {c.triangles[t].v0, c.triangles[t].v1, c.triangles[t].v2})
+      nearest = std::min(nearest, double(glm::distance(v, light.position)));
   std::uint64_t lit = 0, shadowed = 0, psv_lit_nodes = 0, dpsv_lit_nodes = 0;
   for (std::size_t i = 0; i < samples.samples.size(); ++i) {
     if (samples.samples[i].sample_class != SampleClass::regular) continue;
@@ -172,11 +186,19 @@ TEST(PsvDepthTest, FewerNodesForLitSamplesWithTheLightBehindTheCamera) {
       ++shadowed;
       continue;
     }
+    if (!(glm::distance(samples.samples[i].position, light.position) < nearest * 0.999)) continue;
     ++lit;
-    psv_lit_nodes += psv.nodes_visited[i];
-    dpsv_lit_nodes += dpsv.nodes_visited[i];
+    QueryPoint p;
+    p.position = glm::dvec3(samples.samples[i].position);
+    p.receiver = samples.samples[i].receiver;
+    p.light_depth = sample_light_depth(build.light, p.position);
+    QueryWork without, with;
+    EXPECT_EQ(query_stack(plain, p, stack, without), QueryAnswer::lit);
+    EXPECT_EQ(query_stack(depth_tested, p, stack, with), QueryAnswer::lit);
+    psv_lit_nodes += without.nodes_visited;
+    dpsv_lit_nodes += with.nodes_visited;
   }
-  ASSERT_GT(lit, 1000u);
+  ASSERT_GT(lit, 500u);
   ASSERT_GT(shadowed, 100u);
   EXPECT_LT(dpsv_lit_nodes * 2, psv_lit_nodes);
   std::cout << "light behind the camera: " << lit << " lit samples, nodes visited per lit sample "

@@ -63,6 +63,7 @@ std::string first_statistics_difference(const ref::BuildStatistics& e,
   if (e.culled_front_facing != a.culled_front_facing) return "culled_front_facing";
   if (e.culled_flat != a.culled_flat) return "culled_flat";
   if (e.culled_out_of_reach != a.culled_out_of_reach) return "culled_out_of_reach";
+  if (e.samples_out_of_reach != a.samples_out_of_reach) return "samples_out_of_reach";
   if (e.dropped_in_shadow != a.dropped_in_shadow) return "dropped_in_shadow";
   if (e.volumes != a.volumes) return "volumes";
   if (e.height != a.height) return "height";
@@ -96,6 +97,7 @@ void expect_same_tree(Case c, const ViewSamples& samples) {
     EXPECT_EQ(first_tree_difference(expected.tree, actual.build.tree), "");
     EXPECT_EQ(first_statistics_difference(expected.statistics, actual.build.statistics), "");
     EXPECT_EQ(actual.corners.size(), actual.build.statistics.volumes);
+    EXPECT_EQ(actual.build.reached, expected.reached);  // the samples to query
   }
 }
 
