@@ -146,8 +146,10 @@ TEST(CasterReach, DropsOnlyTrianglesThatMeetNoSegment) {
 }
 
 // Checks every sample marked unreached against every caster exactly; returns how many were.
-std::size_t expect_unreached_samples_are_lit(Scene s) {
+// `casters`: per triangle, whether it casts (default: all).
+std::size_t expect_unreached_samples_are_lit(Scene s, std::vector<std::uint8_t> casters = {}) {
   s.receivers.resize(s.samples.size(), no_receiver);
+  casters.resize(s.triangles.size(), 1);
   const CasterReach reach = reach_of(s);
   std::vector<float> x, y, z;
   for (const glm::vec3& p : s.samples) {
@@ -155,7 +157,6 @@ std::size_t expect_unreached_samples_are_lit(Scene s) {
     y.push_back(p.y);
     z.push_back(p.z);
   }
-  const std::vector<std::uint8_t> casters(s.triangles.size(), 1);
   const std::vector<std::uint8_t> reached =
       reach.samples_reached(s.triangles, casters, x, y, z, s.receivers);
   EXPECT_EQ(reached.size(), s.samples.size());
@@ -169,8 +170,9 @@ std::size_t expect_unreached_samples_are_lit(Scene s) {
     ReceiverPlane plane;
     if (r != no_receiver) plane = exact.receiver_plane(s.triangles[r]);
     for (std::size_t t = 0; t < s.triangles.size(); ++t)
-      if (t != r && exact.blocks(s.triangles[t],
-                                 MovedPoint{glm::dvec3(s.samples[i]), 0.0, {0, 0, 0}}, plane)) {
+      if (casters[t] && t != r &&
+          exact.blocks(s.triangles[t], MovedPoint{glm::dvec3(s.samples[i]), 0.0, {0, 0, 0}},
+                       plane)) {
         ADD_FAILURE() << "sample " << i << " marked unreached but triangle " << t
                       << " meets its segment";
         return unreached;
@@ -227,9 +229,17 @@ TEST(CasterReach, LevelCastersDoNotReachSamplesOnTheirOwnLevel) {
     // Most floor samples are out of reach of everything here.
     EXPECT_GT(unreached, s.samples.size() / 2);
     EXPECT_LT(unreached, s.samples.size());
+    // The floor only receives: the raised plate is the one level caster over its cells.
+    std::vector<std::uint8_t> casters(s.triangles.size(), 1);
+    std::fill(casters.begin(), casters.begin() + floor_triangles, 0);
+    EXPECT_EQ(expect_unreached_samples_are_lit(s, casters), unreached);
     // A tilted receiver: its samples are reached (the floor's triangles may shadow them).
     s.triangles.push_back({{-4, 0, -4}, {-3, 0.5f, -4}, {-4, 0, -3}, 0});
     for (std::uint32_t& r : s.receivers) r = floor_triangles + 3;
+    EXPECT_EQ(expect_unreached_samples_are_lit(s), 0u);
+    // A level receiver of zero area has no plane: the rule is void, the floor shadows.
+    s.triangles.push_back({{-4, 0, -4}, {-3, 0, -4}, {-2, 0, -4}, 0});
+    for (std::uint32_t& r : s.receivers) r = floor_triangles + 4;
     EXPECT_EQ(expect_unreached_samples_are_lit(s), 0u);
   }
 }
