@@ -12,19 +12,20 @@
 namespace shadowcts::psv {
 
 struct BuildStatistics {
-  std::uint64_t casters = 0;               // caster triangles of non-zero area
+  std::uint64_t casters = 0;              // caster triangles of non-zero area
+  std::uint64_t culled_out_of_reach = 0;  // meets no sample's segment (caster_reach.h)
+  // Of the casters that may reach a sample:
   std::uint64_t culled_front_facing = 0;   // closed meshes only
   std::uint64_t culled_flat = 0;           // the light lies in the triangle's plane: no volume
-  std::uint64_t culled_out_of_reach = 0;   // meets no sample's segment (caster_reach.h)
   std::uint64_t samples_out_of_reach = 0;  // regular samples no inserted triangle can reach
   std::uint64_t dropped_in_shadow = 0;     // reached a shadow leaf: inside another volume
   std::uint64_t volumes = 0;
   std::uint64_t height = 0;  // nodes on the longest root-to-leaf path
 };
 
-// The triangles inserted, in insertion order: the casters of `c` that have a volume (non-zero
-// area, the light not in their plane, not front-facing in a closed mesh that may cull — see
-// meshes_safe_for_face_culling and culling_clear_of_segment_starts) and may reach a sample,
+// The triangles inserted, in insertion order: the casters of `c` that may reach a sample and
+// have a volume (non-zero area, the light not in their plane, not front-facing in a closed mesh
+// that may cull — see meshes_safe_for_face_culling and culling_clear_of_segment_starts),
 // permuted by a Fisher-Yates shuffle driven by std::mt19937_64(seed) (the paper's randomized
 // build; the same order on every platform).
 // `face_culling`: per mesh, whether its light-facing triangles may be dropped.

@@ -47,8 +47,8 @@ SimdPsvBuild build_psv(const PreparedScene& scene, std::uint64_t seed) {
   const RegularSamples& s = scene.samples;
   run_with_thread_limit(c.parameters.threads, [&] {
     const CasterReach reach(build.light, s.px, s.py, s.pz);
-    const std::vector<std::uint32_t> order =
-        psv::insertion_order(c, *build.planes, face_culling, reach, seed, build.statistics);
+    const std::vector<std::uint32_t> order = psv::insertion_order(
+        c, scene.casters.casts, *build.planes, face_culling, reach, seed, build.statistics);
     std::vector<std::uint8_t> inserted(c.triangles.size(), 0);
     for (const std::uint32_t t : order) inserted[t] = 1;
     build.reached = reach.samples_reached(c.triangles, inserted, s.px, s.py, s.pz, s.receiver);

@@ -106,38 +106,38 @@ class ParallelDescents final : public ref::DescentEngine {
 
 }  // namespace
 
-std::vector<std::uint32_t> insertion_order(const Case& c, const ref::PlaneSide& planes,
+std::vector<std::uint32_t> insertion_order(const Case& c, const std::vector<std::uint8_t>& casts,
+                                           const ref::PlaneSide& planes,
                                            const std::vector<bool>& face_culling,
                                            const CasterReach& reach, std::uint64_t seed,
                                            ref::BuildStatistics& statistics) {
-  constexpr std::int8_t not_a_caster = 2;
+  // Per triangle: its light side (-1, 0, 1), or why it has none.
+  constexpr std::int8_t not_a_caster = 2, out_of_reach = 3;
   std::vector<std::int8_t> light_side(c.triangles.size(), not_a_caster);
-  std::vector<std::uint8_t> reaches(c.triangles.size(), 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, c.triangles.size(), 4096),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                        if (!casts_shadow(c, i)) continue;
+                        if (!casts[i]) continue;
                         const Triangle& t = c.triangles[i];
-                        light_side[i] = std::int8_t(planes.light_side(t));
-                        // Only where the reference asks (not flat, not culled as front-facing).
-                        if (light_side[i] != 0 && !(face_culling[t.mesh] && light_side[i] > 0))
-                          reaches[i] = reach.may_reach(t.v0, t.v1, t.v2) ? 1 : 0;
+                        light_side[i] = reach.may_reach(t.v0, t.v1, t.v2)
+                                            ? std::int8_t(planes.light_side(t))
+                                            : out_of_reach;
                       }
                     });
   std::vector<std::uint32_t> order;
   for (std::size_t i = 0; i < c.triangles.size(); ++i) {
     if (light_side[i] == not_a_caster) continue;
     ++statistics.casters;
+    if (light_side[i] == out_of_reach) {
+      ++statistics.culled_out_of_reach;
+      continue;
+    }
     if (light_side[i] == 0) {
       ++statistics.culled_flat;
       continue;
     }
     if (face_culling[c.triangles[i].mesh] && light_side[i] > 0) {
       ++statistics.culled_front_facing;
-      continue;
-    }
-    if (!reaches[i]) {
-      ++statistics.culled_out_of_reach;
       continue;
     }
     order.push_back(std::uint32_t(i));

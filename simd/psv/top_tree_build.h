@@ -16,8 +16,9 @@ namespace shadowcts::simd::psv {
 using BuildWork = ref::BatchWork;
 
 // ref::insertion_order with the light sides and reaches decided in parallel: the same order and
-// statistics.
-std::vector<std::uint32_t> insertion_order(const Case& c, const ref::PlaneSide& planes,
+// statistics. `casts`: the prepared scene's (CasterArrays::casts, casts_shadow's answers).
+std::vector<std::uint32_t> insertion_order(const Case& c, const std::vector<std::uint8_t>& casts,
+                                           const ref::PlaneSide& planes,
                                            const std::vector<bool>& face_culling,
                                            const CasterReach& reach, std::uint64_t seed,
                                            ref::BuildStatistics& statistics);
