@@ -273,81 +273,74 @@ std::vector<std::uint8_t> CasterReach::samples_reached(
   const std::size_t n = x.size();
   if (keeps_all_) return std::vector<std::uint8_t>(n, 1);
   if (n != samples_) throw std::invalid_argument("CasterReach: not the samples it was built on");
-  // Per plane, pyramids of the highest casters over each cell: level l has cells >> l a side. A
+  // Per plane, a pyramid of the highest caster over each cell: level l has cells >> l a side. A
   // caster raises the cells of the coarsest level that holds its box in 4 x 4 of them (at most 16
-  // cells, whatever its size); a sample reads its cell's ancestor on every level. "Level" casters
-  // (every vertex at one height: a floor across the plane's axis) are kept apart, the two highest
-  // heights per cell, because a level caster never shadows a sample whose receiver is level at
-  // its height: they are coplanar, and the receiver half-space rule counts only points strictly
-  // on the light's side of the receiver's plane. Maxima: the same for any order.
-  struct Highest {
-    float other = -INFINITY, level = -INFINITY, level_second = -INFINITY;
-  };
+  // cells, whatever its size); the levels are then pushed down into the finest, which a sample
+  // reads. Heights are float coordinates and maxima: exact, and the same for any order.
   struct Pyramid {
-    std::vector<std::vector<Highest>> levels;
+    std::vector<std::vector<float>> levels;
     std::unique_ptr<std::atomic<bool>[]> used;  // per level: some caster raised a cell there
     std::atomic<bool> open{false};  // a caster straddles the face's plane: every sample reached
   };
   std::vector<Pyramid> pyramids(grids_.size());
   for (std::size_t f = 0; f < grids_.size(); ++f) {
     for (int side = grids_[f].cells; side >= 1; side /= 2)
-      pyramids[f].levels.emplace_back(std::size_t(side) * std::size_t(side));
+      pyramids[f].levels.emplace_back(std::size_t(side) * std::size_t(side), -INFINITY);
     pyramids[f].used = std::make_unique<std::atomic<bool>[]>(pyramids[f].levels.size());
   }
-  const auto raise = [](float& cell, float h) {
-    std::atomic_ref<float> highest(cell);
-    for (float now = highest.load(std::memory_order_relaxed); h > now;)
-      if (highest.compare_exchange_weak(now, h, std::memory_order_relaxed)) break;
-  };
-  // Calls visit(cell, top, is_level) for every cell a caster raises (only level casters' cells
-  // when `levels_only`).
-  std::atomic<bool> any_level{false};
-  const auto each_cell = [&](const Triangle& t, bool levels_only, const auto& visit) {
-    const glm::dvec3 v[3] = {glm::dvec3(t.v0), glm::dvec3(t.v1), glm::dvec3(t.v2)};
-    double lo[2], hi[2], top;
-    for (std::size_t f = 0; f < grids_.size(); ++f) {
-      const Grid& g = grids_[f];
-      const bool level = v[0][g.axis] == v[1][g.axis] && v[1][g.axis] == v[2][g.axis];
-      if ((levels_only && !level) || pyramids[f].open.load(std::memory_order_relaxed)) continue;
-      const Footprint where = footprint(g, v, lo, hi, top, -infinity);
-      if (where == Footprint::straddles) pyramids[f].open = true;
-      if (where != Footprint::box || hi[0] < g.lo[0] || lo[0] > g.hi[0] || hi[1] < g.lo[1] ||
-          lo[1] > g.hi[1])
-        continue;
-      const int x0 = g.cell(0, lo[0]), x1 = g.cell(0, hi[0]);
-      const int y0 = g.cell(1, lo[1]), y1 = g.cell(1, hi[1]);
-      int l = 0;
-      while ((x1 >> l) - (x0 >> l) > 3 || (y1 >> l) - (y0 >> l) > 3) ++l;
-      const std::size_t side = std::size_t(g.cells >> l);
-      std::vector<Highest>& cells = pyramids[f].levels[std::size_t(l)];
-      if (!pyramids[f].used[l].load(std::memory_order_relaxed)) pyramids[f].used[l] = true;
-      for (int cy = y0 >> l; cy <= y1 >> l; ++cy)
-        for (int cx = x0 >> l; cx <= x1 >> l; ++cx)
-          visit(cells[std::size_t(cy) * side + std::size_t(cx)], float(top), level);
-    }
-  };
-  // Heights are float coordinates: exact.
   // In index order: neighbouring triangles share cells.
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), 4096),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      bool level_seen = false;
-                      for (std::size_t i = range.begin(); i != range.end(); ++i)
-                        if (casters[i])
-                          each_cell(triangles[i], false, [&](Highest& cell, float top, bool level) {
-                            level_seen = level_seen || level;
-                            raise(level ? cell.level : cell.other, top);
-                          });
-                      if (level_seen) any_level = true;
-                    });
-  if (any_level)
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), 4096),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                        for (std::size_t i = range.begin(); i != range.end(); ++i)
-                          if (casters[i])
-                            each_cell(triangles[i], true, [&](Highest& cell, float top, bool) {
-                              if (top < cell.level) raise(cell.level_second, top);
-                            });
-                      });
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, triangles.size(), 4096),
+      [&](const tbb::blocked_range<std::size_t>& range) {
+        double lo[2], hi[2], top;
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+          if (!casters[i]) continue;
+          const Triangle& t = triangles[i];
+          const glm::dvec3 v[3] = {glm::dvec3(t.v0), glm::dvec3(t.v1), glm::dvec3(t.v2)};
+          for (std::size_t f = 0; f < grids_.size(); ++f) {
+            const Grid& g = grids_[f];
+            Pyramid& pyramid = pyramids[f];
+            if (pyramid.open.load(std::memory_order_relaxed)) continue;
+            const Footprint where = footprint(g, v, lo, hi, top, -infinity);
+            if (where == Footprint::straddles) pyramid.open = true;
+            if (where != Footprint::box || hi[0] < g.lo[0] || lo[0] > g.hi[0] || hi[1] < g.lo[1] ||
+                lo[1] > g.hi[1])
+              continue;
+            const int x0 = g.cell(0, lo[0]), x1 = g.cell(0, hi[0]);
+            const int y0 = g.cell(1, lo[1]), y1 = g.cell(1, hi[1]);
+            int l = 0;
+            while ((x1 >> l) - (x0 >> l) > 3 || (y1 >> l) - (y0 >> l) > 3) ++l;
+            const std::size_t side = std::size_t(g.cells >> l);
+            std::vector<float>& cells = pyramid.levels[std::size_t(l)];
+            if (!pyramid.used[l].load(std::memory_order_relaxed)) pyramid.used[l] = true;
+            const float h = float(top);
+            for (int cy = y0 >> l; cy <= y1 >> l; ++cy)
+              for (int cx = x0 >> l; cx <= x1 >> l; ++cx) {
+                std::atomic_ref<float> highest(cells[std::size_t(cy) * side + std::size_t(cx)]);
+                for (float now = highest.load(std::memory_order_relaxed); h > now;)
+                  if (highest.compare_exchange_weak(now, h, std::memory_order_relaxed)) break;
+              }
+          }
+        }
+      });
+  for (std::size_t f = 0; f < grids_.size(); ++f) {
+    Pyramid& pyramid = pyramids[f];
+    std::size_t top_used = 0;
+    for (std::size_t l = 0; l < pyramid.levels.size(); ++l)
+      if (pyramid.used[l].load(std::memory_order_relaxed)) top_used = l;
+    for (std::size_t l = top_used; l-- > 0;) {
+      const std::size_t side = std::size_t(grids_[f].cells >> l);
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, side, 64),
+                        [&](const tbb::blocked_range<std::size_t>& rows) {
+                          for (std::size_t cy = rows.begin(); cy != rows.end(); ++cy)
+                            for (std::size_t cx = 0; cx < side; ++cx) {
+                              float& cell = pyramid.levels[l][cy * side + cx];
+                              cell = std::max(
+                                  cell, pyramid.levels[l + 1][(cy / 2) * (side / 2) + cx / 2]);
+                            }
+                        });
+    }
+  }
   std::vector<std::uint8_t> reached(n, 0);
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, n, 16384),
@@ -355,43 +348,40 @@ std::vector<std::uint8_t> CasterReach::samples_reached(
         double uv[2], height;
         std::uint32_t last_receiver = no_receiver;
         const Grid* last_grid = nullptr;
-        float plane = NAN;
+        double plane = -infinity;
         for (std::size_t s = range.begin(); s != range.end(); ++s) {
           const glm::dvec3 p(x[s], y[s], z[s]);
           const std::size_t f = std::size_t(grid_of(p));
-          const Pyramid& pyramid = pyramids[f];
-          if (pyramid.open) {
+          if (pyramids[f].open) {
             reached[s] = 1;
             continue;
           }
           const Grid& g = grids_[f];
           project(g, p, uv, height);
-          // The height of the receiver's plane when it is level (and not of zero area, which has
-          // no plane: the rule is void); NaN, equal to nothing, otherwise. Neighbouring samples
-          // mostly share their receiver and plane.
+          // The receiver half-space rule counts only points strictly on the light's side of the
+          // receiver's plane. Where that plane lies across the grid's axis (every vertex at one
+          // height; not of zero area, which has no plane and voids the rule) with the light
+          // higher, those points are higher than the plane: a caster must rise above it, and a
+          // coplanar floor never does. Neighbouring samples mostly share their receiver.
           if (receivers[s] != last_receiver || &g != last_grid) {
             last_receiver = receivers[s];
             last_grid = &g;
-            plane = NAN;
+            plane = -infinity;
             if (last_receiver < triangles.size()) {
               const Triangle& r = triangles[last_receiver];
+              double dummy[2], h_plane, h_light;
+              project(g, glm::dvec3(r.v0), dummy, h_plane);
+              h_light = light_.directional ? infinity : -g.sign * light_.position[g.axis];
               if (r.v0[g.axis] == r.v1[g.axis] && r.v1[g.axis] == r.v2[g.axis] &&
-                  !triangle_has_zero_area(r.v0, r.v1, r.v2))
-                plane = float((light_.directional ? g.sign : -g.sign) * double(r.v0[g.axis]));
+                  h_plane < h_light && !triangle_has_zero_area(r.v0, r.v1, r.v2))
+                plane = h_plane;
             }
           }
-          const int cx = g.cell(0, uv[0]), cy = g.cell(1, uv[1]);
-          float highest = -INFINITY;
-          for (std::size_t l = 0; l < pyramid.levels.size(); ++l) {
-            if (!pyramid.used[l].load(std::memory_order_relaxed)) continue;
-            const Highest& cell =
-                pyramid.levels[l][std::size_t(cy >> l) * std::size_t(g.cells >> l) +
-                                  std::size_t(cx >> l)];
-            highest = std::max(
-                {highest, cell.other, cell.level == plane ? cell.level_second : cell.level});
-          }
-          // Some caster over the cell reaches as high as the sample.
-          reached[s] = double(highest) >= height ? 1 : 0;
+          const float highest =
+              pyramids[f].levels.front()[std::size_t(g.cell(1, uv[1])) * std::size_t(g.cells) +
+                                         std::size_t(g.cell(0, uv[0]))];
+          // Some caster over the cell reaches as high as the sample, and above its plane.
+          reached[s] = double(highest) >= height && double(highest) > plane ? 1 : 0;
         }
       });
   return reached;

@@ -11,7 +11,8 @@
 // triangle can meet a segment only where its projection covers the sample's projection, and only
 // at a point no lower than that sample, so it is kept iff its projected box (widened by a proven
 // bound on the rounding of every projection) covers a cell whose lowest sample is no higher than
-// its highest vertex. Everything else is dropped.
+// its highest vertex. Everything else is dropped. The converse, samples_reached, finds the
+// samples that no kept caster reaches: they are lit without a query.
 #include <cstdint>
 #include <span>
 #include <vector>
