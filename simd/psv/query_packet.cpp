@@ -221,33 +221,39 @@ Packets tile_packets(const RegularSamples& samples, const std::vector<std::uint8
                      std::uint32_t width, std::uint32_t packet_size) {
   constexpr std::uint32_t tile = 4;
   width = std::max<std::uint32_t>(width, 1);
-  const std::uint32_t tiles_across = (width + tile - 1) / tile;
-  const auto tile_of = [&](std::uint32_t pixel) {
-    return std::uint64_t(pixel / width / tile) * tiles_across + pixel % width / tile;
-  };
+  const std::uint64_t tiles_across = (width + tile - 1) / tile;
+  // The queried samples with their tile (band of 4 rows, then column): one division each.
+  std::vector<std::uint32_t> kept;
+  std::vector<std::uint64_t> tile_of;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    if (!queried[i]) continue;
+    const std::uint32_t pixel = samples.index[i], y = pixel / width;
+    kept.push_back(std::uint32_t(i));
+    tile_of.push_back(std::uint64_t(y / tile) * tiles_across + (pixel - y * width) / tile);
+  }
   Packets packets;
-  packets.sample.resize(samples.size());
-  // The samples are in pixel order, so a band of 4 rows is a run of them: within it, a
-  // counting sort by tile column keeps each tile's samples in pixel order.
+  packets.sample.resize(kept.size());
+  std::vector<std::uint64_t> sorted_tile(kept.size());
+  // The samples are in pixel order, so a band is a run of them: within it, a counting sort by
+  // tile column keeps each tile's samples in pixel order.
   std::vector<std::uint32_t> count(tiles_across + 1);
-  for (std::size_t band = 0; band < samples.size();) {
-    const std::uint32_t row = samples.index[band] / width / tile;
+  for (std::size_t band = 0; band < kept.size();) {
+    const std::uint64_t first_tile = tile_of[band] / tiles_across * tiles_across;
     std::size_t end = band;
-    while (end < samples.size() && samples.index[end] / width / tile == row) ++end;
+    while (end < kept.size() && tile_of[end] / tiles_across * tiles_across == first_tile) ++end;
     std::fill(count.begin(), count.end(), 0u);
-    for (std::size_t i = band; i < end; ++i) ++count[samples.index[i] % width / tile + 1];
-    for (std::uint32_t t = 0; t < tiles_across; ++t) count[t + 1] += count[t];
-    for (std::size_t i = band; i < end; ++i)
-      packets.sample[band + count[samples.index[i] % width / tile]++] = std::uint32_t(i);
+    for (std::size_t k = band; k < end; ++k) ++count[tile_of[k] - first_tile + 1];
+    for (std::uint64_t t = 0; t < tiles_across; ++t) count[t + 1] += count[t];
+    for (std::size_t k = band; k < end; ++k) {
+      const std::size_t at = band + count[tile_of[k] - first_tile]++;
+      packets.sample[at] = kept[k];
+      sorted_tile[at] = tile_of[k];
+    }
     band = end;
   }
-  std::erase_if(packets.sample, [&](std::uint32_t i) { return !queried[i]; });
-  for (std::size_t i = 0; i < packets.sample.size(); ++i) {
-    const bool new_tile = i == 0 || tile_of(samples.index[packets.sample[i]]) !=
-                                        tile_of(samples.index[packets.sample[i - 1]]);
-    if (new_tile || i - packets.begin.back() == packet_size)
-      packets.begin.push_back(std::uint32_t(i));
-  }
+  for (std::size_t k = 0; k < packets.sample.size(); ++k)
+    if (k == 0 || sorted_tile[k] != sorted_tile[k - 1] || k - packets.begin.back() == packet_size)
+      packets.begin.push_back(std::uint32_t(k));
   packets.begin.push_back(std::uint32_t(packets.sample.size()));
   return packets;
 }
