@@ -4,6 +4,7 @@
 
 #include "shadowcts/errors.h"
 #include "shadowcts/geometry/triangle_area.h"
+#include "shadowcts/prepared_scene.h"
 
 namespace shadowcts {
 
@@ -42,6 +43,14 @@ bool casts_shadow(const Case& c, std::size_t i) {
     throw InputError(c.source, "triangles[" + std::to_string(i) + "].mesh",
                      "mesh id " + std::to_string(t.mesh) + " out of range");
   return c.meshes[t.mesh].caster && !triangle_has_zero_area(t.v0, t.v1, t.v2);
+}
+
+void check_receivers(const Case& c, const RegularSamples& samples) {
+  for (std::size_t i = 0; i < samples.size(); ++i)
+    if (samples.receiver[i] != no_receiver && samples.receiver[i] >= c.triangles.size())
+      throw InputError(
+          c.source, "view sample " + std::to_string(samples.index[i]),
+          "receiver " + std::to_string(samples.receiver[i]) + " is not a triangle index");
 }
 
 void check_receivers(const Case& c, const ViewSamples& samples) {

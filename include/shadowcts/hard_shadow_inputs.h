@@ -8,6 +8,8 @@
 
 namespace shadowcts {
 
+struct RegularSamples;  // shadowcts/prepared_scene.h
+
 struct HardShadowLight {
   bool directional = false;
   glm::dvec3 position{0.0};   // point light L (float values held exactly)
@@ -29,5 +31,7 @@ bool casts_shadow(const Case& c, std::size_t i);
 // Throws InputError naming the sample when a regular sample's receiver is neither no_receiver
 // nor a triangle index of the case.
 void check_receivers(const Case& c, const ViewSamples& samples);
+// The same from the prepared scene's regular samples (the same message).
+void check_receivers(const Case& c, const RegularSamples& samples);
 
 }  // namespace shadowcts

@@ -37,7 +37,7 @@ SimdPsvBuild build_psv(const PreparedScene& scene, std::uint64_t seed) {
   SimdPsvBuild result;
   ref::PsvBuild& build = result.build;
   build.light = hard_shadow_light(c);
-  check_receivers(c, scene.view_samples);
+  check_receivers(c, scene.samples);
   build.planes =
       std::make_unique<ref::PlaneSide>(build.light, c.triangles, coordinate_bound(scene));
   const PlaneSide planes(*build.planes);

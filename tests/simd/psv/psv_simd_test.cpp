@@ -15,6 +15,7 @@
 #include "hand_built_case.h"
 #include "metric_test_cases.h"
 #include "reference/psv/psv_shadows.h"
+#include "shadowcts/errors.h"
 #include "shadowcts/fixtures.h"
 #include "shadowcts/prepared_scene.h"
 #include "simd/psv/psv_algorithm.h"
@@ -317,6 +318,27 @@ TEST(SimdPsv, SameBytesOnOneAndTwoThreads) {
     EXPECT_EQ(one.nodes_visited, two.nodes_visited);
     EXPECT_EQ(one.counters, two.counters);
   }
+}
+
+// A receiver that is not a triangle index: the reference's error, naming the view sample, from
+// both backends (the port checks the prepared samples).
+TEST(SimdPsv, ReceiverOutOfRangeNamesTheViewSample) {
+  FixtureCase f = load_fixture("ground_blockers.10k", 48);
+  std::size_t bad = 0;
+  while (f.samples.samples[bad].sample_class != SampleClass::regular) ++bad;
+  f.samples.samples[bad].receiver = std::uint32_t(f.c.triangles.size() + 7);
+  const std::string where = "view sample " + std::to_string(bad);
+  const auto expect_error = [&](const auto& run) {
+    try {
+      run();
+      ADD_FAILURE() << "no error";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(where), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("is not a triangle index"), std::string::npos);
+    }
+  };
+  expect_error([&] { ref::build_psv(f.c, f.samples, 1); });
+  expect_error([&] { build_psv(prepare_scene(f.c, f.samples), 1); });
 }
 
 TEST(SimdPsv, RegisteredWithTheReferenceVariants) {
