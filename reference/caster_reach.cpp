@@ -267,7 +267,7 @@ bool CasterReach::may_reach(const glm::vec3& a, const glm::vec3& b, const glm::v
 }
 
 std::vector<std::uint8_t> CasterReach::samples_reached(
-    std::span<const Triangle> triangles, std::span<const std::uint8_t> casters,
+    std::span<const Triangle> triangles, std::span<const std::uint32_t> casters,
     std::span<const float> x, std::span<const float> y, std::span<const float> z,
     std::span<const std::uint32_t> receivers) const {
   const std::size_t n = x.size();
@@ -288,13 +288,15 @@ std::vector<std::uint8_t> CasterReach::samples_reached(
       pyramids[f].levels.emplace_back(std::size_t(side) * std::size_t(side), -INFINITY);
     pyramids[f].used = std::make_unique<std::atomic<bool>[]>(pyramids[f].levels.size());
   }
-  // In index order: neighbouring triangles share cells.
+  // In index order, whatever the casters' order: neighbouring triangles share cells.
+  std::vector<std::uint8_t> is_caster(triangles.size(), 0);
+  for (const std::uint32_t t : casters) is_caster[t] = 1;
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, triangles.size(), 4096),
       [&](const tbb::blocked_range<std::size_t>& range) {
         double lo[2], hi[2], top;
         for (std::size_t i = range.begin(); i != range.end(); ++i) {
-          if (!casters[i]) continue;
+          if (!is_caster[i]) continue;
           const Triangle& t = triangles[i];
           const glm::dvec3 v[3] = {glm::dvec3(t.v0), glm::dvec3(t.v1), glm::dvec3(t.v2)};
           for (std::size_t f = 0; f < grids_.size(); ++f) {
@@ -369,9 +371,9 @@ std::vector<std::uint8_t> CasterReach::samples_reached(
             plane = -infinity;
             if (last_receiver < triangles.size()) {
               const Triangle& r = triangles[last_receiver];
-              double dummy[2], h_plane, h_light;
-              project(g, glm::dvec3(r.v0), dummy, h_plane);
-              h_light = light_.directional ? infinity : -g.sign * light_.position[g.axis];
+              const double up = light_.directional ? g.sign : -g.sign;  // project()'s heights
+              const double h_plane = up * double(r.v0[g.axis]);
+              const double h_light = light_.directional ? infinity : up * light_.position[g.axis];
               if (r.v0[g.axis] == r.v1[g.axis] && r.v1[g.axis] == r.v2[g.axis] &&
                   h_plane < h_light && !triangle_has_zero_area(r.v0, r.v1, r.v2))
                 plane = h_plane;

@@ -37,11 +37,11 @@ class CasterReach {
   bool may_reach(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) const;
 
   // Per sample of `x`, `y`, `z`, which must be the samples it was built on, with its receiver
-  // (an index into `triangles`, or no_receiver): 0 only if none of the triangles with
-  // `casters[t]` set shadows it under the receiver half-space rule, so that it is lit by them.
+  // (an index into `triangles`, or no_receiver): 0 only if none of `casters` (indices into
+  // `triangles`) shadows it under the receiver half-space rule, so that it is lit by them.
   // Deterministic for any thread count.
   std::vector<std::uint8_t> samples_reached(std::span<const Triangle> triangles,
-                                            std::span<const std::uint8_t> casters,
+                                            std::span<const std::uint32_t> casters,
                                             std::span<const float> x, std::span<const float> y,
                                             std::span<const float> z,
                                             std::span<const std::uint32_t> receivers) const;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -87,15 +88,16 @@ std::vector<std::uint32_t> prepare_build(const Case& c, const ViewSamples& sampl
       z.push_back(s.position.z);
       receivers.push_back(s.receiver);
     }
-  const CasterReach reach(build.light, x, y, z);
+  std::optional<CasterReach> reach;  // its grids are filled on oneTBB threads
+  run_with_thread_limit(c.parameters.threads, [&] { reach.emplace(build.light, x, y, z); });
   std::vector<std::uint32_t> order =
       insertion_order(c, *build.planes,
                       culling_clear_of_segment_starts(c, samples, build.light,
                                                       meshes_safe_for_face_culling(c, samples)),
-                      reach, seed, build.statistics);
-  std::vector<std::uint8_t> inserted(c.triangles.size(), 0);
-  for (const std::uint32_t t : order) inserted[t] = 1;
-  build.reached = reach.samples_reached(c.triangles, inserted, x, y, z, receivers);
+                      *reach, seed, build.statistics);
+  run_with_thread_limit(c.parameters.threads, [&] {
+    build.reached = reach->samples_reached(c.triangles, order, x, y, z, receivers);
+  });
   build.statistics.samples_out_of_reach =
       std::uint64_t(std::count(build.reached.begin(), build.reached.end(), std::uint8_t(0)));
   return order;

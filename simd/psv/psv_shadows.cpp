@@ -49,9 +49,7 @@ SimdPsvBuild build_psv(const PreparedScene& scene, std::uint64_t seed) {
     const CasterReach reach(build.light, s.px, s.py, s.pz);
     const std::vector<std::uint32_t> order = psv::insertion_order(
         c, scene.casters.casts, *build.planes, face_culling, reach, seed, build.statistics);
-    std::vector<std::uint8_t> inserted(c.triangles.size(), 0);
-    for (const std::uint32_t t : order) inserted[t] = 1;
-    build.reached = reach.samples_reached(c.triangles, inserted, s.px, s.py, s.pz, s.receiver);
+    build.reached = reach.samples_reached(c.triangles, order, s.px, s.py, s.pz, s.receiver);
     build.statistics.samples_out_of_reach =
         std::uint64_t(std::count(build.reached.begin(), build.reached.end(), std::uint8_t(0)));
     build.tree =

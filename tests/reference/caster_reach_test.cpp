@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -157,8 +158,12 @@ std::size_t expect_unreached_samples_are_lit(Scene s, std::vector<std::uint8_t> 
     y.push_back(p.y);
     z.push_back(p.z);
   }
+  std::vector<std::uint32_t> listed;  // in a shuffled order: the answer must not depend on it
+  for (std::uint32_t t = 0; t < casters.size(); ++t)
+    if (casters[t]) listed.push_back(t);
+  std::shuffle(listed.begin(), listed.end(), std::mt19937(9));
   const std::vector<std::uint8_t> reached =
-      reach.samples_reached(s.triangles, casters, x, y, z, s.receivers);
+      reach.samples_reached(s.triangles, listed, x, y, z, s.receivers);
   EXPECT_EQ(reached.size(), s.samples.size());
   const ExactShadowPredicate exact(s.light, bound_of(s));
   std::size_t unreached = 0;
