@@ -52,7 +52,7 @@ void CasterReach::project(const Grid& g, const glm::dvec3& p, double uv[2], doub
     // ratios, bounded in may_reach). The height along the axis is exact.
     uv[0] = p[i] - p[g.axis] * ratio_[i];
     uv[1] = p[j] - p[g.axis] * ratio_[j];
-    height = g.sign * p[g.axis];
+    height = g.up * p[g.axis];
     return;
   }
   // Centrally from the light onto the face at distance 1: L + t (p - L), t > 0, lands where p
@@ -61,9 +61,9 @@ void CasterReach::project(const Grid& g, const glm::dvec3& p, double uv[2], doub
   const double m = g.sign * q[g.axis];
   uv[0] = q[i] / m;
   uv[1] = q[j] / m;
-  // Nearer to the light is higher. The exact coordinate, not m: the rounded difference m is
-  // monotone in it, so both order points alike, and this one is exact.
-  height = -g.sign * p[g.axis];
+  // The exact coordinate, not m: the rounded difference m is monotone in it, so both order points
+  // alike, and this one is exact.
+  height = g.up * p[g.axis];
 }
 
 int CasterReach::face_of(const glm::dvec3& p) const {
@@ -84,11 +84,12 @@ CasterReach::CasterReach(const HardShadowLight& light, std::span<const float> x,
   for (int f = 0; f < 6; ++f) {
     faces[f].axis = f / 2;
     faces[f].sign = f % 2 == 0 ? 1.0 : -1.0;
+    faces[f].up = -faces[f].sign;  // nearer to the point light is higher
   }
   if (light_.directional) {
     const int axis = dominant_axis(light_.direction);
     faces[0].axis = axis;
-    faces[0].sign = light_.direction[axis] > 0.0 ? 1.0 : -1.0;
+    faces[0].sign = faces[0].up = light_.direction[axis] > 0.0 ? 1.0 : -1.0;
     for (int i = 0; i < 3; ++i) ratio_[i] = light_.direction[i] / light_.direction[axis];
   }
 
@@ -191,43 +192,22 @@ bool CasterReach::covers(const Grid& g, const double lo[2], const double hi[2], 
 
 CasterReach::Footprint CasterReach::footprint(const Grid& g, const glm::dvec3 v[3], double lo[2],
                                               double hi[2], double& top, double below) const {
-  double uv[2], height;
-  if (light_.directional) {
-    // Exact: the triangle's highest point is a vertex.
-    top = std::max({v[0][g.axis] * g.sign, v[1][g.axis] * g.sign, v[2][g.axis] * g.sign});
-    if (top < below) return Footprint::none;
-    double bound = sample_bound_;
-    for (int k = 0; k < 2; ++k) lo[k] = infinity, hi[k] = -infinity;
+  if (!light_.directional) {
+    // The triangle meets a segment of this face's samples only at points in front of the light
+    // on this axis (the segment's points other than the light itself are). Signs are exact.
+    int positive = 0, negative = 0;
     for (int i = 0; i < 3; ++i) {
-      project(g, v[i], uv, height);
-      for (int k = 0; k < 2; ++k) {
-        lo[k] = std::min(lo[k], uv[k]);
-        hi[k] = std::max(hi[k], uv[k]);
-      }
-      bound = std::max({bound, std::fabs(v[i].x), std::fabs(v[i].y), std::fabs(v[i].z)});
+      const double m = g.sign * (v[i][g.axis] - light_.position[g.axis]);
+      positive += m > 0.0;
+      negative += m < 0.0;
     }
-    // Every projection here is within 3 B 2^-53 of the exact linear map with the rounded ratios
-    // (B: the largest coordinate), and that map moves by at most 2 B 2^-53 along a segment
-    // inside the bound: 2^-47 B covers a sample whose segment meets the triangle, 8 times over.
-    const double margin = bound * 0x1p-47;
-    for (int k = 0; k < 2; ++k) {
-      lo[k] -= margin;
-      hi[k] += margin;
-    }
-    return Footprint::box;
+    if (negative == 3) return Footprint::none;
+    if (positive < 3) return Footprint::straddles;
   }
-  // The triangle meets a segment of this face's samples only at points in front of the light on
-  // this axis (the segment's points other than the light itself are). Signs are exact.
-  int positive = 0, negative = 0;
-  for (int i = 0; i < 3; ++i) {
-    const double m = g.sign * (v[i][g.axis] - light_.position[g.axis]);
-    positive += m > 0.0;
-    negative += m < 0.0;
-  }
-  if (negative == 3) return Footprint::none;
-  if (positive < 3) return Footprint::straddles;
-  top = -std::min({v[0][g.axis] * g.sign, v[1][g.axis] * g.sign, v[2][g.axis] * g.sign});
+  // Exact: the triangle's highest point is a vertex.
+  top = std::max({g.up * v[0][g.axis], g.up * v[1][g.axis], g.up * v[2][g.axis]});
   if (top < below) return Footprint::none;
+  double uv[2], height;
   for (int k = 0; k < 2; ++k) lo[k] = infinity, hi[k] = -infinity;
   for (int i = 0; i < 3; ++i) {
     project(g, v[i], uv, height);
@@ -236,10 +216,20 @@ CasterReach::Footprint CasterReach::footprint(const Grid& g, const glm::dvec3 v[
       hi[k] = std::max(hi[k], uv[k]);
     }
   }
-  // A quotient of two once-rounded differences is within 3.1 ulp of the exact ratio: the
-  // vertices' by |value| 2^-51, the samples' (|value| <= 1 on their own face) by 2^-51.
+  // Directional: every projection here is within 3 B 2^-53 of the exact linear map with the
+  // rounded ratios (B: the largest coordinate), and that map moves by at most 2 B 2^-53 along a
+  // segment inside the bound: 2^-47 B covers a sample whose segment meets the triangle, 8 times
+  // over. Point light: a quotient of two once-rounded differences is within 3.1 ulp of the exact
+  // ratio: the vertices' by |value| 2^-51, the samples' (|value| <= 1 on their own face) by
+  // 2^-51.
+  double bound = sample_bound_;
+  if (light_.directional)
+    for (int i = 0; i < 3; ++i)
+      bound = std::max({bound, std::fabs(v[i].x), std::fabs(v[i].y), std::fabs(v[i].z)});
   for (int k = 0; k < 2; ++k) {
-    const double margin = (std::max(std::fabs(lo[k]), std::fabs(hi[k])) + 1.0) * 0x1p-49;
+    const double margin = light_.directional
+                              ? bound * 0x1p-47
+                              : (std::max(std::fabs(lo[k]), std::fabs(hi[k])) + 1.0) * 0x1p-49;
     lo[k] -= margin;
     hi[k] += margin;
   }
@@ -371,9 +361,8 @@ std::vector<std::uint8_t> CasterReach::samples_reached(
             plane = -infinity;
             if (last_receiver < triangles.size()) {
               const Triangle& r = triangles[last_receiver];
-              const double up = light_.directional ? g.sign : -g.sign;  // project()'s heights
-              const double h_plane = up * double(r.v0[g.axis]);
-              const double h_light = light_.directional ? infinity : up * light_.position[g.axis];
+              const double h_plane = g.up * double(r.v0[g.axis]);
+              const double h_light = light_.directional ? infinity : g.up * light_.position[g.axis];
               if (r.v0[g.axis] == r.v1[g.axis] && r.v1[g.axis] == r.v2[g.axis] &&
                   h_plane < h_light && !triangle_has_zero_area(r.v0, r.v1, r.v2))
                 plane = h_plane;

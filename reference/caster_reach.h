@@ -56,6 +56,8 @@ class CasterReach {
   struct Grid {
     int axis = 0;
     double sign = 1.0;
+    // A point's height (towards the light) is up * its coordinate on the axis: exact.
+    double up = 1.0;
     double lo[2] = {0.0, 0.0}, hi[2] = {0.0, 0.0};
     double scale[2] = {0.0, 0.0};  // cells per unit
     int cells = 1;                 // per side
