@@ -12,6 +12,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "reference/closed_mesh_culling.h"
 #include "reference/sample_access.h"
 #include "shadowcts/geometry/receiver_half_space.h"
 #include "shadowcts/thread_limit.h"
@@ -55,17 +56,14 @@ Orientation receiver_orientation(const Triangle& r) {
 template <class Samples>
 std::vector<bool> clear_of_segment_starts(const Case& c, const Samples& samples,
                                           const HardShadowLight& light, std::vector<bool> safe) {
+  if (std::find(safe.begin(), safe.end(), true) == safe.end()) return safe;
+  // The safe meshes' boxes (an empty mesh's is empty and meets nothing).
   std::vector<Box> boxes(safe.size());
-  bool any = false;
-  for (const Triangle& t : c.triangles) {
-    if (t.mesh >= safe.size() || !safe[t.mesh]) continue;
-    any = true;
-    for (const glm::vec3& v : {t.v0, t.v1, t.v2}) {
-      boxes[t.mesh].lo = glm::min(boxes[t.mesh].lo, glm::dvec3(v));
-      boxes[t.mesh].hi = glm::max(boxes[t.mesh].hi, glm::dvec3(v));
-    }
-  }
-  if (!any) return safe;
+  run_with_thread_limit(c.parameters.threads, [&] {
+    const MeshBoxes mesh = mesh_boxes(c);
+    for (std::size_t m = 0; m < std::min(safe.size(), mesh.lo.size()); ++m)
+      if (safe[m]) boxes[m] = {glm::dvec3(mesh.lo[m]), glm::dvec3(mesh.hi[m])};
+  });
   // Samples in parallel, each range switching off in its own copy the meshes whose boxes meet a
   // segment start's box; a mesh stays safe only where no range switched it off.
   const std::vector<char> initially(safe.begin(), safe.end());
