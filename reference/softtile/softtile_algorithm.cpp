@@ -45,7 +45,8 @@ class Softtile final : public VariantTableAlgorithm<softtile::Variant> {
     PhaseClock clock;
     AlgorithmOutput output;
     output.visible_fraction.assign(samples.samples.size(), 1.0f);
-    const Gathered gathered = gather(c, samples);
+    Gathered gathered;
+    run_with_thread_limit(c.parameters.threads, [&] { gathered = gather(c, samples); });
     clock.lap(build_phase);
     const DiskBitmask empty_disk(variant);
     const float inverse_scale = disk_inverse_scale(gathered, variant);

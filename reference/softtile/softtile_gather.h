@@ -35,6 +35,18 @@ struct GatheredCluster {
   std::uint32_t first = 0, count = 0;  // range in Gathered::triangles
 };
 
+struct GatherCounts {
+  std::uint64_t clusters_in = 0, clusters_culled = 0, triangles_culled = 0,
+                light_facing_dropped = 0;
+  GatherCounts& operator+=(const GatherCounts& o) {
+    clusters_in += o.clusters_in;
+    clusters_culled += o.clusters_culled;
+    triangles_culled += o.triangles_culled;
+    light_facing_dropped += o.light_facing_dropped;
+    return *this;
+  }
+};
+
 struct Gathered {
   SunGeometry sun;
   LightSpace light_space;
@@ -43,6 +55,23 @@ struct Gathered {
   // Counters.
   std::uint64_t clusters_in = 0, clusters_culled = 0, triangles_culled = 0,
                 light_facing_dropped = 0;
+  void set_counts(const GatherCounts& counts) {
+    clusters_in = counts.clusters_in;
+    clusters_culled = counts.clusters_culled;
+    triangles_culled = counts.triangles_culled;
+    light_facing_dropped = counts.light_facing_dropped;
+  }
+};
+
+// What the gather of every cluster reads: the sun, light space, the bound of the frame's relevant
+// samples and the meshes whose light-facing triangles it drops. No relevant sample: nothing else.
+struct GatherFrame {
+  SunGeometry sun;
+  LightSpace light_space;
+  double sin_radius = 0.0;
+  bool any_sample = false;
+  TileBound bound;                      // a sphere
+  std::vector<bool> cull_light_facing;  // per mesh
 };
 
 // Mesh clusters: runs of up to this many consecutive triangles of one mesh (the case has no
@@ -54,6 +83,18 @@ inline constexpr std::uint32_t cluster_size = 64;
 // it shadows inside it; the samples' bound is that region, tight), and drops triangles that face
 // the light for every direction of the disk only in meshes proven closed: a ray towards the light
 // from outside a closed mesh that enters it also leaves it through a face that does not.
+// gather_frame(), then gather_cluster() for each cluster in triangle order.
 Gathered gather(const Case& c, const ViewSamples& samples);
+
+GatherFrame gather_frame(const Case& c, const ViewSamples& samples);
+
+// The end of the cluster that starts at triangle `first` (< the triangle count).
+std::size_t cluster_end(const Case& c, std::size_t first);
+
+// The cluster of triangles [first, stop): its survivors appended to `triangles` in order, its
+// counts added to `counts`; the returned cluster's range is in `triangles` (count 0: none kept).
+GatheredCluster gather_cluster(const Case& c, const GatherFrame& frame, std::size_t first,
+                               std::size_t stop, std::vector<GatheredTriangle>& triangles,
+                               GatherCounts& counts);
 
 }  // namespace shadowcts::softtile

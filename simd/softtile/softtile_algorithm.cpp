@@ -13,6 +13,7 @@
 #include "shadowcts/phase_progress.h"
 #include "shadowcts/thread_limit.h"
 #include "simd/softtile/shadow_cone.h"
+#include "simd/softtile/softtile_gather.h"
 
 namespace shadowcts::simd {
 namespace softtile {
@@ -71,8 +72,12 @@ class SimdSofttile final : public VariantTableAlgorithm<ref::Variant> {
     PhaseClock clock;
     AlgorithmOutput output;
     output.visible_fraction.assign(samples.samples.size(), 1.0f);
-    const ref::Gathered gathered = ref::gather(c, samples);
-    const softtile::GatheredCones cones = softtile::gathered_cones(gathered);
+    ref::Gathered gathered;
+    softtile::GatheredCones cones;
+    run_with_thread_limit(c.parameters.threads, [&] {
+      gathered = softtile::gather(c, samples);
+      cones = softtile::gathered_cones(gathered);
+    });
     clock.lap(build_phase);
     const softtile::DiskRaster raster(variant);
     const float inverse_scale = ref::disk_inverse_scale(gathered, variant);

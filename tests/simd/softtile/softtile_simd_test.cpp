@@ -25,6 +25,7 @@
 #include "simd/softtile/fragment_occlusion.h"
 #include "simd/softtile/shadow_cone.h"
 #include "simd/softtile/softtile_algorithm.h"
+#include "simd/softtile/softtile_gather.h"
 
 namespace shadowcts {
 namespace {
@@ -439,6 +440,53 @@ TEST(SimdSofttile, AnswersAndCountersEqualTheReference) {
                 reference->soft_error_budget(variant).per_sample);
     }
   }
+}
+
+// Where two gathers first differ (cluster, triangle, counter), or "".
+std::string first_gather_difference(const ref::Gathered& want, const ref::Gathered& got) {
+  const auto same_cone = [](const ref::ShadowCone& a, const ref::ShadowCone& b) {
+    return a.tip == b.tip && a.start_height == b.start_height;
+  };
+  for (std::size_t k = 0; k < std::min(want.clusters.size(), got.clusters.size()); ++k) {
+    const ref::GatheredCluster &a = want.clusters[k], &b = got.clusters[k];
+    if (a.first != b.first || a.count != b.count || !same_cone(a.cone, b.cone))
+      return "cluster " + std::to_string(k);
+  }
+  if (want.clusters.size() != got.clusters.size()) return "cluster count";
+  for (std::size_t k = 0; k < std::min(want.triangles.size(), got.triangles.size()); ++k) {
+    const ref::GatheredTriangle &a = want.triangles[k], &b = got.triangles[k];
+    if (a.triangle != b.triangle || a.light_space != b.light_space || !same_cone(a.cone, b.cone))
+      return "triangle " + std::to_string(k) + " (reference triangle " +
+             std::to_string(a.triangle) + ", simd " + std::to_string(b.triangle) + ")";
+  }
+  if (want.triangles.size() != got.triangles.size()) return "triangle count";
+  if (want.clusters_in != got.clusters_in || want.clusters_culled != got.clusters_culled ||
+      want.triangles_culled != got.triangles_culled ||
+      want.light_facing_dropped != got.light_facing_dropped)
+    return "counters";
+  return "";
+}
+
+// The clusters gathered in parallel blocks and joined: the reference's gather, for any thread
+// count, on a frame of many clusters and on closed meshes under a wide sun (light-facing drops).
+TEST(SimdSofttile, GatherEqualsTheReferenceClusterForClusterOnAnyThreadCount) {
+  for (const Case& c : {small_foliage(), make_fixture("stiff.sun_radius_45_degrees")}) {
+    SCOPED_TRACE(c.name);
+    const ViewSamples samples = generate_view_samples(c);
+    const ref::Gathered want = ref::gather(c, samples);
+    ASSERT_GT(want.clusters.size(), 1u);
+    for (const int threads : {1, 2}) {
+      const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                                      std::size_t(threads));
+      EXPECT_EQ(first_gather_difference(want, port::gather(c, samples)), "") << threads;
+    }
+  }
+  // More clusters than one parallel block holds, some of them culled.
+  const Case c = make_fixture("foliage.10k");
+  const ViewSamples samples = generate_view_samples(c);
+  const ref::Gathered want = ref::gather(c, samples);
+  EXPECT_GT(want.clusters.size(), 64u);
+  EXPECT_EQ(first_gather_difference(want, port::gather(c, samples)), "");
 }
 
 TEST(SimdSofttile, ResultsDoNotDependOnTheThreadCountOrTheHighwayTarget) {
