@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <limits>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -24,12 +26,29 @@ void rasterize_tile(const ViewSamples& samples, const ref::Gathered& gathered,
                     const DiskRaster& raster, const ref::Tile& tile, TileScratch& scratch,
                     TileRaster& out) {
   const std::size_t n = tile.pixels.size();
-  out.masks.assign(n, raster.empty_disk());
   out.tests = out.rasterized = out.rasterized_max = 0;
+  // The fragments in order of light-space height (NaN last; ties by pixel), so that each block of
+  // 16 spans few heights and more blocks lie wholly above a candidate, which none of their
+  // fragments can then accept (occlude_fragments). A fragment's mask depends only on the
+  // candidates' order, not on where the fragment sits: the masks and counts are unchanged.
+  scratch.order.resize(n);
+  for (std::size_t j = 0; j < n; ++j) scratch.order[j] = std::uint32_t(j);
+  const auto height = [&](std::uint32_t j) {
+    const float z = tile.fragments[j].position.z;
+    return std::isnan(z) ? std::numeric_limits<float>::infinity() : z;
+  };
+  std::sort(scratch.order.begin(), scratch.order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    const float za = height(a), zb = height(b);
+    return za != zb ? za < zb : a < b;
+  });
+  scratch.sorted.resize(n);
   scratch.receivers.resize(n);
-  for (std::size_t j = 0; j < n; ++j)
-    scratch.receivers[j] = samples.samples[tile.pixels[j]].receiver;
-  scratch.fragments.assign(tile.fragments, scratch.receivers);
+  for (std::size_t k = 0; k < n; ++k) {
+    scratch.sorted[k] = tile.fragments[scratch.order[k]];
+    scratch.receivers[k] = samples.samples[tile.pixels[scratch.order[k]]].receiver;
+  }
+  scratch.fragments.assign(scratch.sorted, scratch.receivers);
+  scratch.masks.assign(n, raster.empty_disk());
   scratch.rasterized.assign(n, 0);
   // Each candidate set up for every fragment in lanes, and cleared from the mask of each fragment
   // that accepts it, with the rows in lanes. The masks are ANDs of per-triangle masks, so neither
@@ -40,8 +59,10 @@ void rasterize_tile(const ViewSamples& samples, const ref::Gathered& gathered,
     if (k + 8 < candidates.size()) __builtin_prefetch(&gathered.triangles[candidates[k + 8]]);
     const ref::GatheredTriangle& t = gathered.triangles[candidates[k]];
     out.tests += occlude_fragments(scratch.fragments, t.light_space, t.triangle, raster,
-                                   out.masks.data(), scratch.rasterized.data());
+                                   scratch.masks.data(), scratch.rasterized.data());
   }
+  out.masks.resize(n);
+  for (std::size_t k = 0; k < n; ++k) out.masks[scratch.order[k]] = scratch.masks[k];
   for (const std::uint64_t triangles : scratch.rasterized) {
     out.rasterized += triangles;
     out.rasterized_max = std::max(out.rasterized_max, triangles);

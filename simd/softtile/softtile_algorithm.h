@@ -30,9 +30,12 @@ struct TileRaster {
 
 // Scratch reused across the tiles of one thread.
 struct TileScratch {
-  FragmentArrays fragments;
+  std::vector<std::uint32_t> order;  // the tile's fragments by light-space height
+  std::vector<shadowcts::softtile::FragmentSetup> sorted;
   std::vector<std::uint32_t> receivers;
-  std::vector<std::uint64_t> rasterized;  // per pixel
+  FragmentArrays fragments;
+  std::vector<DiskRows> masks;
+  std::vector<std::uint64_t> rasterized;  // per fragment, in `order`
 };
 
 void rasterize_tile(const ViewSamples& samples, const shadowcts::softtile::Gathered& gathered,
