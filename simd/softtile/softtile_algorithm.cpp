@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
-#include <limits>
+
+#include <hwy/contrib/sort/vqsort.h>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -27,20 +29,22 @@ void rasterize_tile(const ViewSamples& samples, const ref::Gathered& gathered,
                     TileRaster& out) {
   const std::size_t n = tile.pixels.size();
   out.tests = out.rasterized = out.rasterized_max = 0;
-  // The fragments in order of light-space height (NaN last; ties by pixel), so that each block of
-  // 16 spans few heights and more blocks lie wholly above a candidate, which none of their
-  // fragments can then accept (occlude_fragments). A fragment's mask depends only on the
-  // candidates' order, not on where the fragment sits: the masks and counts are unchanged.
-  scratch.order.resize(n);
-  for (std::size_t j = 0; j < n; ++j) scratch.order[j] = std::uint32_t(j);
-  const auto height = [&](std::uint32_t j) {
+  // The fragments in order of light-space height, so that each block of 16 spans few heights and
+  // more blocks lie wholly above a candidate, which none of their fragments can then accept
+  // (occlude_fragments). Where a fragment sits changes neither its mask nor its counts. Keys: the
+  // height's bits made orderable as unsigned (-0 below +0, NaN above everything), then the pixel.
+  scratch.keys.resize(n);
+  for (std::size_t j = 0; j < n; ++j) {
     const float z = tile.fragments[j].position.z;
-    return std::isnan(z) ? std::numeric_limits<float>::infinity() : z;
-  };
-  std::sort(scratch.order.begin(), scratch.order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    const float za = height(a), zb = height(b);
-    return za != zb ? za < zb : a < b;
-  });
+    std::uint32_t bits = std::bit_cast<std::uint32_t>(z);
+    bits = std::isnan(z) ? ~0u : (bits >> 31 != 0 ? ~bits : bits | 0x80000000u);
+    scratch.keys[j] = std::uint64_t(bits) << 32 | j;
+  }
+  // (Highway's sort; a Sorter owns a buffer: one per thread.)
+  static thread_local const hwy::Sorter sorter;
+  sorter(scratch.keys.data(), n, hwy::SortAscending());
+  scratch.order.resize(n);
+  for (std::size_t k = 0; k < n; ++k) scratch.order[k] = std::uint32_t(scratch.keys[k]);
   scratch.sorted.resize(n);
   scratch.receivers.resize(n);
   for (std::size_t k = 0; k < n; ++k) {

@@ -30,6 +30,7 @@ struct TileRaster {
 
 // Scratch reused across the tiles of one thread.
 struct TileScratch {
+  std::vector<std::uint64_t> keys;
   std::vector<std::uint32_t> order;  // the tile's fragments by light-space height
   std::vector<shadowcts::softtile::FragmentSetup> sorted;
   std::vector<std::uint32_t> receivers;
