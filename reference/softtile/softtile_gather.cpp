@@ -155,14 +155,12 @@ Gathered gather(const Case& c, const ViewSamples& samples) {
   out.sun = frame.sun;
   out.light_space = frame.light_space;
   if (!frame.any_sample) return out;
-  GatherCounts counts;
   for (std::size_t i = 0; i < c.triangles.size();) {
     const std::size_t stop = cluster_end(c, i);
-    const GatheredCluster cluster = gather_cluster(c, frame, i, stop, out.triangles, counts);
+    const GatheredCluster cluster = gather_cluster(c, frame, i, stop, out.triangles, out);
     if (cluster.count > 0) out.clusters.push_back(cluster);
     i = stop;
   }
-  out.set_counts(counts);
   return out;
 }
 

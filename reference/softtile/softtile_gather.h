@@ -47,20 +47,12 @@ struct GatherCounts {
   }
 };
 
-struct Gathered {
+// With its counters (the base).
+struct Gathered : GatherCounts {
   SunGeometry sun;
   LightSpace light_space;
   std::vector<GatheredTriangle> triangles;
   std::vector<GatheredCluster> clusters;
-  // Counters.
-  std::uint64_t clusters_in = 0, clusters_culled = 0, triangles_culled = 0,
-                light_facing_dropped = 0;
-  void set_counts(const GatherCounts& counts) {
-    clusters_in = counts.clusters_in;
-    clusters_culled = counts.clusters_culled;
-    triangles_culled = counts.triangles_culled;
-    light_facing_dropped = counts.light_facing_dropped;
-  }
 };
 
 // What the gather of every cluster reads: the sun, light space, the bound of the frame's relevant

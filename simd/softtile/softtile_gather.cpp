@@ -39,16 +39,14 @@ ref::Gathered gather(const Case& c, const ViewSamples& samples) {
       if (cluster.count > 0) part.clusters.push_back(cluster);
     }
   });
-  ref::GatherCounts counts;
   std::size_t triangles = 0, kept_clusters = 0;
   for (Part& part : parts) {
     part.triangle_offset = triangles;
     part.cluster_offset = kept_clusters;
     triangles += part.triangles.size();
     kept_clusters += part.clusters.size();
-    counts += part.counts;
+    out += part.counts;
   }
-  out.set_counts(counts);
   out.triangles.resize(triangles);
   out.clusters.resize(kept_clusters);
   tbb::parallel_for(std::size_t(0), parts.size(), [&](std::size_t b) {
