@@ -27,9 +27,6 @@ namespace shadowcts::simd::softtile::detail {
 // The reference's relative margin (reference/softtile/shadow_cone.cpp).
 inline constexpr double relative_margin = 1e-9;
 
-// Rounds of nine more samples of a capsule's g before the reference's ternary search decides.
-inline constexpr int refinement_levels = 3;
-
 // What may_shadow computes from the bound alone, once per tile, in the reference's expressions.
 struct BoundTerms {
   bool capsule = false;
@@ -71,7 +68,6 @@ namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
 using detail::BoundTerms;
-using detail::refinement_levels;
 using detail::relative_margin;
 using D = hn::ScalableTag<double>;
 using V = hn::Vec<D>;
@@ -127,41 +123,19 @@ HWY_INLINE V capsule_gap(D d, const ConeLanes& l, const SunLanes& sun, const Bou
   return gap(d, l, sun, x, hn::Add(hn::Set(d, t.ra), hn::Mul(s, hn::Set(d, t.dr))));
 }
 
-// Lower bounds on the exact g over each interval between nine samples g[k] a step apart (each
-// computed within err): Lipschitz, g >= (g_k + g_k+1 - L step) / 2 on [k, k+1]; convexity, g lies
-// above the lines through the neighbouring pairs of samples, L(t) = g_k + (g_k - g_k-1) t and R(t)
-// = g_k+1 - (g_k+2 - g_k+1) (1 - t), t in [0, 1]. Any weight w in [0, 1] gives min(max(L, R)) >=
-// min over t of w L(t) + (1 - w) R(t), attained at t = 0 or 1; the w that makes it flat gives the
-// lines' crossing. Each line carries at most 3 err from the samples; and g is convex only up to its
-// slack term -1e-9 |x(s) - tip| (concave), which moves the lines by at most 2e-9 max |x - tip|
-// <= 2e-9 (|tip| + magnitude) = 2000 err (err is 1e-12 of that sum).
-HWY_INLINE void interval_bounds(D d, const V g[9], V lipschitz_step, V err, V bound[8]) {
-  const V zero = hn::Zero(d), one = hn::Set(d, 1.0), half = hn::Set(d, 0.5);
-  const V line_err = hn::Mul(hn::Set(d, 2004.0), err);
-  for (int k = 0; k < 8; ++k) {
-    const V piece = hn::Mul(half, hn::Sub(hn::Add(g[k], g[k + 1]), lipschitz_step));
-    V convex;
-    if (k == 0) {
-      convex = hn::Min(hn::Sub(hn::Add(g[1], g[1]), g[2]), g[1]);
-    } else if (k == 7) {
-      convex = hn::Min(g[7], hn::Sub(hn::Add(g[7], g[7]), g[6]));
-    } else {
-      const V left_slope = hn::Sub(g[k], g[k - 1]);       // of L, per step
-      const V right_slope = hn::Sub(g[k + 2], g[k + 1]);  // of R, per step
-      // w left_slope + (1 - w) right_slope = 0; L alone where it does not fall, R alone where it
-      // does not rise.
-      V w = hn::Div(right_slope, hn::Sub(right_slope, left_slope));
-      w = hn::IfThenElse(hn::Ge(left_slope, zero), one, w);
-      w = hn::IfThenElse(hn::Le(right_slope, zero), zero, w);
-      w = hn::Min(hn::Max(w, zero), one);
-      const V at0 =
-          hn::Add(hn::Mul(w, g[k]), hn::Mul(hn::Sub(one, w), hn::Sub(g[k + 1], right_slope)));
-      const V at1 =
-          hn::Add(hn::Mul(w, hn::Add(g[k], left_slope)), hn::Mul(hn::Sub(one, w), g[k + 1]));
-      convex = hn::Min(at0, at1);
-    }
-    bound[k] = hn::Max(piece, hn::Sub(convex, line_err));
-  }
+// The least, over t in [0, 1], of max(L(t), R(t)) with L(t) = left + left_slope t and R(t) = right
+// - right_slope (1 - t): any weight w in [0, 1] gives max(L, R) >= w L + (1 - w) R, linear in t,
+// so least at t = 0 or 1; the w that makes it flat gives the lines' crossing (L alone where it
+// does not fall, R alone where it does not rise).
+HWY_INLINE V lines_bound(D d, V left, V left_slope, V right, V right_slope) {
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0);
+  V w = hn::Div(right_slope, hn::Sub(right_slope, left_slope));
+  w = hn::IfThenElse(hn::Ge(left_slope, zero), one, w);
+  w = hn::IfThenElse(hn::Le(right_slope, zero), zero, w);
+  w = hn::Min(hn::Max(w, zero), one);
+  const V at0 = hn::Add(hn::Mul(w, left), hn::Mul(hn::Sub(one, w), hn::Sub(right, right_slope)));
+  const V at1 = hn::Add(hn::Mul(w, hn::Add(left, left_slope)), hn::Mul(hn::Sub(one, w), right));
+  return hn::Min(at0, at1);
 }
 
 // What computed gaps are within of the exact ones: 1e-12 of |tip| + the bound's magnitude, far
@@ -171,78 +145,143 @@ HWY_INLINE V gap_error(D d, const ConeLanes& l, const BoundTerms& t) {
 }
 
 struct CapsuleMinimum {
-  M above;  // lanes whose exact minimum is > above_limit - err
-  M below;  // lanes whose exact minimum is < below_limit
+  M above;    // lanes whose exact minimum is > above_limit - err
+  M below;    // lanes whose exact minimum is < below_limit
+  M neither;  // other lanes that no certificate can decide
 };
 
-// Certifies, for the lanes of `alive`, where the exact minimum over s in [0, 1] of the capsule's
-// g (the gap of cone l at a + s (b - a), radius ra + s (rb - ra); g0 and g1 its computed values at
-// 0 and 1) lies against two limits, from samples of g, each computed within err of the exact g,
-// which is L-Lipschitz in s and convex but for its slack term (see interval_bounds).
-// Nine samples at k / 8 first; then, while lanes stay undecided, nine across the two intervals
-// beside the smallest sample, whose bounds replace those two intervals' (the positions stay
-// dyadic, hence exact). A NaN or infinity anywhere: never certified.
-HWY_INLINE CapsuleMinimum certify_capsule_minimum(D d, const ConeLanes& l, const SunLanes& sun,
-                                                  const BoundTerms& t, V g0, V g1, M alive, V err,
-                                                  V above_limit, V below_limit) {
-  const V zero = hn::Zero(d);
-  const V lipschitz = hn::Set(d, t.lipschitz * (1.0 + 1e-6));
-  const V inf = hn::Set(d, HUGE_VAL), one = hn::Set(d, 1.0), eighth = hn::Set(d, 0.125);
-  CapsuleMinimum out{hn::Lt(zero, zero), hn::Lt(zero, zero)};
-  M finite = hn::Lt(hn::Abs(err), inf);
-  V g[9];
-  g[0] = g0;
-  g[8] = g1;
-  for (int k = 1; k < 8; ++k) g[k] = capsule_gap(d, l, sun, t, hn::Set(d, k / 8.0));
-  V lo = zero, step = eighth;
-  V outside = inf;  // a lower bound on g over [0, 1] outside [lo, lo + 8 step]
-  V upper = inf;    // the smallest sample
-  for (int level = 0;; ++level) {
-    for (const V& gk : g) {
-      finite = hn::And(finite, hn::Lt(hn::Abs(gk), inf));
-      upper = hn::Min(upper, gk);
-    }
-    V bound[8];
-    interval_bounds(d, g, hn::Mul(lipschitz, step), err, bound);
-    V lower = outside;  // exact minimum >= lower - err
-    for (const V& b : bound) lower = hn::Min(lower, b);
-    const M above = hn::And(hn::And(alive, finite), hn::Gt(lower, above_limit));
-    out.above = hn::Or(out.above, above);
-    alive = hn::AndNot(above, alive);
-    // upper + err >= the exact minimum.
-    const M below = hn::And(hn::And(alive, finite), hn::Lt(hn::Add(upper, err), below_limit));
-    out.below = hn::Or(out.below, below);
-    alive = hn::AndNot(below, alive);
-    // Lanes that can be neither any more: a later lower is at most the minimum + err <= upper +
-    // 2 err, a later upper at least the minimum - err >= lower - 2 err.
-    alive = hn::AndNot(hn::And(hn::Le(hn::Add(upper, hn::Add(err, err)), above_limit),
-                               hn::Ge(lower, hn::Add(below_limit, err))),
-                       alive);
-    if (level == refinement_levels || hn::AllFalse(d, alive)) break;
-    V smallest = g[0], at = zero;
-    for (int k = 1; k < 9; ++k) {
-      const M smaller = hn::Lt(g[k], smallest);
-      smallest = hn::IfThenElse(smaller, g[k], smallest);
-      at = hn::IfThenElse(smaller, hn::Set(d, double(k)), at);
-    }
-    const V first = hn::Max(hn::Sub(at, one), zero),
-            last = hn::Min(hn::Add(at, one), hn::Set(d, 8.0));
-    V g_first = g[0], g_last = g[8];
-    for (int k = 0; k < 9; ++k) {
-      const V index = hn::Set(d, double(k));
-      g_first = hn::IfThenElse(hn::Eq(first, index), g[k], g_first);
-      g_last = hn::IfThenElse(hn::Eq(last, index), g[k], g_last);
-      if (k < 8)
-        outside = hn::IfThenElse(hn::Or(hn::Lt(index, first), hn::Ge(index, last)),
-                                 hn::Min(outside, bound[k]), outside);
-    }
-    lo = hn::Add(lo, hn::Mul(first, step));
-    step = hn::Mul(hn::Mul(hn::Sub(last, first), step), eighth);
-    g[0] = g_first;
-    g[8] = g_last;
-    for (int k = 1; k < 8; ++k)
-      g[k] = capsule_gap(d, l, sun, t, hn::Add(lo, hn::Mul(hn::Set(d, double(k)), step)));
+// Where c |q0 + s w| + beta s (c > 0) is smallest on [0, 1]: with |q0 + s w|^2 = A ((s - s0)^2 +
+// k^2), at s0 - beta k / sqrt(c^2 A - beta^2), or at an end where it is monotone.
+HWY_INLINE V minimizer_of(D d, const V (&q0)[3], const V (&w)[3], V c, V beta) {
+  const V a = hn::Add(hn::Add(hn::Mul(w[0], w[0]), hn::Mul(w[1], w[1])), hn::Mul(w[2], w[2]));
+  const V b = hn::Add(hn::Add(hn::Mul(q0[0], w[0]), hn::Mul(q0[1], w[1])), hn::Mul(q0[2], w[2]));
+  // k A = |q0 x w| (Lagrange's identity, without A C - B^2's cancellation).
+  const V k_a = length3(hn::Sub(hn::Mul(q0[1], w[2]), hn::Mul(q0[2], w[1])),
+                        hn::Sub(hn::Mul(q0[2], w[0]), hn::Mul(q0[0], w[2])),
+                        hn::Sub(hn::Mul(q0[0], w[1]), hn::Mul(q0[1], w[0])));
+  const V room = hn::Sub(hn::Mul(hn::Mul(c, c), a), hn::Mul(beta, beta));
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0);
+  V s = hn::Sub(hn::Neg(hn::Div(hn::Mul(beta, k_a), hn::Mul(a, hn::Sqrt(room)))), hn::Div(b, a));
+  const V end = hn::IfThenElse(hn::Gt(beta, zero), zero, one);
+  s = hn::IfThenElse(hn::Gt(room, zero), s, end);
+  s = hn::IfThenElse(hn::Eq(s, s), s, end);  // NaN: A = 0 or non-finite inputs
+  return hn::Min(hn::Max(s, zero), one);
+}
+
+// Two places to look for the capsule's smallest g, the minima of the two pieces of dist(x, cone)
+// less r(s) (v = x(s) - tip, h its part along the axis, q the part across): c |q| - sin(a) h, which
+// is <= dist everywhere and equal outside the apex's region and the cone, and |v|, which is >=
+// dist and equal inside the apex's region. Both are convex, so where g's minimum lies outside the
+// cone one of the two is at it. Only places to look: nothing depends on their being exact.
+struct Places {
+  V side, apex;
+};
+
+HWY_INLINE Places minimum_places(D d, const ConeLanes& l, const SunLanes& sun,
+                                 const BoundTerms& t) {
+  V v0[3], w[3];
+  for (int k = 0; k < 3; ++k) {
+    v0[k] = hn::Sub(hn::Set(d, t.a[k]), l.tip[k]);
+    w[k] = hn::Set(d, t.ab[k]);
   }
+  const V h0 = hn::Add(hn::Add(hn::Mul(v0[0], sun.axis[0]), hn::Mul(v0[1], sun.axis[1])),
+                       hn::Mul(v0[2], sun.axis[2]));
+  const V hw = hn::Add(hn::Add(hn::Mul(w[0], sun.axis[0]), hn::Mul(w[1], sun.axis[1])),
+                       hn::Mul(w[2], sun.axis[2]));
+  V q0[3], qw[3];
+  for (int k = 0; k < 3; ++k) {
+    q0[k] = hn::Sub(v0[k], hn::Mul(h0, sun.axis[k]));
+    qw[k] = hn::Sub(w[k], hn::Mul(hw, sun.axis[k]));
+  }
+  const V dr = hn::Set(d, t.dr);
+  return {minimizer_of(d, q0, qw, sun.c, hn::Neg(hn::Add(hn::Mul(sun.s, hw), dr))),
+          minimizer_of(d, v0, w, hn::Set(d, 1.0), hn::Neg(dr))};
+}
+
+// Half the spacing of the samples around a place (dyadic, so they are exact).
+inline constexpr double near_step = 1.0 / 4096.0;
+
+// Certifies, for the lanes of `alive`, where the exact minimum over s in [0, 1] of the capsule's g
+// (the gap of cone l at a + s (b - a), radius ra + s (rb - ra); g0 and g1 its computed values at 0
+// and 1) lies against two limits, from five samples of g, each computed within err of the exact g:
+// the ends and three near_step apart around `place` (rounded to 2^-20 and kept near_step inside
+// [0, 1], so the positions are exact). The exact g is L-Lipschitz in s and convex but for its slack
+// term -1e-9 |x(s) - tip|, at most 1000 err (err is 1e-12 of |tip| + magnitude). Lower bounds:
+// - on each interval, Lipschitz: g >= (g_k + g_k+1 - L length) / 2;
+// - g + 1e-9 |x(s) - tip| lies above the line through any two samples beyond them. A line
+//   through samples `base` apart, followed D = length / base further, carries (1 + 2 D) err from
+//   its samples, and the slack term (varying by at most 1e-9 L base between them) moves it by at
+//   most 2000 err + 1e-9 L. On [0, p - step] and [p + step, 1] the line through the nearer two
+//   samples; on the two inner intervals the lines from either side (lines_bound).
+// The upper bound is the smallest sample + err. A NaN or infinity anywhere: never certified.
+HWY_INLINE CapsuleMinimum certify_capsule_minimum(D d, const ConeLanes& l, const SunLanes& sun,
+                                                  const BoundTerms& t, V place, V g0, V g1, M alive,
+                                                  V err, V above_limit, V below_limit) {
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0), half = hn::Set(d, 0.5);
+  const V step = hn::Set(d, near_step), steps_per_unit = hn::Set(d, 1.0 / near_step);
+  const V lipschitz = hn::Set(d, t.lipschitz * (1.0 + 1e-6));
+  const V inf = hn::Set(d, HUGE_VAL);
+  const V grid = hn::Set(d, 1048576.0), inverse_grid = hn::Set(d, 1.0 / 1048576.0);
+  V p = hn::Mul(hn::Round(hn::Mul(place, grid)), inverse_grid);
+  p = hn::Min(hn::Max(p, step), hn::Sub(one, step));
+  const V p_left = hn::Sub(p, step), p_right = hn::Add(p, step);
+  const V g_left = capsule_gap(d, l, sun, t, p_left), g_mid = capsule_gap(d, l, sun, t, p),
+          g_right = capsule_gap(d, l, sun, t, p_right);
+  M finite = hn::Lt(hn::Abs(err), inf);
+  for (const V& g : {g0, g1, g_left, g_mid, g_right})
+    finite = hn::And(finite, hn::Lt(hn::Abs(g), inf));
+  const V fixed_line_err =
+      hn::Add(hn::Mul(hn::Set(d, 2001.0), err), hn::Set(d, 1e-9 * t.lipschitz));
+  // [0, p_left]: D = p_left / step.
+  const V d_left = hn::Mul(p_left, steps_per_unit);
+  const V line_left =
+      hn::Sub(hn::Sub(g_left, hn::Mul(hn::Max(zero, hn::Sub(g_mid, g_left)), d_left)),
+              hn::Add(fixed_line_err, hn::Mul(hn::Add(d_left, d_left), err)));
+  const V outer_left =
+      hn::Max(line_left, hn::Mul(half, hn::Sub(hn::Add(g0, g_left), hn::Mul(lipschitz, p_left))));
+  // [p_right, 1]: D = (1 - p_right) / step.
+  const V right_length = hn::Sub(one, p_right);
+  const V d_right = hn::Mul(right_length, steps_per_unit);
+  const V line_right =
+      hn::Sub(hn::Sub(g_right, hn::Mul(hn::Max(zero, hn::Sub(g_mid, g_right)), d_right)),
+              hn::Add(fixed_line_err, hn::Mul(hn::Add(d_right, d_right), err)));
+  const V outer_right = hn::Max(
+      line_right, hn::Mul(half, hn::Sub(hn::Add(g_right, g1), hn::Mul(lipschitz, right_length))));
+  // [p_left, p] and [p, p_right]: Lipschitz, and the lines through the samples on either side,
+  // one of them from the end's sample, a baseline of `length` extended by step: (1 + 2 step /
+  // length) err. An end at the interval (length 0) leaves one line.
+  const V lipschitz_step = hn::Mul(lipschitz, step);
+  const V inner_line_err = hn::Add(fixed_line_err, hn::Mul(hn::Set(d, 2.0), err));
+  const M room_left = hn::Gt(p_left, zero), room_right = hn::Gt(right_length, zero);
+  const V from_start = hn::Div(step, p_left), from_end = hn::Div(step, right_length);
+  const V lines_left =
+      hn::IfThenElse(room_left,
+                     hn::Sub(lines_bound(d, g_left, hn::Mul(hn::Sub(g_left, g0), from_start), g_mid,
+                                         hn::Sub(g_right, g_mid)),
+                             hn::Mul(hn::Add(from_start, from_start), err)),
+                     hn::Min(g_mid, hn::Sub(hn::Add(g_mid, g_mid), g_right)));
+  const V lines_right =
+      hn::IfThenElse(room_right,
+                     hn::Sub(lines_bound(d, g_mid, hn::Sub(g_mid, g_left), g_right,
+                                         hn::Mul(hn::Sub(g1, g_right), from_end)),
+                             hn::Mul(hn::Add(from_end, from_end), err)),
+                     hn::Min(g_mid, hn::Sub(hn::Add(g_mid, g_mid), g_left)));
+  const V inner = hn::Min(hn::Max(hn::Mul(half, hn::Sub(hn::Add(g_left, g_mid), lipschitz_step)),
+                                  hn::Sub(lines_left, inner_line_err)),
+                          hn::Max(hn::Mul(half, hn::Sub(hn::Add(g_mid, g_right), lipschitz_step)),
+                                  hn::Sub(lines_right, inner_line_err)));
+  const V lower = hn::Min(hn::Min(outer_left, outer_right), inner);  // exact minimum >= lower - err
+  const V upper = hn::Min(hn::Min(hn::Min(g0, g1), hn::Min(g_left, g_right)), g_mid);
+  const M decidable = hn::And(alive, finite);
+  CapsuleMinimum out;
+  out.above = hn::And(decidable, hn::Gt(lower, above_limit));
+  out.below = hn::AndNot(out.above, hn::And(decidable, hn::Lt(hn::Add(upper, err), below_limit)));
+  // Other certificates cannot decide either: any lower bound is at most the minimum + err <= upper
+  // + 2 err, any upper bound at least the minimum - err >= lower - 2 err.
+  out.neither =
+      hn::AndNot(hn::Or(out.above, out.below),
+                 hn::And(decidable, hn::And(hn::Le(hn::Add(upper, hn::Add(err, err)), above_limit),
+                                            hn::Ge(lower, hn::Add(below_limit, err)))));
   return out;
 }
 
@@ -348,12 +387,18 @@ HWY_INLINE std::uint64_t may_shadow_lanes(D d, const ConeLanes& l, std::size_t c
       //   final interval's f stays below -(2200 - 1000 - 80 - 1000) err, and its g(mid) - L (hi -
       //   lo) <= that + L (hi - lo) / 2 - L (hi - lo) < 0 (L <= magnitude).
       const V err = gap_error(d, l, t);
-      const CapsuleMinimum decided =
-          certify_capsule_minimum(d, l, sun, t, g0, g1, alive, err,
-                                  hn::Add(hn::Set(d, 1e-7 * t.lipschitz), hn::Add(err, err)),
-                                  hn::Mul(hn::Set(d, -2200.0), err));
-      result = hn::Or(result, decided.below);
-      alive = hn::AndNot(hn::Or(decided.above, decided.below), alive);
+      const V above_limit = hn::Add(hn::Set(d, 1e-7 * t.lipschitz), hn::Add(err, err));
+      const V below_limit = hn::Mul(hn::Set(d, -2200.0), err);
+      const Places places = minimum_places(d, l, sun, t);
+      M open = alive;  // lanes a certificate may still decide
+      for (const V& place : {places.side, places.apex}) {
+        if (hn::AllFalse(d, open)) break;
+        const CapsuleMinimum near = certify_capsule_minimum(d, l, sun, t, place, g0, g1, open, err,
+                                                            above_limit, below_limit);
+        result = hn::Or(result, near.below);
+        alive = hn::AndNot(hn::Or(near.above, near.below), alive);
+        open = hn::AndNot(hn::Or(hn::Or(near.above, near.below), near.neither), open);
+      }
     }
     V lo = zero, hi = hn::Set(d, 1.0);
     const V three = hn::Set(d, 3.0);
@@ -423,11 +468,18 @@ HWY_INLINE std::uint64_t open_nodes(D d, const ConeGroups& level, std::size_t be
                 hn::Mul(hn::Set(d, 2.0 * relative_margin), spread));
     const V g0 = capsule_gap(d, l, sun, t, zero), g1 = capsule_gap(d, l, sun, t, hn::Set(d, 1.0));
     const M tried = hn::And(open, hn::And(hn::Gt(g0, above_limit), hn::Gt(g1, above_limit)));
-    if (!hn::AllFalse(d, tried))
-      closed =
-          hn::Or(closed, certify_capsule_minimum(d, l, sun, t, g0, g1, tried, gap_error(d, l, t),
-                                                 above_limit, hn::Set(d, -HUGE_VAL))
-                             .above);
+    if (!hn::AllFalse(d, tried)) {
+      const V err = gap_error(d, l, t), below_limit = hn::Set(d, -HUGE_VAL);
+      const Places places = minimum_places(d, l, sun, t);
+      M rest = tried;
+      for (const V& place : {places.side, places.apex}) {
+        if (hn::AllFalse(d, rest)) break;
+        const CapsuleMinimum near = certify_capsule_minimum(d, l, sun, t, place, g0, g1, rest, err,
+                                                            above_limit, below_limit);
+        closed = hn::Or(closed, near.above);
+        rest = hn::AndNot(hn::Or(near.above, near.neither), rest);
+      }
+    }
   }
   return mask_bits(d, hn::AndNot(closed, hn::FirstN(d, count)));
 }

@@ -267,18 +267,24 @@ TEST(SimdSofttile, ConeCullingEqualsTheReferenceNearTheBoundary) {
     return glm::dvec3(unit(random), unit(random), unit(random)) * scale;
   };
   std::size_t kept = 0, dropped = 0;
-  for (int trial = 0; trial < 24; ++trial) {
+  // Trials 24 on: capsules of nearly zero radius, and cone tips on lines that leave the capsule's
+  // segment, so that the boundary cases touch the bound near their apex: the gap's minimum over
+  // the segment is then a sharp bottom (|x(s) - tip| - r(s)), as narrow as the radii.
+  for (int trial = 0; trial < 36; ++trial) {
     SCOPED_TRACE("trial " + std::to_string(trial));
+    const bool apex_lines = trial >= 24;
     ref::Gathered gathered;
     gathered.sun.direction = glm::normalize(glm::dvec3(unit(random), unit(random), 2.0));
     gathered.sun.angular_radius = (trial % 3 == 0 ? 0.2 : 2.0) * 3.14159265358979 / 180.0;
     const double scale = std::ldexp(1.0, int(trial % 5) * 4 - 4);
     ref::TileBound bound;
-    bound.capsule = trial % 4 != 0;
+    bound.capsule = apex_lines || trial % 4 != 0;
     bound.a = random_vector(scale);
     bound.b = bound.capsule ? bound.a + random_vector(4.0 * scale) : bound.a;
-    bound.radius_a = 0.01 * scale * (1.0 + unit(random));
-    bound.radius_b = bound.capsule ? 0.05 * scale * (1.0 + unit(random)) : bound.radius_a;
+    const double radius_scale = apex_lines ? 1e-7 : 0.01;
+    bound.radius_a = radius_scale * scale * (1.0 + unit(random));
+    bound.radius_b =
+        bound.capsule ? 5.0 * radius_scale * scale * (1.0 + unit(random)) : bound.radius_a;
     // Caster spheres along random lines through the bound's neighbourhood, each line bisected to
     // the reference's boundary between shadowing and not.
     std::vector<ref::ShadowCone> cones;
@@ -287,11 +293,14 @@ TEST(SimdSofttile, ConeCullingEqualsTheReferenceNearTheBoundary) {
                               glm::dot(centre, gathered.sun.direction) + radius);
     };
     for (int line = 0; line < 60; ++line) {
-      const double radius = 0.002 * scale * (1.0 + unit(random));
-      // From above a point of the bound (shadowing), to anywhere around it (mostly not).
-      const glm::dvec3 from = bound.a + 0.5 * (1.0 + unit(random)) * (bound.b - bound.a) +
-                              gathered.sun.direction * (scale * (1.1 + unit(random)));
-      const glm::dvec3 to = from + random_vector(6.0 * scale);
+      // From above a point of the bound (shadowing), to anywhere around it (mostly not); or from a
+      // point of the segment, the caster a point, to near it.
+      const double radius = apex_lines ? 1e-9 * scale : 0.002 * scale * (1.0 + unit(random));
+      const glm::dvec3 on_bound = bound.a + 0.5 * (1.0 + unit(random)) * (bound.b - bound.a);
+      const glm::dvec3 from =
+          apex_lines ? on_bound
+                     : on_bound + gathered.sun.direction * (scale * (1.1 + unit(random)));
+      const glm::dvec3 to = from + random_vector((apex_lines ? 0.5 : 6.0) * scale);
       const auto shadows = [&](double t) {
         return ref::may_shadow(gathered.sun, cone_at(from + t * (to - from), radius), bound);
       };
