@@ -267,16 +267,18 @@ TEST(SimdSofttile, ConeCullingEqualsTheReferenceNearTheBoundary) {
     return glm::dvec3(unit(random), unit(random), unit(random)) * scale;
   };
   std::size_t kept = 0, dropped = 0;
-  // Trials 24 on: capsules of nearly zero radius, and cone tips on lines that leave the capsule's
-  // segment, so that the boundary cases touch the bound near their apex: the gap's minimum over
-  // the segment is then a sharp bottom (|x(s) - tip| - r(s)), as narrow as the radii.
-  for (int trial = 0; trial < 36; ++trial) {
+  // Trials 24 to 35: capsules of nearly zero radius, and cone tips on lines that leave the
+  // capsule's segment, so that the boundary cases touch the bound near their apex: the gap's
+  // minimum over the segment is then a sharp bottom (|x(s) - tip| - r(s)), as narrow as the radii.
+  // Trials 36 on: both kinds again at scales 2^-100 and 2^200 (squared lengths overflow there).
+  for (int trial = 0; trial < 60; ++trial) {
     SCOPED_TRACE("trial " + std::to_string(trial));
-    const bool apex_lines = trial >= 24;
+    const bool apex_lines = (trial >= 24 && trial < 36) || trial >= 48;
+    const int shift = trial < 36 ? 0 : trial < 48 ? -100 : 200;
     ref::Gathered gathered;
     gathered.sun.direction = glm::normalize(glm::dvec3(unit(random), unit(random), 2.0));
     gathered.sun.angular_radius = (trial % 3 == 0 ? 0.2 : 2.0) * 3.14159265358979 / 180.0;
-    const double scale = std::ldexp(1.0, int(trial % 5) * 4 - 4);
+    const double scale = std::ldexp(1.0, int(trial % 5) * 4 - 4 + shift);
     ref::TileBound bound;
     bound.capsule = apex_lines || trial % 4 != 0;
     bound.a = random_vector(scale);
