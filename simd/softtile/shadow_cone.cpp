@@ -214,9 +214,9 @@ inline constexpr double near_step = 1.0 / 4096.0;
 //   most 2000 err + 1e-9 L. On [0, p - step] and [p + step, 1] the line through the nearer two
 //   samples; on the two inner intervals the lines from either side (lines_bound).
 // The upper bound is the smallest sample + err. A NaN or infinity anywhere: never certified.
-HWY_INLINE CapsuleMinimum certify_capsule_minimum(D d, const ConeLanes& l, const SunLanes& sun,
-                                                  const BoundTerms& t, V place, V g0, V g1, M alive,
-                                                  V err, V above_limit, V below_limit) {
+HWY_INLINE CapsuleMinimum certify_around(D d, const ConeLanes& l, const SunLanes& sun,
+                                         const BoundTerms& t, V place, V g0, V g1, M alive, V err,
+                                         V above_limit, V below_limit) {
   const V zero = hn::Zero(d), one = hn::Set(d, 1.0), half = hn::Set(d, 0.5);
   const V step = hn::Set(d, near_step), steps_per_unit = hn::Set(d, 1.0 / near_step);
   const V lipschitz = hn::Set(d, t.lipschitz * (1.0 + 1e-6));
@@ -282,6 +282,27 @@ HWY_INLINE CapsuleMinimum certify_capsule_minimum(D d, const ConeLanes& l, const
       hn::AndNot(hn::Or(out.above, out.below),
                  hn::And(decidable, hn::And(hn::Le(hn::Add(upper, hn::Add(err, err)), above_limit),
                                             hn::Ge(lower, hn::Add(below_limit, err)))));
+  return out;
+}
+
+// certify_around at the side's place, then at the apex's for the lanes it left open (a lane that
+// no certificate can decide is not tried again).
+HWY_INLINE CapsuleMinimum certify_capsule_minimum(D d, const ConeLanes& l, const SunLanes& sun,
+                                                  const BoundTerms& t, V g0, V g1, M alive, V err,
+                                                  V above_limit, V below_limit) {
+  const Places places = minimum_places(d, l, sun, t);
+  const M none = hn::Lt(hn::Zero(d), hn::Zero(d));
+  CapsuleMinimum out{none, none, none};
+  M open = alive;
+  for (const V& place : {places.side, places.apex}) {
+    if (hn::AllFalse(d, open)) break;
+    const CapsuleMinimum near =
+        certify_around(d, l, sun, t, place, g0, g1, open, err, above_limit, below_limit);
+    out.above = hn::Or(out.above, near.above);
+    out.below = hn::Or(out.below, near.below);
+    out.neither = hn::Or(out.neither, near.neither);
+    open = hn::AndNot(hn::Or(hn::Or(near.above, near.below), near.neither), open);
+  }
   return out;
 }
 
@@ -389,16 +410,10 @@ HWY_INLINE std::uint64_t may_shadow_lanes(D d, const ConeLanes& l, std::size_t c
       const V err = gap_error(d, l, t);
       const V above_limit = hn::Add(hn::Set(d, 1e-7 * t.lipschitz), hn::Add(err, err));
       const V below_limit = hn::Mul(hn::Set(d, -2200.0), err);
-      const Places places = minimum_places(d, l, sun, t);
-      M open = alive;  // lanes a certificate may still decide
-      for (const V& place : {places.side, places.apex}) {
-        if (hn::AllFalse(d, open)) break;
-        const CapsuleMinimum near = certify_capsule_minimum(d, l, sun, t, place, g0, g1, open, err,
-                                                            above_limit, below_limit);
-        result = hn::Or(result, near.below);
-        alive = hn::AndNot(hn::Or(near.above, near.below), alive);
-        open = hn::AndNot(hn::Or(hn::Or(near.above, near.below), near.neither), open);
-      }
+      const CapsuleMinimum decided =
+          certify_capsule_minimum(d, l, sun, t, g0, g1, alive, err, above_limit, below_limit);
+      result = hn::Or(result, decided.below);
+      alive = hn::AndNot(hn::Or(decided.above, decided.below), alive);
     }
     V lo = zero, hi = hn::Set(d, 1.0);
     const V three = hn::Set(d, 3.0);
@@ -468,18 +483,11 @@ HWY_INLINE std::uint64_t open_nodes(D d, const ConeGroups& level, std::size_t be
                 hn::Mul(hn::Set(d, 2.0 * relative_margin), spread));
     const V g0 = capsule_gap(d, l, sun, t, zero), g1 = capsule_gap(d, l, sun, t, hn::Set(d, 1.0));
     const M tried = hn::And(open, hn::And(hn::Gt(g0, above_limit), hn::Gt(g1, above_limit)));
-    if (!hn::AllFalse(d, tried)) {
-      const V err = gap_error(d, l, t), below_limit = hn::Set(d, -HUGE_VAL);
-      const Places places = minimum_places(d, l, sun, t);
-      M rest = tried;
-      for (const V& place : {places.side, places.apex}) {
-        if (hn::AllFalse(d, rest)) break;
-        const CapsuleMinimum near = certify_capsule_minimum(d, l, sun, t, place, g0, g1, rest, err,
-                                                            above_limit, below_limit);
-        closed = hn::Or(closed, near.above);
-        rest = hn::AndNot(hn::Or(near.above, near.neither), rest);
-      }
-    }
+    if (!hn::AllFalse(d, tried))
+      closed =
+          hn::Or(closed, certify_capsule_minimum(d, l, sun, t, g0, g1, tried, gap_error(d, l, t),
+                                                 above_limit, hn::Set(d, -HUGE_VAL))
+                             .above);
   }
   return mask_bits(d, hn::AndNot(closed, hn::FirstN(d, count)));
 }
