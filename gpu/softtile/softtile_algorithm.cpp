@@ -10,6 +10,7 @@
 #include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 
+#include "reference/softtile/counters.h"
 #include "reference/softtile/disk_bitmask.h"
 #include "reference/softtile/softtile_algorithm.h"
 #include "reference/softtile/softtile_tile.h"
@@ -121,6 +122,26 @@ void add_pixels(const Case& c, const ViewSamples& samples, const ref::Gathered& 
                     });
 }
 
+// The reference's per-tile counts from the kernel's per-tile lists and per-pixel counts.
+std::vector<ref::TileCounters> tile_counters(const ViewSamples& samples,
+                                             const SofttileKernelResult& result) {
+  std::vector<ref::TileCounters> tiles(result.tile_kinds.size());
+  for (std::size_t t = 0; t < tiles.size(); ++t) {
+    tiles[t].relevant = result.tile_kinds[t] != softtile_tile_empty;
+    tiles[t].capsule = result.tile_kinds[t] == softtile_tile_capsule;
+    tiles[t].candidates = tiles[t].relevant ? result.candidates[t] : 0;
+  }
+  const std::uint32_t tiles_x = ref::tiles_across(samples.width);
+  for (std::size_t pixel = 0; pixel < result.tests.size(); ++pixel) {
+    const std::size_t x = pixel % samples.width, y = pixel / samples.width;
+    ref::TileCounters& tile = tiles[y / softtile_tile_size * tiles_x + x / softtile_tile_size];
+    tile.tests += result.tests[pixel];
+    tile.rasterized += result.rasterized[pixel];
+    tile.rasterized_max = std::max<std::uint64_t>(tile.rasterized_max, result.rasterized[pixel]);
+  }
+  return tiles;
+}
+
 class SofttileKernelAlgorithm final : public VariantTableAlgorithm<ref::Variant> {
  public:
   explicit SofttileKernelAlgorithm(SofttileKernelBackend backend)
@@ -152,43 +173,10 @@ class SofttileKernelAlgorithm final : public VariantTableAlgorithm<ref::Variant>
       add_pixels(c, samples, gathered, variant, input);
       result = backend_.run_kernel(std::move(input));  // frees each array once uploaded
       clock.lap(query_phase);
-      output.counters = {{"gather_clusters", gathered.clusters_in},
-                         {"gather_clusters_culled", gathered.clusters_culled},
-                         {"gather_triangles", gathered.triangles.size()},
-                         {"gather_light_facing_dropped", gathered.light_facing_dropped}};
+      output.counters = ref::to_counters(gathered, tile_counters(samples, result));
     });
     output.phase_ms = clock.times();
     output.visible_fraction = std::move(result.visible_fraction);
-
-    // Per tile as the reference counts, then sums and maxima: independent of the launch.
-    std::uint64_t relevant = 0, capsule = 0, candidates = 0, candidates_max = 0, overflowing = 0,
-                  overflow_batches = 0, tests = 0, rasterized = 0, rasterized_max = 0;
-    for (std::size_t t = 0; t < result.tile_kinds.size(); ++t) {
-      if (result.tile_kinds[t] == softtile_tile_empty) continue;
-      const std::uint64_t n = result.candidates[t];
-      ++relevant;
-      capsule += result.tile_kinds[t] == softtile_tile_capsule ? 1 : 0;
-      candidates += n;
-      candidates_max = std::max(candidates_max, n);
-      overflowing += n > softtile_tile_triangle_limit ? 1 : 0;
-      overflow_batches += n == 0 ? 0 : (n - 1) / softtile_tile_triangle_limit;
-    }
-    for (std::size_t i = 0; i < result.tests.size(); ++i) {
-      tests += result.tests[i];
-      rasterized += result.rasterized[i];
-      rasterized_max = std::max<std::uint64_t>(rasterized_max, result.rasterized[i]);
-    }
-    const Counters tile_counters = {{"tiles", result.tile_kinds.size()},
-                                    {"tiles_with_relevant_pixels", relevant},
-                                    {"tile_capsule_bounds", capsule},
-                                    {"tile_candidates_total", candidates},
-                                    {"tile_candidates_max", candidates_max},
-                                    {"overflowing_tiles", overflowing},
-                                    {"overflow_batches", overflow_batches},
-                                    {"pixel_triangle_tests", tests},
-                                    {"triangles_rasterized", rasterized},
-                                    {"triangles_rasterized_max_per_pixel", rasterized_max}};
-    output.counters.insert(output.counters.end(), tile_counters.begin(), tile_counters.end());
     // A block of 256 threads per tile (a tile without relevant pixels exits at once).
     if (backend_.emulated)
       output.counters.push_back(

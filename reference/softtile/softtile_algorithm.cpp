@@ -8,6 +8,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "reference/softtile/counters.h"
 #include "reference/softtile/disk_bitmask.h"
 #include "reference/softtile/fragment_occlusion.h"
 #include "reference/softtile/softtile_gather.h"
@@ -24,11 +25,6 @@ namespace {
 using namespace softtile;
 
 static_assert(softtile_tile_size == tile_size);
-
-struct TileCounters {
-  std::uint64_t relevant = 0, capsule = 0, candidates = 0, overflow_batches = 0, tests = 0,
-                rasterized = 0, rasterized_max = 0;
-};
 
 class Softtile final : public VariantTableAlgorithm<softtile::Variant> {
  public:
@@ -69,8 +65,8 @@ class Softtile final : public VariantTableAlgorithm<softtile::Variant> {
               const std::vector<std::size_t>& pixels = tile.pixels;
               const std::vector<std::uint32_t>& candidates = tile.candidates;
               const std::vector<FragmentSetup>& fragments = tile.fragments;
-              counters.relevant = 1;
-              counters.capsule = tile.bound.capsule ? 1 : 0;
+              counters.relevant = true;
+              counters.capsule = tile.bound.capsule;
               counters.candidates = candidates.size();
               masks.assign(pixels.size(), empty_disk);
               rasterized_per_pixel.assign(pixels.size(), 0);
@@ -78,7 +74,6 @@ class Softtile final : public VariantTableAlgorithm<softtile::Variant> {
               // list is rasterized in several batches (the bitmasks persist), never truncated.
               for (std::size_t begin = 0; begin < candidates.size();
                    begin += softtile_tile_triangle_limit) {
-                if (begin > 0) ++counters.overflow_batches;
                 const std::size_t end =
                     std::min(candidates.size(), begin + softtile_tile_triangle_limit);
                 for (std::size_t j = 0; j < pixels.size(); ++j) {
@@ -108,34 +103,7 @@ class Softtile final : public VariantTableAlgorithm<softtile::Variant> {
     clock.lap(query_phase);
     output.phase_ms = clock.times();
 
-    // Sums and maxima of per-tile integers: independent of the partitioning.
-    TileCounters total;
-    std::uint64_t candidates_max = 0, overflowing = 0;
-    for (const TileCounters& t : tile_counters) {
-      total.relevant += t.relevant;
-      total.capsule += t.capsule;
-      total.candidates += t.candidates;
-      total.overflow_batches += t.overflow_batches;
-      total.tests += t.tests;
-      total.rasterized += t.rasterized;
-      total.rasterized_max = std::max(total.rasterized_max, t.rasterized_max);
-      candidates_max = std::max(candidates_max, t.candidates);
-      overflowing += t.candidates > softtile_tile_triangle_limit ? 1 : 0;
-    }
-    output.counters = {{"gather_clusters", gathered.clusters_in},
-                       {"gather_clusters_culled", gathered.clusters_culled},
-                       {"gather_triangles", gathered.triangles.size()},
-                       {"gather_light_facing_dropped", gathered.light_facing_dropped},
-                       {"tiles", tile_counters.size()},
-                       {"tiles_with_relevant_pixels", total.relevant},
-                       {"tile_capsule_bounds", total.capsule},
-                       {"tile_candidates_total", total.candidates},
-                       {"tile_candidates_max", candidates_max},
-                       {"overflowing_tiles", overflowing},
-                       {"overflow_batches", total.overflow_batches},
-                       {"pixel_triangle_tests", total.tests},
-                       {"triangles_rasterized", total.rasterized},
-                       {"triangles_rasterized_max_per_pixel", total.rasterized_max}};
+    output.counters = to_counters(gathered, tile_counters);
     return output;
   }
 };

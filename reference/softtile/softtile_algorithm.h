@@ -8,10 +8,7 @@
 //
 // The tile's candidate buffer holds tile_triangle_limit triangles, as the post's shared memory
 // does; a tile with more is not dropped (the post's checkerboard) but processed in further batches,
-// and counted. Counters, in order: gather_clusters, gather_clusters_culled, gather_triangles,
-// gather_light_facing_dropped, tiles, tiles_with_relevant_pixels, tile_capsule_bounds,
-// tile_candidates_total, tile_candidates_max, overflowing_tiles, overflow_batches,
-// pixel_triangle_tests, triangles_rasterized, triangles_rasterized_max_per_pixel.
+// and counted. The counters are listed in reference/softtile/counters.h.
 #include <memory>
 #include <string>
 #include <vector>

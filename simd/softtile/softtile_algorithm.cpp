@@ -10,6 +10,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "reference/softtile/counters.h"
 #include "reference/softtile/softtile_algorithm.h"
 #include "reference/softtile/softtile_variant.h"
 #include "shadowcts/hard_shadow_inputs.h"
@@ -79,11 +80,6 @@ namespace {
 
 namespace ref = shadowcts::softtile;
 
-struct TileCounters {
-  std::uint64_t relevant = 0, capsule = 0, candidates = 0, overflow_batches = 0, tests = 0,
-                rasterized = 0, rasterized_max = 0;
-};
-
 class SimdSofttile final : public VariantTableAlgorithm<ref::Variant> {
  public:
   using VariantTableAlgorithm::VariantTableAlgorithm;
@@ -108,7 +104,7 @@ class SimdSofttile final : public VariantTableAlgorithm<ref::Variant> {
     const float inverse_scale = ref::disk_inverse_scale(gathered, variant);
     const std::size_t tiles =
         std::size_t(ref::tiles_across(samples.width)) * ref::tiles_across(samples.height);
-    std::vector<TileCounters> tile_counters(tiles);
+    std::vector<ref::TileCounters> tile_counters(tiles);
 
     phase_progress::begin(tiles, "screen tiles");
     run_with_thread_limit(c.parameters.threads, [&] {
@@ -122,15 +118,10 @@ class SimdSofttile final : public VariantTableAlgorithm<ref::Variant> {
                                             tile))
                 continue;
               softtile::cull_candidates(cones, tile.bound, tile.candidates);
-              TileCounters& counters = tile_counters[index];
-              counters.relevant = 1;
-              counters.capsule = tile.bound.capsule ? 1 : 0;
+              ref::TileCounters& counters = tile_counters[index];
+              counters.relevant = true;
+              counters.capsule = tile.bound.capsule;
               counters.candidates = tile.candidates.size();
-              // The reference's batch count (its buffer of softtile_tile_triangle_limit).
-              counters.overflow_batches =
-                  tile.candidates.empty()
-                      ? 0
-                      : (tile.candidates.size() - 1) / softtile_tile_triangle_limit;
               softtile::rasterize_tile(samples, gathered, raster, tile, scratch, result);
               counters.tests = result.tests;
               counters.rasterized = result.rasterized;
@@ -145,33 +136,7 @@ class SimdSofttile final : public VariantTableAlgorithm<ref::Variant> {
     clock.lap(query_phase);
     output.phase_ms = clock.times();
 
-    TileCounters total;
-    std::uint64_t candidates_max = 0, overflowing = 0;
-    for (const TileCounters& t : tile_counters) {
-      total.relevant += t.relevant;
-      total.capsule += t.capsule;
-      total.candidates += t.candidates;
-      total.overflow_batches += t.overflow_batches;
-      total.tests += t.tests;
-      total.rasterized += t.rasterized;
-      total.rasterized_max = std::max(total.rasterized_max, t.rasterized_max);
-      candidates_max = std::max(candidates_max, t.candidates);
-      overflowing += t.candidates > softtile_tile_triangle_limit ? 1 : 0;
-    }
-    output.counters = {{"gather_clusters", gathered.clusters_in},
-                       {"gather_clusters_culled", gathered.clusters_culled},
-                       {"gather_triangles", gathered.triangles.size()},
-                       {"gather_light_facing_dropped", gathered.light_facing_dropped},
-                       {"tiles", tiles},
-                       {"tiles_with_relevant_pixels", total.relevant},
-                       {"tile_capsule_bounds", total.capsule},
-                       {"tile_candidates_total", total.candidates},
-                       {"tile_candidates_max", candidates_max},
-                       {"overflowing_tiles", overflowing},
-                       {"overflow_batches", total.overflow_batches},
-                       {"pixel_triangle_tests", total.tests},
-                       {"triangles_rasterized", total.rasterized},
-                       {"triangles_rasterized_max_per_pixel", total.rasterized_max}};
+    output.counters = ref::to_counters(gathered, tile_counters);
     return output;
   }
 };
