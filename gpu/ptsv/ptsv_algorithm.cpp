@@ -9,6 +9,7 @@
 
 #include "reference/light_on_caster.h"
 #include "reference/ptsv/cluster_keys.h"
+#include "reference/ptsv/counters.h"
 #include "reference/ptsv/node_test.h"
 #include "reference/ptsv/ptsv_algorithm.h"
 #include "reference/ptsv/receiver_rule.h"
@@ -258,28 +259,11 @@ class KernelPtsv final : public VariantTableAlgorithm<VariantConfig> {
         shadow_samples_by_light_on_caster(c, samples, output.shadowed);
     std::uint64_t nodes = 0;
     for (const gpu_ptsv::Level& level : result.levels) nodes += level.index.size();
-    const ref::TraversalCounters& counters = result.counters;
-    const ref::SetupCounts& setup_counts = setup.counts;
-    output.counters = {
-        {"test_and_set_operations", counters.test_and_set()},
-        {"node_tests", counters.node_tests},
-        {"sample_tests", counters.sample_tests},
-        {"nodes_visited", counters.nodes_visited},
-        {"trivial_accepts", counters.trivial_accepts},
-        {"trivial_rejects", counters.trivial_rejects},
-        {"culling_plane_rejects", counters.culling_plane_rejects},
-        {"first_pass_jobs", counters.first_pass_jobs},
-        {"second_pass_jobs", counters.second_pass_jobs},
-        {"shadow_volumes", setup_counts.volumes},
-        {"front_faces_culled", setup_counts.front_faces_culled},
-        {"edge_on_triangles", setup_counts.edge_on},
-        {"zero_area_triangles", setup_counts.zero_area},
-        {"culling_planes", setup_counts.extra_planes + setup_counts.silhouette_planes},
-        {"hierarchy_nodes", nodes},
-        {"hierarchy_levels", std::uint64_t(result.levels.size())},
-        {"key_bits", std::uint64_t(setup.layout.key_bits())},
-        {"light_on_caster_samples", light_on_caster},
-    };
+    output.counters = ref::to_counters(result.counters, setup.counts,
+                                       {.nodes = nodes,
+                                        .levels = std::uint64_t(result.levels.size()),
+                                        .key_bits = std::uint64_t(setup.layout.key_bits())},
+                                       light_on_caster);
     if (backend_.emulated) output.counters.push_back({"emulated_threads", result.threads});
     output.phase_ms = clock.times();
     return output;

@@ -94,7 +94,7 @@ class Ptsv final : public VariantTableAlgorithm<VariantConfig> {
     AlgorithmOutput output;
     output.shadowed.assign(samples.samples.size(), 0);
     TraversalCounters counters;
-    std::uint64_t nodes = 0, levels = 0, key_bits = 0;
+    HierarchyShape shape;
     if (config.depth_buffer_2011) {
       HierarchicalDepthBuffer buffer(frame, samples, &rule);
       if (!buffer.problem().empty()) throw InputError(c.source, "view samples", buffer.problem());
@@ -112,8 +112,8 @@ class Ptsv final : public VariantTableAlgorithm<VariantConfig> {
       buffer.merge(output.shadowed);
       clock.lap(query_phase);
       for (int l = 0; l < buffer.level_count(); ++l)
-        for (std::uint8_t occupied : buffer.level(l).occupied) nodes += occupied;
-      levels = std::uint64_t(buffer.level_count());
+        for (std::uint8_t occupied : buffer.level(l).occupied) shape.nodes += occupied;
+      shape.levels = std::uint64_t(buffer.level_count());
     } else {
       const KeyLayoutResult layout =
           make_cluster_key_layout(c.camera, samples.width, samples.height);
@@ -141,33 +141,14 @@ class Ptsv final : public VariantTableAlgorithm<VariantConfig> {
       }
       traversal.mark_trivially_accepted(keys.key);
       clock.lap(query_phase);
-      nodes = hierarchy.node_count();
-      levels = std::uint64_t(hierarchy.leaf_level()) + 1;
-      key_bits = std::uint64_t(layout.layout.key_bits());
+      shape = {.nodes = hierarchy.node_count(),
+               .levels = std::uint64_t(hierarchy.leaf_level()) + 1,
+               .key_bits = std::uint64_t(layout.layout.key_bits())};
     }
     const std::uint64_t light_on_caster =
         shadow_samples_by_light_on_caster(c, samples, output.shadowed);
 
-    output.counters = {
-        {"test_and_set_operations", counters.test_and_set()},
-        {"node_tests", counters.node_tests},
-        {"sample_tests", counters.sample_tests},
-        {"nodes_visited", counters.nodes_visited},
-        {"trivial_accepts", counters.trivial_accepts},
-        {"trivial_rejects", counters.trivial_rejects},
-        {"culling_plane_rejects", counters.culling_plane_rejects},
-        {"first_pass_jobs", counters.first_pass_jobs},
-        {"second_pass_jobs", counters.second_pass_jobs},
-        {"shadow_volumes", setup_counts.volumes},
-        {"front_faces_culled", setup_counts.front_faces_culled},
-        {"edge_on_triangles", setup_counts.edge_on},
-        {"zero_area_triangles", setup_counts.zero_area},
-        {"culling_planes", setup_counts.extra_planes + setup_counts.silhouette_planes},
-        {"hierarchy_nodes", nodes},
-        {"hierarchy_levels", levels},
-        {"key_bits", key_bits},
-        {"light_on_caster_samples", light_on_caster},
-    };
+    output.counters = to_counters(counters, setup_counts, shape, light_on_caster);
     output.phase_ms = clock.times();
     return output;
   }

@@ -8,6 +8,7 @@
 #include <tbb/parallel_reduce.h>
 
 #include "reference/light_on_caster.h"
+#include "reference/ptsv/counters.h"
 #include "reference/ptsv/hdb2011.h"
 #include "reference/ptsv/ptsv_algorithm.h"
 #include "reference/ptsv/triangle_setup.h"
@@ -172,27 +173,11 @@ class SimdPtsv final : public VariantTableAlgorithm<VariantConfig> {
     const std::uint64_t light_on_caster =
         shadow_samples_by_light_on_caster(c, samples, output.shadowed);
 
-    const ref::SetupCounts& setup_counts = volumes.counts;
-    output.counters = {
-        {"test_and_set_operations", counters.test_and_set()},
-        {"node_tests", counters.node_tests},
-        {"sample_tests", counters.sample_tests},
-        {"nodes_visited", counters.nodes_visited},
-        {"trivial_accepts", counters.trivial_accepts},
-        {"trivial_rejects", counters.trivial_rejects},
-        {"culling_plane_rejects", counters.culling_plane_rejects},
-        {"first_pass_jobs", counters.first_pass_jobs},
-        {"second_pass_jobs", counters.second_pass_jobs},
-        {"shadow_volumes", setup_counts.volumes},
-        {"front_faces_culled", setup_counts.front_faces_culled},
-        {"edge_on_triangles", setup_counts.edge_on},
-        {"zero_area_triangles", setup_counts.zero_area},
-        {"culling_planes", setup_counts.extra_planes + setup_counts.silhouette_planes},
-        {"hierarchy_nodes", h.node_count()},
-        {"hierarchy_levels", std::uint64_t(h.leaf_level()) + 1},
-        {"key_bits", std::uint64_t(built.layout.layout.key_bits())},
-        {"light_on_caster_samples", light_on_caster},
-    };
+    output.counters = ref::to_counters(counters, volumes.counts,
+                                       {.nodes = h.node_count(),
+                                        .levels = std::uint64_t(h.leaf_level()) + 1,
+                                        .key_bits = std::uint64_t(built.layout.layout.key_bits())},
+                                       light_on_caster);
     output.phase_ms = clock.times();
     return output;
   }
