@@ -9,6 +9,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "reference/metric/metric_tree.h"
 #include "reference/metric/traversal.h"
 #include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/phase_progress.h"
@@ -21,20 +22,6 @@ namespace ref = shadowcts::metric;
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-std::uint64_t tree_depth(const ref::MetricTree& tree) {
-  if (tree.nodes.empty()) return 0;
-  std::uint64_t deepest = 0;
-  std::vector<std::pair<std::uint32_t, std::uint64_t>> stack{{0, 0}};
-  while (!stack.empty()) {
-    const auto [node, depth] = stack.back();
-    stack.pop_back();
-    deepest = std::max(deepest, depth);
-    for (std::uint32_t child : tree.nodes[node].child)
-      if (child != ref::no_node) stack.push_back({child, depth + 1});
-  }
-  return deepest;
 }
 
 PivotKind pivot_kind(const ref::LightFrame& frame, const ref::LightSpaceElement& e) {
@@ -205,7 +192,7 @@ GpuMetricRun run_metric(const PreparedScene& scene, const GpuMetricOptions& opti
         [](const ref::ClusterVolume& v) { return v.shape == ref::VolumeShape::capsule; }));
     counters.clusters_culled_facing_away = structure.clusters_culled_facing_away;
     counters.tree_nodes = structure.tree.nodes.size();
-    counters.tree_depth = tree_depth(structure.tree);
+    counters.tree_depth = ref::tree_depth(structure.tree);
     counters.traversal.nodes_visited = result.nodes_visited + nodes_visited.load();
     counters.traversal.clusters_tested_without_hit =
         result.clusters_tested_without_hit + clusters_without_hit.load();

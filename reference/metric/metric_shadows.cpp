@@ -27,23 +27,6 @@ std::span<const std::uint32_t> cluster_triangles_of(const Clustering& clustering
   return {clustering.triangles.data() + clustering.cluster_begin[k], clustering.size(k)};
 }
 
-// Seed streams of one case: the clustering and the tree build draw from different ones.
-constexpr std::uint64_t clustering_stream = 1, tree_stream = 2;
-
-std::uint64_t tree_depth(const MetricTree& tree) {
-  if (tree.nodes.empty()) return 0;
-  std::uint64_t deepest = 0;
-  std::vector<std::pair<std::uint32_t, std::uint64_t>> stack{{0, 0}};
-  while (!stack.empty()) {
-    const auto [node, depth] = stack.back();
-    stack.pop_back();
-    deepest = std::max(deepest, depth);
-    for (std::uint32_t child : tree.nodes[node].child)
-      if (child != no_node) stack.push_back({child, depth + 1});
-  }
-  return deepest;
-}
-
 // Closed meshes whose bounding box (enlarged by the margin) may hold the point light: the light
 // may be inside the solid, where the faces that face it are not the ones a segment leaves by.
 std::vector<bool> meshes_around_light(const Case& c, const LightFrame& frame) {

@@ -44,6 +44,9 @@ inline TreeChild partition_child(const DistanceBounds& bounds, double partition_
   return TreeChild::overlap;
 }
 
+// Edges on the longest root-to-leaf path (0 for an empty tree or a lone root).
+std::uint64_t tree_depth(const MetricTree& tree);
+
 // The paper's initial partitioning distance: the angular radius of the cone of the scene's
 // bounding sphere (its radius in the plane for a directional light; pi when a point light is
 // inside it).

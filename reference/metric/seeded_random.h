@@ -21,6 +21,9 @@ inline std::uint64_t mix_seed(std::uint64_t seed, std::uint64_t a, std::uint64_t
   return mix_seed(mix_seed(mix_seed(seed) ^ a) ^ b);
 }
 
+// Seed streams of one case: the clustering and the tree build draw from different ones.
+inline constexpr std::uint64_t clustering_stream = 1, tree_stream = 2;
+
 // Uniform in [0, 1): the top 53 bits.
 inline double uniform_unit(std::mt19937_64& rng) {
   return double(rng() >> 11) * 0x1p-53;

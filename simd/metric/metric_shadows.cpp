@@ -12,6 +12,7 @@
 #include <tbb/parallel_reduce.h>
 #include <glm/geometric.hpp>
 
+#include "reference/metric/metric_tree.h"
 #include "reference/metric/seeded_random.h"
 #include "shadowcts/phase_progress.h"
 #include "simd/metric/metric_tree.h"
@@ -30,23 +31,6 @@ double process_cpu_seconds() {
   timespec t{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
   return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
-}
-
-// The reference's seed stream of the tree build (metric_shadows.cpp: tree_stream).
-constexpr std::uint64_t tree_stream = 2;
-
-std::uint64_t tree_depth(const ref::MetricTree& tree) {
-  if (tree.nodes.empty()) return 0;
-  std::uint64_t deepest = 0;
-  std::vector<std::pair<std::uint32_t, std::uint64_t>> stack{{0, 0}};
-  while (!stack.empty()) {
-    const auto [node, depth] = stack.back();
-    stack.pop_back();
-    deepest = std::max(deepest, depth);
-    for (std::uint32_t child : tree.nodes[node].child)
-      if (child != ref::no_node) stack.push_back({child, depth + 1});
-  }
-  return deepest;
 }
 
 // The bounding box of every mesh's vertices, and of all of them: the reference reads them in two
@@ -181,7 +165,7 @@ ref::LightStructure build_light_structure(const PreparedScene& scene,
     else
       structure.elements.push_back(all[k]);
   }
-  const std::uint64_t seed = ref::mix_seed(c.parameters.seed, tree_stream);
+  const std::uint64_t seed = ref::mix_seed(c.parameters.seed, ref::tree_stream);
   structure.tree = simd::metric::build_metric_tree_by_insertion(
       frame, structure.elements, ref::box_partition_distance(frame, boxes.all_lo, boxes.all_hi),
       seed);
@@ -252,7 +236,7 @@ SimdMetricRun run_metric(const PreparedScene& scene, const SimdMetricOptions& op
       [](const ref::ClusterVolume& v) { return v.shape == ref::VolumeShape::capsule; }));
   counters.clusters_culled_facing_away = structure.clusters_culled_facing_away;
   counters.tree_nodes = structure.tree.nodes.size();
-  counters.tree_depth = tree_depth(structure.tree);
+  counters.tree_depth = ref::tree_depth(structure.tree);
   counters.traversal.nodes_visited = nodes_visited.load();
   counters.traversal.clusters_tested_without_hit = clusters_without_hit.load();
   counters.traversal.triangle_tests = triangle_tests.load();
