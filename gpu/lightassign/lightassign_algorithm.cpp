@@ -11,6 +11,7 @@
 #include "reference/lightassign/cluster_key.h"
 #include "reference/lightassign/light_list_builder.h"
 #include "reference/lightassign/lightassign_algorithm.h"
+#include "reference/lightassign/tiled_assignment.h"
 #include "shadowcts/geometry/camera_frame.h"
 #include "shadowcts/phase_clock.h"
 #include "shadowcts/thread_limit.h"
@@ -120,13 +121,10 @@ class LightAssignKernelAlgorithm final : public LightAssignAlgorithm {
       out.bounds[k] = {result.bounds[k].min, result.bounds[k].max};
     out.list_of_sample = scene.per_view_sample(result.list_of_regular, LightLists::no_list);
 
-    std::uint64_t key_bits = result.key_bits;
-    if (tiled) {
-      const std::uint32_t tiles_x = (samples.width + tile_size - 1) / tile_size;
-      const std::uint32_t tiles_y = (samples.height + tile_size - 1) / tile_size;
-      key_bits = std::uint64_t(std::bit_width(std::max(tiles_x, 1u) - 1) +
-                               std::bit_width(std::max(tiles_y, 1u) - 1));
-    }
+    const std::uint64_t key_bits = tiled
+                                       ? tile_key_bits((samples.width + tile_size - 1) / tile_size,
+                                                       (samples.height + tile_size - 1) / tile_size)
+                                       : result.key_bits;
     ListWork work;
     work.nodes_tested = result.nodes_tested;
     work.light_tests = result.light_tests;

@@ -56,6 +56,11 @@ TileRect covered_tiles(const ViewFrustum& frustum, const RangedLight& light,
   return rect;
 }
 
+std::uint64_t tile_key_bits(std::uint32_t tiles_x, std::uint32_t tiles_y) {
+  return std::uint64_t(std::bit_width(std::max(tiles_x, 1u) - 1) +
+                       std::bit_width(std::max(tiles_y, 1u) - 1));
+}
+
 AlgorithmOutput assign_lights_tiled(const Case& c, const ViewSamples& samples,
                                     std::uint32_t tile_size) {
   PhaseClock clock;
@@ -153,10 +158,8 @@ AlgorithmOutput assign_lights_tiled(const Case& c, const ViewSamples& samples,
   std::uint64_t grown_total = 0;
   for (const std::uint32_t g : grown) grown_total += g;
   AlgorithmOutput output;
-  const int tile_bits = int(std::bit_width(std::max(tiles_x, 1u) - 1)) +
-                        int(std::bit_width(std::max(tiles_y, 1u) - 1));
   output.counters =
-      light_assignment_counters(out, samples, work, std::uint64_t(tile_bits), grown_total);
+      light_assignment_counters(out, samples, work, tile_key_bits(tiles_x, tiles_y), grown_total);
   output.light_lists = std::move(out);
   output.phase_ms = clock.times();
   return output;

@@ -22,6 +22,9 @@ struct TileRect {
 TileRect covered_tiles(const ViewFrustum& frustum, const RangedLight& light,
                        std::uint32_t tile_size, std::uint32_t tiles_x, std::uint32_t tiles_y);
 
+// The bits of a tile index (x, y): the key_bits counter of every tiled backend.
+std::uint64_t tile_key_bits(std::uint32_t tiles_x, std::uint32_t tiles_y);
+
 AlgorithmOutput assign_lights_tiled(const Case& c, const ViewSamples& samples,
                                     std::uint32_t tile_size);
 

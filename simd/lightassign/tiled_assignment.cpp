@@ -147,10 +147,8 @@ AlgorithmOutput assign_lights_tiled(const PreparedScene& scene, std::uint32_t ti
   std::uint64_t grown_total = 0;
   for (const std::uint32_t g : grown) grown_total += g;
   AlgorithmOutput output;
-  const int tile_bits = int(std::bit_width(std::max(tiles_x, 1u) - 1)) +
-                        int(std::bit_width(std::max(tiles_y, 1u) - 1));
   output.counters =
-      light_assignment_counters(out, samples, work, std::uint64_t(tile_bits), grown_total);
+      light_assignment_counters(out, samples, work, tile_key_bits(tiles_x, tiles_y), grown_total);
   output.light_lists = std::move(out);
   output.phase_ms = clock.times();
   return output;
