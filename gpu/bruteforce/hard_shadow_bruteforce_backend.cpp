@@ -80,15 +80,11 @@ class BruteforceKernelAlgorithm final : public VariantTableAlgorithm<> {
  public:
   explicit BruteforceKernelAlgorithm(BruteforceKernelBackend backend)
       : VariantTableAlgorithm(
-            {.id = "bruteforce",
-             .backend = backend.backend,
-             .summary = backend.summary,
-             .capabilities = {.output = OutputKind::hard_shadow,
-                              .point_light = true,
-                              .directional_light = true,
-                              .max_sample_triangle_pairs = backend.max_sample_triangle_pairs},
-             .unavailable_reason = backend.unavailable_reason,
-             .emulated = backend.emulated},
+            backend.describe("bruteforce", Capabilities{.output = OutputKind::hard_shadow,
+                                                        .point_light = true,
+                                                        .directional_light = true,
+                                                        .max_sample_triangle_pairs =
+                                                            backend.max_sample_triangle_pairs}),
             {{.name = "float32", .phases = {}}}),
         backend_(std::move(backend)) {}
 

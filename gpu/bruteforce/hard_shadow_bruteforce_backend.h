@@ -10,21 +10,16 @@
 #include <vector>
 
 #include "gpu/bruteforce/hard_shadow_bruteforce_kernel.h"
+#include "gpu/kernel_backend.h"
 #include "shadowcts/algorithm.h"
 #include "shadowcts/case.h"
 #include "shadowcts/view_samples.h"
 
 namespace shadowcts {
 
-struct BruteforceKernelBackend {
-  std::string backend;  // "cuda" or "cuda-emu"
-  std::string summary;
+struct BruteforceKernelBackend : KernelBackend {
   std::uint64_t max_sample_triangle_pairs = 0;
   BruteforceShadowResult (*run_kernel)(BruteforceShadowInput) = nullptr;
-  // Why the kernel cannot run here (no device), or nullopt; nullptr: it always can.
-  std::optional<std::string> (*unavailable_reason)() = nullptr;
-  bool emulated =
-      false;  // AlgorithmInfo::emulated; adds the `emulated_threads` counter to every record
 };
 
 std::unique_ptr<Algorithm> make_bruteforce_kernel_algorithm(BruteforceKernelBackend backend);

@@ -87,12 +87,8 @@ class LightAssignKernelAlgorithm final : public LightAssignAlgorithm {
  public:
   explicit LightAssignKernelAlgorithm(LightAssignKernelBackend backend)
       : LightAssignAlgorithm(
-            {.id = "lightassign",
-             .backend = backend.backend,
-             .summary = backend.summary,
-             .capabilities = {.output = OutputKind::light_lists, .ranged_lights = true},
-             .unavailable_reason = backend.unavailable_reason,
-             .emulated = backend.emulated},
+            backend.describe("lightassign", Capabilities{.output = OutputKind::light_lists,
+                                                         .ranged_lights = true}),
             select_variants(lightassign_variants(), {"tiled", "clustered", "clustered+eb",
                                                      "clustered+en", "clustered+nk3"})),
         backend_(std::move(backend)) {}

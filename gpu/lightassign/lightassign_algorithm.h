@@ -6,20 +6,15 @@
 #include <optional>
 #include <string>
 
+#include "gpu/kernel_backend.h"
 #include "gpu/lightassign/lightassign_kernels.h"
 #include "shadowcts/algorithm.h"
 #include "shadowcts/prepared_scene.h"
 
 namespace shadowcts {
 
-struct LightAssignKernelBackend {
-  std::string backend;  // "cuda" or "cuda-emu"
-  std::string summary;
+struct LightAssignKernelBackend : KernelBackend {
   LightAssignKernelResult (*run_kernels)(LightAssignKernelInput) = nullptr;
-  // Why the kernels cannot run here (no device), or nullopt; nullptr: they always can.
-  std::optional<std::string> (*unavailable_reason)() = nullptr;
-  bool emulated =
-      false;  // AlgorithmInfo::emulated; adds the `emulated_threads` counter to every record
 };
 
 std::unique_ptr<Algorithm> make_lightassign_kernel_algorithm(LightAssignKernelBackend backend);

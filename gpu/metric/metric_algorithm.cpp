@@ -16,12 +16,7 @@ class MetricKernelAlgorithm final : public VariantTableAlgorithm<gpu_metric::Gpu
  public:
   explicit MetricKernelAlgorithm(MetricKernelBackend backend)
       : VariantTableAlgorithm(
-            {.id = "metric",
-             .backend = backend.backend,
-             .summary = backend.summary,
-             .capabilities = point_and_directional_hard_shadows,
-             .unavailable_reason = backend.unavailable_reason,
-             .emulated = backend.emulated},
+            backend.describe("metric", point_and_directional_hard_shadows),
             variant_table({"capsules", "spheres", "capsules16"},
                           gpu_metric::parse_gpu_metric_variant,
                           {.phases = {clustering_phase, build_phase, query_phase}})),

@@ -6,19 +6,14 @@
 #include <optional>
 #include <string>
 
+#include "gpu/kernel_backend.h"
 #include "gpu/metric/metric_shadows.h"
 #include "shadowcts/algorithm.h"
 
 namespace shadowcts {
 
-struct MetricKernelBackend {
-  std::string backend;  // "cuda" or "cuda-emu"
-  std::string summary;
+struct MetricKernelBackend : KernelBackend {
   gpu_metric::KernelRunner run_kernel = nullptr;
-  // Why the kernel cannot run here (no device), or nullopt; nullptr: it always can.
-  std::optional<std::string> (*unavailable_reason)() = nullptr;
-  bool emulated =
-      false;  // AlgorithmInfo::emulated; adds the `emulated_threads` counter to every record
 };
 
 // id "metric", variants "capsules", "spheres", "capsules16"; phases clustering, build, query;

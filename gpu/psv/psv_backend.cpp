@@ -13,12 +13,7 @@ class PsvKernelAlgorithm final : public VariantTableAlgorithm<psv::PsvOptions> {
  public:
   explicit PsvKernelAlgorithm(PsvKernelBackend backend)
       : VariantTableAlgorithm(
-            {.id = "psv",
-             .backend = backend.backend,
-             .summary = backend.summary,
-             .capabilities = point_and_directional_hard_shadows,
-             .unavailable_reason = backend.unavailable_reason,
-             .emulated = backend.emulated},
+            backend.describe("psv", point_and_directional_hard_shadows),
             // The four queries, under the reference's names: stack32 is the paper's PSV
             // (stack of 32). The reference's stack (12) and hybrid4 run the same kernel with
             // another capacity; the diff test (tests/gpu/psv) checks them against the reference,

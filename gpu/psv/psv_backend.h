@@ -5,20 +5,15 @@
 #include <optional>
 #include <string>
 
+#include "gpu/kernel_backend.h"
 #include "gpu/psv/psv_shadows.h"
 #include "shadowcts/algorithm.h"
 
 namespace shadowcts::gpu_psv {
 
-struct PsvKernelBackend {
-  std::string backend;  // "cuda" or "cuda-emu"
-  std::string summary;
+struct PsvKernelBackend : KernelBackend {
   QueryKernel run_kernel = nullptr;
   DescentSessionMaker make_descent_session = nullptr;
-  // Why the kernel cannot run here (no device), or nullopt; nullptr: it always can.
-  std::optional<std::string> (*unavailable_reason)() = nullptr;
-  bool emulated =
-      false;  // AlgorithmInfo::emulated; adds the `emulated_threads` counter to every record
 };
 
 std::unique_ptr<Algorithm> make_psv_kernel_algorithm(PsvKernelBackend backend);

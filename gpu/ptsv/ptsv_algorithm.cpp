@@ -193,15 +193,11 @@ class KernelPtsv final : public VariantTableAlgorithm<VariantConfig> {
  public:
   explicit KernelPtsv(PtsvKernelBackend backend)
       : VariantTableAlgorithm(
-            {.id = "ptsv",
-             .backend = backend.backend,
-             .summary = backend.summary,
-             .capabilities = {.output = OutputKind::hard_shadow,
-                              .point_light = true,
-                              .directional_light = true,
-                              .max_sample_triangle_pairs = backend.max_sample_triangle_pairs},
-             .unavailable_reason = backend.unavailable_reason,
-             .emulated = backend.emulated},
+            backend.describe("ptsv", Capabilities{.output = OutputKind::hard_shadow,
+                                                  .point_light = true,
+                                                  .directional_light = true,
+                                                  .max_sample_triangle_pairs =
+                                                      backend.max_sample_triangle_pairs}),
             ported_variants),
         backend_(std::move(backend)) {}
 

@@ -12,20 +12,15 @@
 #include <optional>
 #include <string>
 
+#include "gpu/kernel_backend.h"
 #include "gpu/ptsv/ptsv_kernels.h"
 #include "shadowcts/algorithm.h"
 #include "shadowcts/prepared_scene.h"
 
 namespace shadowcts {
 
-struct PtsvKernelBackend {
-  std::string backend;  // "cuda" or "cuda-emu"
-  std::string summary;
+struct PtsvKernelBackend : KernelBackend {
   gpu_ptsv::KernelResult (*run_kernels)(gpu_ptsv::KernelInput) = nullptr;
-  // Why the kernels cannot run here (no device), or nullopt; nullptr: they always can.
-  std::optional<std::string> (*unavailable_reason)() = nullptr;
-  bool emulated =
-      false;  // AlgorithmInfo::emulated; adds the `emulated_threads` counter to every record
   // Capabilities::max_sample_triangle_pairs (0: no limit) and why, with the cost measured near
   // it: the NotSupported reason above it says both.
   std::uint64_t max_sample_triangle_pairs = 0;

@@ -146,12 +146,8 @@ class SofttileKernelAlgorithm final : public VariantTableAlgorithm<ref::Variant>
  public:
   explicit SofttileKernelAlgorithm(SofttileKernelBackend backend)
       : VariantTableAlgorithm(
-            {.id = "softtile",
-             .backend = backend.backend,
-             .summary = backend.summary,
-             .capabilities = {.output = OutputKind::soft_shadow, .sun_disk = true},
-             .unavailable_reason = backend.unavailable_reason,
-             .emulated = backend.emulated},
+            backend.describe("softtile",
+                             Capabilities{.output = OutputKind::soft_shadow, .sun_disk = true}),
             select_variants(softtile_variants(), kernel_variants())),
         backend_(std::move(backend)) {}
 

@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 
+#include "gpu/kernel_backend.h"
 #include "gpu/softtile/softtile_kernel.h"
 #include "reference/softtile/softtile_gather.h"
 #include "reference/softtile/softtile_variant.h"
@@ -19,14 +20,8 @@
 
 namespace shadowcts {
 
-struct SofttileKernelBackend {
-  std::string backend;  // "cuda" or "cuda-emu"
-  std::string summary;
+struct SofttileKernelBackend : KernelBackend {
   SofttileKernelResult (*run_kernel)(SofttileKernelInput) = nullptr;
-  // Why the kernel cannot run here (no device), or nullopt; nullptr: it always can.
-  std::optional<std::string> (*unavailable_reason)() = nullptr;
-  bool emulated =
-      false;  // AlgorithmInfo::emulated; adds the `emulated_threads` counter to every record
 };
 
 // id "softtile", the reference's budgets and counters; variants grid16, grid16+rot, rows15,
