@@ -56,6 +56,23 @@ TileRect covered_tiles(const ViewFrustum& frustum, const RangedLight& light,
   return rect;
 }
 
+SubFrustum tile_sub_frustum(std::uint32_t tile, std::uint32_t tiles_x, std::uint32_t tile_size,
+                            std::uint32_t width, std::uint32_t height, const double* depth,
+                            const std::uint32_t* members_begin, const std::uint32_t* members_end) {
+  SubFrustum f;
+  f.x0 = double(tile % tiles_x) * tile_size;
+  f.x1 = std::min(f.x0 + tile_size, double(width));
+  f.y0 = double(tile / tiles_x) * tile_size;
+  f.y1 = std::min(f.y0 + tile_size, double(height));
+  f.near_depth = std::numeric_limits<double>::infinity();
+  f.far_depth = -f.near_depth;
+  for (const std::uint32_t* m = members_begin; m != members_end; ++m) {
+    f.near_depth = std::min(f.near_depth, depth[*m]);
+    f.far_depth = std::max(f.far_depth, depth[*m]);
+  }
+  return f;
+}
+
 std::uint64_t tile_key_bits(std::uint32_t tiles_x, std::uint32_t tiles_y) {
   return std::uint64_t(std::bit_width(std::max(tiles_x, 1u) - 1) +
                        std::bit_width(std::max(tiles_y, 1u) - 1));
@@ -94,18 +111,10 @@ AlgorithmOutput assign_lights_tiled(const Case& c, const ViewSamples& samples,
     for (std::size_t t = r.begin(); t != r.end(); ++t) {
       const std::uint32_t tile = tiles.tiles[t];
       list_of_tile[tile] = std::uint32_t(t);
-      SubFrustum& f = sub_frusta[t];
-      f.x0 = double(tile % tiles_x) * tile_size;
-      f.x1 = std::min(f.x0 + tile_size, double(samples.width));
-      f.y0 = double(tile / tiles_x) * tile_size;
-      f.y1 = std::min(f.y0 + tile_size, double(samples.height));
-      f.near_depth = std::numeric_limits<double>::infinity();
-      f.far_depth = -f.near_depth;
-      for (std::uint32_t m = tiles.member_offsets[t]; m < tiles.member_offsets[t + 1]; ++m) {
-        f.near_depth = std::min(f.near_depth, depth[tiles.members[m]]);
-        f.far_depth = std::max(f.far_depth, depth[tiles.members[m]]);
-      }
-      out.bounds[t] = frustum.bounding_box(f);
+      sub_frusta[t] = tile_sub_frustum(tile, tiles_x, tile_size, samples.width, samples.height,
+                                       depth.data(), tiles.members.data() + tiles.member_offsets[t],
+                                       tiles.members.data() + tiles.member_offsets[t + 1]);
+      out.bounds[t] = frustum.bounding_box(sub_frusta[t]);
       for (std::uint32_t m = tiles.member_offsets[t]; m < tiles.member_offsets[t + 1]; ++m)
         grown[t] += grow_to_contain(out.bounds[t], samples.samples[tiles.members[m]].position);
     }

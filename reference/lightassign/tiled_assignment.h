@@ -12,6 +12,7 @@
 namespace shadowcts {
 
 class ViewFrustum;
+struct SubFrustum;
 
 struct TileRect {
   std::uint32_t x0 = 1, x1 = 0, y0 = 1, y1 = 0;  // inclusive tile ranges; empty when x0 > x1
@@ -21,6 +22,12 @@ struct TileRect {
 // simd port, whose candidate lists must be the same).
 TileRect covered_tiles(const ViewFrustum& frustum, const RangedLight& light,
                        std::uint32_t tile_size, std::uint32_t tiles_x, std::uint32_t tiles_y);
+
+// Tile `tile`'s sub-frustum (Section 6.3): its pixels (the last row and column of tiles clipped to
+// the image) and the min/max of depth[m] over its member samples m.
+SubFrustum tile_sub_frustum(std::uint32_t tile, std::uint32_t tiles_x, std::uint32_t tile_size,
+                            std::uint32_t width, std::uint32_t height, const double* depth,
+                            const std::uint32_t* members_begin, const std::uint32_t* members_end);
 
 // The bits of a tile index (x, y): the key_bits counter of every tiled backend.
 std::uint64_t tile_key_bits(std::uint32_t tiles_x, std::uint32_t tiles_y);

@@ -54,17 +54,10 @@ AlgorithmOutput assign_lights_tiled(const PreparedScene& scene, std::uint32_t ti
     for (std::size_t t = r.begin(); t != r.end(); ++t) {
       const std::uint32_t tile = tiles.tiles[t];
       list_of_tile[tile] = std::uint32_t(t);
-      SubFrustum f;
-      f.x0 = double(tile % tiles_x) * tile_size;
-      f.x1 = std::min(f.x0 + tile_size, double(samples.width));
-      f.y0 = double(tile / tiles_x) * tile_size;
-      f.y1 = std::min(f.y0 + tile_size, double(samples.height));
-      f.near_depth = std::numeric_limits<double>::infinity();
-      f.far_depth = -f.near_depth;
-      for (std::uint32_t m = tiles.member_offsets[t]; m < tiles.member_offsets[t + 1]; ++m) {
-        f.near_depth = std::min(f.near_depth, depth[tiles.members[m]]);
-        f.far_depth = std::max(f.far_depth, depth[tiles.members[m]]);
-      }
+      const SubFrustum f =
+          tile_sub_frustum(tile, tiles_x, tile_size, samples.width, samples.height, depth.data(),
+                           tiles.members.data() + tiles.member_offsets[t],
+                           tiles.members.data() + tiles.member_offsets[t + 1]);
       out.bounds[t] = frustum.bounding_box(f);
       grown[t] = grow_to_contain_all(out.bounds[t], regular,
                                      member_regular.data() + tiles.member_offsets[t],
