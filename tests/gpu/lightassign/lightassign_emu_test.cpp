@@ -29,6 +29,7 @@
 #include "shadowcts/prepared_scene.h"
 #include "shadowcts/thread_limit.h"
 #include "shadowcts/view_samples.h"
+#include "tests/ports/output_difference.h"
 
 namespace shadowcts {
 namespace {
@@ -142,61 +143,8 @@ std::string first_intermediate_difference(const PreparedScene& scene, const std:
 
 // Empty when the outputs are the reference's, else the first difference.
 std::string first_difference(const AlgorithmOutput& ref, const AlgorithmOutput& emu) {
-  const LightLists& a = ref.light_lists;
-  const LightLists& b = emu.light_lists;
-  std::ostringstream why;
-  if (a.list_of_sample.size() != b.list_of_sample.size()) return "list_of_sample sizes differ";
-  for (std::size_t s = 0; s < a.list_of_sample.size(); ++s)
-    if (a.list_of_sample[s] != b.list_of_sample[s]) {
-      why << "sample " << s << ": list " << a.list_of_sample[s] << " vs " << b.list_of_sample[s];
-      return why.str();
-    }
-  if (a.offsets.size() != b.offsets.size() || a.bounds.size() != b.bounds.size()) {
-    why << "list counts " << a.offsets.size() - 1 << " vs " << b.offsets.size() - 1;
-    return why.str();
-  }
-  for (std::size_t k = 0; k < a.bounds.size(); ++k)
-    for (int i = 0; i < 3; ++i)
-      if (!same_float(a.bounds[k].min[i], b.bounds[k].min[i]) ||
-          !same_float(a.bounds[k].max[i], b.bounds[k].max[i])) {
-        why << "list " << k << ": box axis " << i << " [" << a.bounds[k].min[i] << ", "
-            << a.bounds[k].max[i] << "] vs [" << b.bounds[k].min[i] << ", " << b.bounds[k].max[i]
-            << "]";
-        return why.str();
-      }
-  for (std::size_t k = 0; k + 1 < a.offsets.size(); ++k) {
-    std::vector<std::uint32_t> la(a.lights.begin() + a.offsets[k],
-                                  a.lights.begin() + a.offsets[k + 1]);
-    std::vector<std::uint32_t> lb(b.lights.begin() + b.offsets[k],
-                                  b.lights.begin() + b.offsets[k + 1]);
-    const bool same_order = la == lb;
-    std::sort(la.begin(), la.end());
-    std::sort(lb.begin(), lb.end());
-    if (la != lb) {
-      std::vector<std::uint32_t> only_a, only_b;
-      std::set_difference(la.begin(), la.end(), lb.begin(), lb.end(), std::back_inserter(only_a));
-      std::set_difference(lb.begin(), lb.end(), la.begin(), la.end(), std::back_inserter(only_b));
-      why << "list " << k << ": " << la.size() << " lights vs " << lb.size();
-      if (!only_a.empty()) why << "; light " << only_a.front() << " only in the reference's";
-      if (!only_b.empty()) why << "; light " << only_b.front() << " only in the kernels'";
-      return why.str();
-    }
-    if (!same_order) {
-      why << "list " << k << ": the reference's lights in another order";
-      return why.str();
-    }
-  }
-  // The reference's counters, then emulated_threads.
-  if (emu.counters.size() != ref.counters.size() + 1 ||
-      emu.counters.back().first != "emulated_threads" || emu.counters.back().second == 0)
-    return "counters: the reference's plus emulated_threads expected";
-  for (std::size_t i = 0; i < ref.counters.size(); ++i)
-    if (ref.counters[i] != emu.counters[i]) {
-      why << "counter " << ref.counters[i].first << ": " << ref.counters[i].second << " vs "
-          << emu.counters[i].first << " " << emu.counters[i].second;
-      return why.str();
-    }
-  return {};
+  const std::string why = port_test::light_list_difference(ref.light_lists, emu.light_lists);
+  return why.empty() ? port_test::counter_difference(ref.counters, emu.counters, true) : why;
 }
 
 // Every emulated variant on one case: the reference's unsupported reasons, intermediates, outputs.

@@ -22,6 +22,7 @@
 #include "reference/ptsv/view_frame.h"
 #include "shadowcts/fixtures.h"
 #include "shadowcts/prepared_scene.h"
+#include "tests/ports/output_difference.h"
 #include "tests/reference/ptsv/big_shadow_case.h"
 #include "tests/reference/ptsv/ptsv_test_support.h"
 
@@ -76,24 +77,12 @@ std::string diff_structures(const Case& c, const ViewSamples& samples, const Pre
 }
 
 // "" when the port's mask and every reference counter agree (the port adds emulated_threads).
-std::string diff_outputs(const AlgorithmOutput& port, const AlgorithmOutput& reference) {
-  for (const auto& [name, value] : reference.counters) {
-    bool found = false;
-    for (const auto& [port_name, port_value] : port.counters) {
-      if (port_name != name) continue;
-      found = true;
-      if (port_value != value)
-        return "counter " + name + ": " + std::to_string(port_value) + " != reference " +
-               std::to_string(value);
-    }
-    if (!found) return "counter " + name + " missing";
-  }
-  if (port.shadowed.size() != reference.shadowed.size()) return "mask sizes differ";
-  for (std::size_t i = 0; i < port.shadowed.size(); ++i)
-    if (port.shadowed[i] != reference.shadowed[i])
-      return "view sample " + std::to_string(i) + ": " + std::to_string(port.shadowed[i]) +
-             " != reference " + std::to_string(reference.shadowed[i]);
-  return "";
+// `emulated`: the port adds emulated_threads to the reference's counters.
+std::string diff_outputs(const AlgorithmOutput& port, const AlgorithmOutput& reference,
+                         bool emulated) {
+  const std::string why =
+      port_test::counter_difference(reference.counters, port.counters, emulated);
+  return why.empty() ? port_test::sample_difference(reference.shadowed, port.shadowed) : why;
 }
 
 void expect_like_reference(const Case& c, const ViewSamples& samples) {
@@ -105,7 +94,7 @@ void expect_like_reference(const Case& c, const ViewSamples& samples) {
     EXPECT_EQ(port->unsupported_reason(c, samples, variant), why) << variant;
     if (why) continue;
     EXPECT_EQ(diff_structures(c, samples, scene, variant), "") << c.name << " " << variant;
-    EXPECT_EQ(diff_outputs(port->run(scene, variant), reference->run(scene, variant)), "")
+    EXPECT_EQ(diff_outputs(port->run(scene, variant), reference->run(scene, variant), true), "")
         << c.name << " " << variant << " (cuda-emu != reference)";
   }
 }
@@ -146,12 +135,12 @@ TEST(CudaEmuPtsv, SameOutputsForOneAndTwoThreadsAndARandomSchedule) {
     const AlgorithmOutput one = port->run(c, samples, variant);
     c.parameters.threads = 2;
     const AlgorithmOutput two = port->run(c, samples, variant);
-    EXPECT_EQ(diff_outputs(two, one), "") << variant;
+    EXPECT_EQ(diff_outputs(two, one, false), "") << variant;
     emu::Options options;
     options.schedule = emu::Schedule::random;
     options.seed = 7;
     const emu::ScopedOptions scoped(options);
-    EXPECT_EQ(diff_outputs(port->run(c, samples, variant), one), "") << variant << " random";
+    EXPECT_EQ(diff_outputs(port->run(c, samples, variant), one, false), "") << variant << " random";
   }
 }
 

@@ -28,6 +28,7 @@
 #include "simd/lightassign/lightassign_algorithm.h"
 #include "simd/lightassign/lightassign_kernels.h"
 #include "simd/lightassign/unique_clusters.h"
+#include "tests/ports/output_difference.h"
 
 namespace shadowcts {
 namespace {
@@ -48,51 +49,8 @@ bool same_float(float a, float b) {
 
 // Empty when identical, else the first difference.
 std::string first_difference(const AlgorithmOutput& ref, const AlgorithmOutput& simd) {
-  const LightLists& a = ref.light_lists;
-  const LightLists& b = simd.light_lists;
-  std::ostringstream why;
-  if (a.list_of_sample.size() != b.list_of_sample.size()) return "list_of_sample sizes differ";
-  for (std::size_t s = 0; s < a.list_of_sample.size(); ++s)
-    if (a.list_of_sample[s] != b.list_of_sample[s]) {
-      why << "sample " << s << ": list " << a.list_of_sample[s] << " vs " << b.list_of_sample[s];
-      return why.str();
-    }
-  if (a.offsets.size() != b.offsets.size() || a.bounds.size() != b.bounds.size()) {
-    why << "list counts " << a.offsets.size() - 1 << " vs " << b.offsets.size() - 1;
-    return why.str();
-  }
-  for (std::size_t k = 0; k < a.bounds.size(); ++k)
-    for (int i = 0; i < 3; ++i)
-      if (!same_float(a.bounds[k].min[i], b.bounds[k].min[i]) ||
-          !same_float(a.bounds[k].max[i], b.bounds[k].max[i])) {
-        why << "list " << k << ": box axis " << i << " [" << a.bounds[k].min[i] << ", "
-            << a.bounds[k].max[i] << "] vs [" << b.bounds[k].min[i] << ", " << b.bounds[k].max[i]
-            << "]";
-        return why.str();
-      }
-  for (std::size_t k = 0; k + 1 < a.offsets.size(); ++k) {
-    const std::uint32_t na = a.offsets[k + 1] - a.offsets[k], nb = b.offsets[k + 1] - b.offsets[k];
-    for (std::uint32_t e = 0; e < std::min(na, nb); ++e)
-      if (a.lights[a.offsets[k] + e] != b.lights[b.offsets[k] + e]) {
-        why << "list " << k << " entry " << e << ": light " << a.lights[a.offsets[k] + e] << " vs "
-            << b.lights[b.offsets[k] + e];
-        return why.str();
-      }
-    if (na != nb) {
-      why << "list " << k << ": " << na << " lights vs " << nb;
-      return why.str();
-    }
-  }
-  if (ref.counters != simd.counters) {
-    for (std::size_t i = 0; i < std::min(ref.counters.size(), simd.counters.size()); ++i)
-      if (ref.counters[i] != simd.counters[i]) {
-        why << "counter " << ref.counters[i].first << ": " << ref.counters[i].second << " vs "
-            << simd.counters[i].first << " " << simd.counters[i].second;
-        return why.str();
-      }
-    return "counter lists differ in length";
-  }
-  return {};
+  const std::string why = port_test::light_list_difference(ref.light_lists, simd.light_lists);
+  return why.empty() ? port_test::counter_difference(ref.counters, simd.counters, false) : why;
 }
 
 // Every ported variant on one case: the reference's unsupported reasons, the same outputs.

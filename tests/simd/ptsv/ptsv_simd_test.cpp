@@ -21,6 +21,7 @@
 #include "shadowcts/fixtures.h"
 #include "shadowcts/prepared_scene.h"
 #include "simd/ptsv/ptsv_algorithm.h"
+#include "tests/ports/output_difference.h"
 #include "tests/reference/ptsv/big_shadow_case.h"
 #include "tests/reference/ptsv/ptsv_test_support.h"
 
@@ -71,18 +72,9 @@ std::string diff_structures(const Case& c, const ViewSamples& samples, const Pre
   return "";
 }
 
-std::string diff_outputs(const AlgorithmOutput& a, const AlgorithmOutput& b) {
-  if (a.counters.size() != b.counters.size()) return "counter lists differ in length";
-  for (std::size_t i = 0; i < a.counters.size(); ++i)
-    if (a.counters[i] != b.counters[i])
-      return "counter " + a.counters[i].first + ": " + std::to_string(a.counters[i].second) +
-             " != " + b.counters[i].first + " " + std::to_string(b.counters[i].second);
-  if (a.shadowed.size() != b.shadowed.size()) return "mask sizes differ";
-  for (std::size_t i = 0; i < a.shadowed.size(); ++i)
-    if (a.shadowed[i] != b.shadowed[i])
-      return "view sample " + std::to_string(i) + ": " + std::to_string(a.shadowed[i]) +
-             " != " + std::to_string(b.shadowed[i]);
-  return "";
+std::string diff_outputs(const AlgorithmOutput& port, const AlgorithmOutput& reference) {
+  const std::string why = port_test::counter_difference(reference.counters, port.counters, false);
+  return why.empty() ? port_test::sample_difference(reference.shadowed, port.shadowed) : why;
 }
 
 void expect_like_reference(const Case& c, const ViewSamples& samples) {

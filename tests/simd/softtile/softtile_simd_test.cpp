@@ -26,6 +26,7 @@
 #include "simd/softtile/shadow_cone.h"
 #include "simd/softtile/softtile_algorithm.h"
 #include "simd/softtile/softtile_gather.h"
+#include "tests/ports/output_difference.h"
 
 namespace shadowcts {
 namespace {
@@ -412,20 +413,11 @@ TEST(SimdSofttile, ConeTreeNodesHoldTheTipsBelowThemAndStayNearThem) {
   }
 }
 
-std::string first_difference(const AlgorithmOutput& a, const AlgorithmOutput& b) {
-  if (a.counters != b.counters) {
-    for (std::size_t i = 0; i < std::min(a.counters.size(), b.counters.size()); ++i)
-      if (a.counters[i] != b.counters[i])
-        return "counter " + a.counters[i].first + ": " + std::to_string(a.counters[i].second) +
-               " vs " + std::to_string(b.counters[i].second);
-    return "counter lists differ in length";
-  }
-  if (a.visible_fraction.size() != b.visible_fraction.size()) return "sizes differ";
-  for (std::size_t i = 0; i < a.visible_fraction.size(); ++i)
-    if (a.visible_fraction[i] != b.visible_fraction[i])
-      return "sample " + std::to_string(i) + ": " + std::to_string(a.visible_fraction[i]) + " vs " +
-             std::to_string(b.visible_fraction[i]);
-  return "";
+std::string first_difference(const AlgorithmOutput& reference, const AlgorithmOutput& port) {
+  const std::string why = port_test::counter_difference(reference.counters, port.counters, false);
+  return why.empty()
+             ? port_test::sample_difference(reference.visible_fraction, port.visible_fraction)
+             : why;
 }
 
 TEST(SimdSofttile, AnswersAndCountersEqualTheReference) {
