@@ -30,9 +30,12 @@
 #include "shadowcts/thread_limit.h"
 #include "shadowcts/view_samples.h"
 #include "tests/ports/output_difference.h"
+#include "tests/reference/lightassign/stiff_scenes.h"
 
 namespace shadowcts {
 namespace {
+
+using lightassign_test::small_city;
 
 const Algorithm& reference() {
   static const std::unique_ptr<Algorithm> a = make_lightassign();
@@ -225,48 +228,13 @@ TEST(LightAssignEmu, OutputsDoNotDependOnTheThreadCount) {
 }
 
 // The reference's stiff situations (tests/reference/lightassign/lightassign_stiff_test.cpp).
-Case small_city() {
-  Case c = make_fixture("many_lights.2k");
-  c.camera.width = c.camera.height = 64;
-  return c;
-}
-
 TEST(LightAssignEmu, IdenticalWithLightsLargerThanTheSceneAndAroundTheCamera) {
-  Case c = small_city();
-  const glm::vec3 eye = c.camera.position;
-  const glm::vec3 forward = glm::vec3(c.camera.target) - eye;
-  const glm::vec3 ahead =
-      forward / std::sqrt(forward.x * forward.x + forward.y * forward.y + forward.z * forward.z);
-  RangedLight huge;
-  huge.centre = {0, 3, 0};
-  huge.range = 1e6f;
-  c.ranged_lights.push_back(huge);
-  RangedLight behind;
-  behind.centre = eye - 5.0f * ahead;
-  behind.range = 40.0f;
-  c.ranged_lights.push_back(behind);
-  behind.range = 2.0f;
-  c.ranged_lights.push_back(behind);
-  RangedLight near_plane;
-  near_plane.centre = eye + c.camera.near_plane * ahead;
-  near_plane.range = 30.0f;
-  c.ranged_lights.push_back(near_plane);
-  RangedLight at_eye;
-  at_eye.kind = RangedLightKind::spot;
-  at_eye.centre = eye;
-  at_eye.range = 60.0f;
-  at_eye.direction = ahead;
-  at_eye.cone_half_angle = 0.2f;
-  c.ranged_lights.push_back(at_eye);
-  validate(c);
+  const Case c = lightassign_test::city_with_lights_around_the_camera();
   expect_identical(c, generate_view_samples(c), "around the camera");
 }
 
 TEST(LightAssignEmu, IdenticalWithANearFarRatioOf1e7) {
-  Case c = small_city();
-  c.camera.near_plane = 1e-5f;
-  c.camera.far_plane = 100.0f;
-  validate(c);
+  const Case c = lightassign_test::city_with_near_far_1e7();
   expect_identical(c, generate_view_samples(c), "near/far 1e-7");
 }
 
@@ -278,19 +246,9 @@ TEST(LightAssignEmu, IdenticalWithLightsTangentToTheBoxes) {
   std::mt19937_64 random(7);
   std::vector<RangedLight> lights;
   for (const std::string variant : {"clustered", "clustered+eb", "tiled"}) {
-    const std::vector<Aabb> boxes = reference().run(c, samples, variant).light_lists.bounds;
-    for (std::size_t k = 0; k < boxes.size(); k += 2) {
-      const Aabb& b = boxes[k];
-      RangedLight l;
-      const int axis = int(random() % 3);
-      l.centre = 0.5f * (b.min + b.max);
-      l.centre[axis] = b.max[axis] + 0.25f;
-      l.range = random() % 2 ? 0.25f : std::nextafter(0.25f, 0.0f);
-      lights.push_back(l);
-      l.centre = b.min - glm::vec3(0.5f, 0.5f, 0.5f);
-      l.range = std::sqrt(0.75f);
-      lights.push_back(l);
-    }
+    const std::vector<RangedLight> tangent = lightassign_test::lights_tangent_to(
+        reference().run(c, samples, variant).light_lists.bounds, random);
+    lights.insert(lights.end(), tangent.begin(), tangent.end());
   }
   c.ranged_lights = lights;
   validate(c);

@@ -9,10 +9,12 @@
 #include "lightassign_test_support.h"
 #include "shadowcts/errors.h"
 #include "shadowcts/fixtures.h"
+#include "stiff_scenes.h"
 
 namespace shadowcts {
 namespace {
 
+using lightassign_test::small_city;
 using testing::counter;
 using testing::lightassign;
 using testing::run_and_compare;
@@ -28,49 +30,13 @@ void expect_every_variant_passes(const Case& c, const ViewSamples& samples) {
   }
 }
 
-Case small_city() {
-  Case c = make_fixture("many_lights.2k");
-  c.camera.width = c.camera.height = 64;
-  return c;
-}
-
 TEST(LightAssignStiff, LightsLargerThanTheSceneAndAroundTheCamera) {
-  Case c = small_city();
-  const glm::vec3 eye = c.camera.position;
-  const glm::vec3 forward = glm::vec3(c.camera.target) - eye;
-  const glm::vec3 ahead =
-      forward / std::sqrt(forward.x * forward.x + forward.y * forward.y + forward.z * forward.z);
-  RangedLight huge;
-  huge.centre = {0, 3, 0};
-  huge.range = 1e6f;
-  c.ranged_lights.push_back(huge);
-  RangedLight behind;
-  behind.centre = eye - 5.0f * ahead;
-  behind.range = 40.0f;  // reaches into the view from behind the camera
-  c.ranged_lights.push_back(behind);
-  behind.range = 2.0f;  // does not
-  c.ranged_lights.push_back(behind);
-  RangedLight near_plane;
-  near_plane.centre = eye + c.camera.near_plane * ahead;
-  near_plane.range = 30.0f;
-  c.ranged_lights.push_back(near_plane);
-  RangedLight at_eye;
-  at_eye.kind = RangedLightKind::spot;
-  at_eye.centre = eye;
-  at_eye.range = 60.0f;
-  at_eye.direction = ahead;
-  at_eye.cone_half_angle = 0.2f;
-  c.ranged_lights.push_back(at_eye);
-  validate(c);
-  const ViewSamples samples = generate_view_samples(c);
-  expect_every_variant_passes(c, samples);
+  const Case c = lightassign_test::city_with_lights_around_the_camera();
+  expect_every_variant_passes(c, generate_view_samples(c));
 }
 
 TEST(LightAssignStiff, NearFarRatio1e7) {
-  Case c = small_city();
-  c.camera.near_plane = 1e-5f;
-  c.camera.far_plane = 100.0f;
-  validate(c);
+  const Case c = lightassign_test::city_with_near_far_1e7();
   const ViewSamples samples = generate_view_samples(c);
   expect_every_variant_passes(c, samples);
   // 64 px: 2 x 2 tiles (1 + 1 bits); base 1 + 2 tan(27.5 deg) / 2 = 1.5206, so
