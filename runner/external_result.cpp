@@ -16,6 +16,7 @@
 #include "json_limits.h"
 #include "shadowcts/case_manifest.h"
 #include "shadowcts/errors.h"
+#include "shadowcts/float_rounding.h"
 #include "shadowcts/geometry/camera_frame.h"
 #include "shadowcts/registry.h"
 #include "shadowcts/runner.h"
@@ -237,15 +238,6 @@ LightGrid read_light_grid(const std::string& path, const Case& c) {
   return grid;
 }
 
-float round_down(double v) {
-  float f = float(v);
-  return double(f) > v ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
-}
-float round_up(double v) {
-  float f = float(v);
-  return double(f) < v ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
-}
-
 class ExternalResult : public Algorithm {
  public:
   ExternalResult(const Case& c, OutputKind kind, std::string variant)
@@ -368,8 +360,8 @@ class ExternalResult : public Algorithm {
     for (std::size_t k = 0; k < lo.size(); ++k) {
       Aabb box;
       for (int a = 0; a < 3; ++a) {
-        box.min[a] = round_down(lo[k][a]);
-        box.max[a] = round_up(hi[k][a]);
+        box.min[a] = float_below(lo[k][a]);
+        box.max[a] = float_above(hi[k][a]);
       }
       lists.bounds.push_back(box);
     }

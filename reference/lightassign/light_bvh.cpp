@@ -9,25 +9,10 @@
 #include <tbb/parallel_sort.h>
 #include <glm/common.hpp>
 
+#include "shadowcts/float_rounding.h"
 #include "shadowcts/geometry/morton.h"
 
 namespace shadowcts {
-namespace {
-
-float round_down(double x) {
-  float f = float(x);
-  if (double(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
-  return f;
-}
-
-float round_up(double x) {
-  float f = float(x);
-  if (double(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
-  return f;
-}
-
-}  // namespace
-
 LightBvh::LightBvh(const std::vector<RangedLight>& lights) {
   const std::size_t n = lights.size();
   if (n == 0) return;
@@ -61,8 +46,8 @@ LightBvh::LightBvh(const std::vector<RangedLight>& lights) {
       const RangedLight& l = lights[keyed[leaf].second];
       order_[leaf] = keyed[leaf].second;
       for (int k = 0; k < 3; ++k) {
-        leaf_boxes_[leaf].min[k] = round_down(double(l.centre[k]) - double(l.range));
-        leaf_boxes_[leaf].max[k] = round_up(double(l.centre[k]) + double(l.range));
+        leaf_boxes_[leaf].min[k] = float_below(double(l.centre[k]) - double(l.range));
+        leaf_boxes_[leaf].max[k] = float_above(double(l.centre[k]) + double(l.range));
       }
     }
   });

@@ -6,6 +6,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "shadowcts/float_rounding.h"
 #include "shadowcts/geometry/camera_frame.h"
 
 namespace shadowcts {
@@ -14,18 +15,6 @@ namespace {
 // Relative margin for quantities computed in a handful of double operations from float inputs:
 // their rounding error is below 2^-48 of the magnitudes involved.
 constexpr double rounding_margin = 0x1p-40;
-
-float round_down(double x) {
-  float f = float(x);
-  if (double(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
-  return f;
-}
-
-float round_up(double x) {
-  float f = float(x);
-  if (double(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
-  return f;
-}
 
 }  // namespace
 
@@ -88,8 +77,8 @@ Aabb ViewFrustum::bounding_box(const SubFrustum& f) const {
   const double margin = rounding_margin * magnitude;
   Aabb box;
   for (int i = 0; i < 3; ++i) {
-    box.min[i] = round_down(low[i] - margin);
-    box.max[i] = round_up(high[i] + margin);
+    box.min[i] = float_below(low[i] - margin);
+    box.max[i] = float_above(high[i] + margin);
   }
   return box;
 }

@@ -6,19 +6,10 @@
 #include <utility>
 
 #include "reference/psv/top_tree_depth.h"
+#include "shadowcts/float_rounding.h"
 #include "shadowcts/hard_shadow_inputs.h"
 
 namespace shadowcts::psv {
-namespace {
-
-float round_up_to_float(double x) {
-  float f = float(x);
-  if (double(f) < x) f = std::nextafter(f, INFINITY);
-  return f;
-}
-
-}  // namespace
-
 // |plane| is linear along the triangle, so its maximum is at a vertex; the error bound makes the
 // value an upper bound for the exact plane. A point light divides by the triangle's depth: every
 // volume point p = L + s (y - L) has |plane(p)| / |p - L| = |plane(y)| / |y - L|.
@@ -31,9 +22,9 @@ float triangle_wedge(const PlaneSide& planes, const TopNode& node, const Triangl
     // wedge prunes then), where std::max would drop it.
     if (std::isnan(bound) || bound > extent) extent = bound;
   }
-  if (planes.light().directional) return round_up_to_float(extent);
+  if (planes.light().directional) return float_above(extent);
   if (!(depth > 0.0f)) return INFINITY;
-  return round_up_to_float(extent / double(depth) * (1.0 + 0x1p-50));
+  return float_above(extent / double(depth) * (1.0 + 0x1p-50));
 }
 
 std::vector<std::uint32_t> insertion_order(const Case& c, const PlaneSide& planes,

@@ -5,6 +5,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "shadowcts/float_rounding.h"
 #include "shadowcts/geometry/plane_filter.h"
 
 namespace shadowcts::psv {
@@ -15,12 +16,6 @@ double norm1(const glm::dvec3& v) {
 }
 double max_abs(const glm::dvec3& v) {
   return std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
-}
-
-float round_down_to_float(double x) {
-  float f = float(x);
-  if (double(f) > x) f = std::nextafter(f, -INFINITY);
-  return f;
 }
 
 // Distance from q to the segment [a, a + e]. The clamped parameter's rounding moves the foot
@@ -81,10 +76,9 @@ float triangle_light_depth(const HardShadowLight& light, const Triangle& t) {
                      std::fabs(light.direction.z * x.z));
       depth = std::min(depth, -glm::dot(light.direction, x) - error);
     }
-    return round_down_to_float(depth);
+    return float_below(depth);
   }
-  return round_down_to_float(
-      std::max(0.0, point_light_triangle_distance_lower_bound(light.position, v)));
+  return float_below(std::max(0.0, point_light_triangle_distance_lower_bound(light.position, v)));
 }
 
 double sample_light_depth(const HardShadowLight& light, const glm::dvec3& p) {

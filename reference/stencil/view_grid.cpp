@@ -1,4 +1,5 @@
 #include "reference/stencil/view_grid.h"
+#include "shadowcts/float_rounding.h"
 
 #include <algorithm>
 #include <cmath>
@@ -18,18 +19,6 @@ constexpr double infinity = std::numeric_limits<double>::infinity();
 // Relative slack for rounded depths and depth ratios: far above their rounding, far below any
 // depth difference that saves work.
 constexpr double depth_tolerance = 1e-9;
-
-float float_at_most(double x) {
-  float f = float(x);
-  if (double(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
-  return f;
-}
-
-float float_at_least(double x) {
-  float f = float(x);
-  if (double(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
-  return f;
-}
 
 using Polygon = ViewGrid::Outline::Polygon;
 
@@ -326,7 +315,7 @@ ViewGrid::ViewGrid(const Camera& camera, const ViewSamples& samples,
       std::sort(face_cells.begin(), face_cells.end());
       for (std::size_t k = 0; k < face_cells.size(); ++k) {
         if (k > 0 && face_cells[k].first == face_cells[k - 1].first) continue;
-        out.push_back({face_cells[k].first, float_at_most(face_cells[k].second), std::uint32_t(f)});
+        out.push_back({face_cells[k].first, float_below(face_cells[k].second), std::uint32_t(f)});
       }
     }
   });
@@ -397,8 +386,8 @@ std::int64_t ViewGrid::cell_of(const glm::dvec3& q) const {
 }
 
 float ViewGrid::key_bound(double depth) const {
-  if (mode_ == CountingMode::z_pass) return float_at_least(depth * (1.0 + depth_tolerance));
-  return float_at_least(-depth * (1.0 - depth_tolerance));
+  if (mode_ == CountingMode::z_pass) return float_above(depth * (1.0 + depth_tolerance));
+  return float_above(-depth * (1.0 - depth_tolerance));
 }
 
 }  // namespace shadowcts::stencil
