@@ -40,19 +40,6 @@ const VariantConfig& variant_config(const std::string& variant) {
 // The device looks depth slices up in a table of 2^depth_bits + 1 slice starts.
 constexpr int max_depth_bits = 24;
 
-double max_abs(const glm::dvec3& v) {
-  return std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
-}
-
-// The reference's scene bound: the case's scale and every regular sample.
-double scene_bound(const Case& c, const ViewSamples& samples) {
-  double bound = c.scale();
-  for (const ViewSample& s : samples.samples)
-    if (s.sample_class == SampleClass::regular)
-      bound = std::max(bound, max_abs(glm::dvec3(s.position)));
-  return bound;
-}
-
 bool one_sample_per_pixel(const ViewSamples& samples) {
   return samples.width != 0 && samples.height != 0 &&
          samples.samples.size() == std::size_t(samples.width) * samples.height;
@@ -123,7 +110,7 @@ HostSetup prepare(const PreparedScene& scene, const VariantConfig& config, Phase
   HostSetup s;
   gpu_ptsv::KernelInput& in = s.input;
   const ref::ViewFrame frame = ref::make_view_frame(c.camera, samples.width, samples.height);
-  const double bound = scene_bound(c, samples);
+  const double bound = ref::scene_bound(c, samples);
   const ref::ReceiverRule rule(c, samples);
   const ref::KeyLayoutResult layout =
       ref::make_cluster_key_layout(c.camera, samples.width, samples.height);

@@ -16,6 +16,14 @@ NodeTolerances NodeTolerances::for_bounds(double node_bound, double scene_bound)
   return t;
 }
 
+double scene_bound(const Case& c, const ViewSamples& samples) {
+  double bound = c.scale();
+  for (const ViewSample& s : samples.samples)
+    if (s.sample_class == SampleClass::regular)
+      for (int k = 0; k < 3; ++k) bound = std::max(bound, std::fabs(double(s.position[k])));
+  return bound;
+}
+
 PlaneRange plane_range(const Plane& plane, const std::array<glm::dvec3, 8>& corners) {
   PlaneRange r{plane.at(corners[0]), plane.at(corners[0])};
   for (std::size_t i = 1; i < 8; ++i) {

@@ -33,6 +33,10 @@ struct NodeTolerances {
   static NodeTolerances for_bounds(double node_bound, double scene_bound);
 };
 
+// The scene_bound every ptsv backend uses: Case::scale (casters, camera, light) and the
+// |coordinates| of every regular sample.
+double scene_bound(const Case& c, const ViewSamples& samples);
+
 // Smallest and largest value of the plane over the bounds.
 struct PlaneRange {
   double low, high;

@@ -32,15 +32,6 @@ double max_abs(const glm::dvec3& v) {
   return std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
 }
 
-// >= every |coordinate| of a triangle, the camera, the light and every regular sample.
-double scene_bound(const Case& c, const ViewSamples& samples) {
-  double bound = c.scale();
-  for (const ViewSample& s : samples.samples)
-    if (s.sample_class == SampleClass::regular)
-      bound = std::max(bound, max_abs(glm::dvec3(s.position)));
-  return bound;
-}
-
 // The largest |coordinate| of an implicit cell the traversal may test (the root's children
 // contain all deeper cells).
 double implicit_corner_bound(const ClusterHierarchy& h, const ViewFrame& frame) {
