@@ -153,21 +153,7 @@ TEST(BruteforceHardShadowCudaEmu, MatchesTheExactOracleOnRobustSamples) {
 // through the covered edge piece. The float test misses both triangles; the kernel must say
 // unsure there and the host decide it shadowed.
 TEST(BruteforceHardShadowCudaEmu, NoLeakThroughACrackAtATJunction) {
-  auto h = shadowcts::testing::make_hand_built_case(
-      shadowcts::testing::point_light({24.0f, -24.0f, -15.0f}));
-  h.c.triangles.clear();
-  h.ground = h.add_triangle({-1, -8, -1}, {1, -8, -1}, {0, -8, 1}, shadowcts::testing::ground_mesh);
-  const glm::vec3 a(-0x1.3p-1f, 0x1.cp+2f, 0x1.c8p+1f), b(0x1p-1f, 0x1.fp+2f, 0x1.5p+1f),
-      c(-0x1.4p-1f, 0x1.c4p+2f, 0x1.ap+0f), on_ac(-0x1.32p-1f, 0x1.c08p+2f, 0x1.a9p+1f),
-      e(-0x1.8p+0f, 0x1.dp+2f, 0x1.5p+1f);
-  h.add_triangle(a, b, c);
-  h.add_triangle(on_ac, c, e);
-  h.c.camera.position = {0x1.6745fp+3f, -0x1.374eacp+3f, -0x1.81776cp+2f};
-  // Without a receiver (the fuzz case named the ground far below, whose plane would put both
-  // casters off the light's side): the receiver half-space rule is void here.
-  const std::size_t sample =
-      h.add_sample({-0x1.5d3cp+5f, 0x1.ea58p+5f, 0x1.15b8p+5f}, shadowcts::no_receiver);
-  h.samples.samples[sample].normal = {0, -1, 0};
+  const auto [h, sample] = shadowcts::testing::t_junction_crack();
   const HardShadowTruth truth = exact_hard_shadow_oracle(h.c, h.samples);
   ASSERT_EQ(truth.band[sample], BandClass::robust_shadowed);
 

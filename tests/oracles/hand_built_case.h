@@ -81,6 +81,32 @@ inline void add_pyramid_fan(HandBuiltCase& h) {
   for (int i = 0; i < 4; ++i) h.add_triangle(apex, rim[i], rim[(i + 1) % 4]);
 }
 
+// fuzz_watertight-531e78eca2acc5e5: a T-junction (a vertex of one caster in the middle of
+// another's edge) with a shadow segment exactly through the covered edge piece, so the sample is
+// robustly shadowed. A watertight test that rounds each vertex on its own opens a crack there:
+// the float test misses both triangles. The sample has no receiver (the fuzz case named a ground
+// far below, whose plane would put both casters off the light's side): the receiver half-space
+// rule is void.
+struct CrackCase {
+  HandBuiltCase h;
+  std::size_t sample = 0;
+};
+inline CrackCase t_junction_crack() {
+  CrackCase crack{make_hand_built_case(point_light({24.0f, -24.0f, -15.0f}))};
+  HandBuiltCase& h = crack.h;
+  h.c.triangles.clear();
+  h.ground = h.add_triangle({-1, -8, -1}, {1, -8, -1}, {0, -8, 1}, ground_mesh);
+  const glm::vec3 a(-0x1.3p-1f, 0x1.cp+2f, 0x1.c8p+1f), b(0x1p-1f, 0x1.fp+2f, 0x1.5p+1f),
+      c(-0x1.4p-1f, 0x1.c4p+2f, 0x1.ap+0f), on_ac(-0x1.32p-1f, 0x1.c08p+2f, 0x1.a9p+1f),
+      e(-0x1.8p+0f, 0x1.dp+2f, 0x1.5p+1f);
+  h.add_triangle(a, b, c);
+  h.add_triangle(on_ac, c, e);
+  h.c.camera.position = {0x1.6745fp+3f, -0x1.374eacp+3f, -0x1.81776cp+2f};
+  crack.sample = h.add_sample({-0x1.5d3cp+5f, 0x1.ea58p+5f, 0x1.15b8p+5f}, no_receiver);
+  h.samples.samples[crack.sample].normal = {0, -1, 0};
+  return crack;
+}
+
 // The case with every position (triangles, a point light, camera, samples) multiplied by 2^k:
 // exact in float away from denormals and overflow. Directions stay.
 inline HandBuiltCase scaled_by_power_of_two(HandBuiltCase h, int k) {

@@ -324,20 +324,7 @@ TEST(CudaEmuMetric, LightInsideVolumesAndATJunction) {
   // The T-junction crack of fuzz_watertight-531e78eca2acc5e5: the float test misses both
   // triangles; the kernel hands the sample to the host for the exact segment test, which finds
   // the blocker.
-  auto crack = shadowcts::testing::make_hand_built_case(
-      shadowcts::testing::point_light({24.0f, -24.0f, -15.0f}));
-  crack.c.triangles.clear();
-  crack.ground =
-      crack.add_triangle({-1, -8, -1}, {1, -8, -1}, {0, -8, 1}, shadowcts::testing::ground_mesh);
-  const glm::vec3 a(-0x1.3p-1f, 0x1.cp+2f, 0x1.c8p+1f), b(0x1p-1f, 0x1.fp+2f, 0x1.5p+1f),
-      c(-0x1.4p-1f, 0x1.c4p+2f, 0x1.ap+0f), on_ac(-0x1.32p-1f, 0x1.c08p+2f, 0x1.a9p+1f),
-      e(-0x1.8p+0f, 0x1.dp+2f, 0x1.5p+1f);
-  crack.add_triangle(a, b, c);
-  crack.add_triangle(on_ac, c, e);
-  crack.c.camera.position = {0x1.6745fp+3f, -0x1.374eacp+3f, -0x1.81776cp+2f};
-  const std::size_t sample =
-      crack.add_sample({-0x1.5d3cp+5f, 0x1.ea58p+5f, 0x1.15b8p+5f}, shadowcts::no_receiver);
-  crack.samples.samples[sample].normal = {0, -1, 0};
+  const auto [crack, sample] = shadowcts::testing::t_junction_crack();
   for (const char* variant : variants) {
     expect_same_as_reference(crack.c, crack.samples, variant);
     const KernelDiff diff = diff_kernel_against_reference(crack.c, crack.samples, variant);

@@ -264,28 +264,17 @@ TEST(Metric, DescribesItselfAndParsesVariants) {
 // rounds each vertex on its own, which opened a crack there: both triangles were missed, a leak
 // on a sample every perturbation leaves shadowed. Beside an edge metric now decides exactly.
 TEST(Metric, NoLeakThroughACrackAtATJunction) {
-  auto h = shadowcts::testing::make_hand_built_case(
-      shadowcts::testing::point_light({24.0f, -24.0f, -15.0f}));
-  h.c.triangles.clear();
-  h.ground = h.add_triangle({-1, -8, -1}, {1, -8, -1}, {0, -8, 1}, shadowcts::testing::ground_mesh);
-  const glm::vec3 a(-0x1.3p-1f, 0x1.cp+2f, 0x1.c8p+1f), b(0x1p-1f, 0x1.fp+2f, 0x1.5p+1f),
-      c(-0x1.4p-1f, 0x1.c4p+2f, 0x1.ap+0f), on_ac(-0x1.32p-1f, 0x1.c08p+2f, 0x1.a9p+1f),
-      e(-0x1.8p+0f, 0x1.dp+2f, 0x1.5p+1f);
-  h.add_triangle(a, b, c);
-  h.add_triangle(on_ac, c, e);
-  h.c.camera.position = {0x1.6745fp+3f, -0x1.374eacp+3f, -0x1.81776cp+2f};
-  // Without a receiver (the fuzz case named the ground far below, whose plane would put both
-  // casters off the light's side): the receiver half-space rule is void here.
-  const std::size_t sample =
-      h.add_sample({-0x1.5d3cp+5f, 0x1.ea58p+5f, 0x1.15b8p+5f}, shadowcts::no_receiver);
-  h.samples.samples[sample].normal = {0, -1, 0};
+  const auto [h, sample] = shadowcts::testing::t_junction_crack();
+  ASSERT_EQ(h.c.triangles.size(), 3u);  // the ground, then the two casters
   const HardShadowTruth truth = exact_hard_shadow_oracle(h.c, h.samples);
   ASSERT_EQ(truth.band[sample], BandClass::robust_shadowed);
   // The float test alone misses both triangles.
   const RaySpace space = make_ray_space(
       segment_to_point_light(h.samples.samples[sample].position, h.c.light->position));
-  EXPECT_FALSE(ray_hits_triangle(space, a, b, c));
-  EXPECT_FALSE(ray_hits_triangle(space, on_ac, c, e));
+  for (std::size_t t = 1; t < h.c.triangles.size(); ++t) {
+    const Triangle& caster = h.c.triangles[t];
+    EXPECT_FALSE(ray_hits_triangle(space, caster.v0, caster.v1, caster.v2)) << "caster " << t;
+  }
   for (const char* variant : {"capsules", "median", "spheres"}) {
     EXPECT_EQ(run_metric(h.c, h.samples, parse_metric_variant(variant)).output.shadowed[sample], 1)
         << variant;
