@@ -23,13 +23,15 @@ constexpr int descent_threads_per_block = 128;
 // reference/psv/top_tree_build.h, triangle_location.
 __device__ inline int triangle_location(const PlaneSide& planes, std::uint32_t node,
                                         const PsvDeviceTriangle& t, std::uint32_t& exact_tests) {
-  bool positive = false, negative = false;
+  bool positive = false, negative = false, on = false;
   for (int i = 0; i < 3; ++i) {
     const int s = side(planes, node, triangle_vertex(t, i), exact_tests);
     positive = positive || s > 0;
     negative = negative || s < 0;
+    on = on || s == 0;
   }
   if (positive && negative) return 0;
+  if (positive && on && !is_capping_node(node)) return 0;  // touching an edge plane
   return positive ? 1 : -1;
 }
 

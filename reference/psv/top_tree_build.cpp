@@ -64,13 +64,17 @@ std::vector<std::uint32_t> insertion_order(const Case& c, const PlaneSide& plane
 
 int triangle_location(const TopTree& tree, const PlaneSide& planes, std::uint32_t node,
                       const Triangle& t) {
-  bool positive = false, negative = false;
+  bool positive = false, negative = false, on = false;
   for (const glm::vec3& v : {t.v0, t.v1, t.v2}) {
     const int side = planes.side(tree, node, glm::dvec3(v));
     positive = positive || side > 0;
     negative = negative || side < 0;
+    on = on || side == 0;
   }
   if (positive && negative) return 0;
+  // A triangle that touches an edge plane from its positive side (a neighbour across a shared
+  // edge or vertex): its closed volume meets the plane, where the queries go negative only.
+  if (positive && on && !is_capping_node(node)) return 0;
   return positive ? 1 : -1;
 }
 

@@ -235,8 +235,12 @@ void DescendInLanes(const ref::TopTree& tree, const VolumeCornerArray& corners,
     }
     // The walks whose corners arrived and that are still open: their open vertices against the
     // plane's defining points.
-    if (const WalkBits check = deferred & ~(positive & negative) & ~decided; check != 0)
-      decided |= on_their_planes(d, corners, node, x, y, z, open, check, open_vertices);
+    // Those found on their planes have a vertex exactly on the plane (ref::triangle_location).
+    WalkBits touching = 0;
+    if (const WalkBits check = deferred & ~(positive & negative) & ~decided; check != 0) {
+      touching = on_their_planes(d, corners, node, x, y, z, open, check, open_vertices);
+      decided |= touching;
+    }
     for (WalkBits bits = live; bits != 0; bits &= bits - 1) {
       const auto w = std::size_t(std::countr_zero(bits));
       const WalkBits lane = WalkBits(1) << w;
@@ -246,7 +250,9 @@ void DescendInLanes(const ref::TopTree& tree, const VolumeCornerArray& corners,
       if ((positive & negative & lane) != 0) {
         location = 0;
       } else if ((decided & lane) != 0) {
-        location = (positive & lane) != 0 ? 1 : -1;
+        location = (positive & lane) == 0                                     ? -1
+                   : (touching & lane) != 0 && !ref::is_capping_node(node[w]) ? 0
+                                                                              : 1;
       } else if (!had_corners) {
         // A vertex within the bound: the plane's defining points decide most (a neighbour's
         // shared vertex). Only these walks read them: fetched now, tested next round.

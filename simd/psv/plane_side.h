@@ -41,8 +41,8 @@ class PlaneSide {
                                        glm::dvec3(m, m, m));
   }
 
-  // ref::triangle_location of the triangle with vertices `t` at `node`: 1 when every vertex lies
-  // on the closed positive side and one strictly, -1 on the closed negative side, 0 straddling.
+  // ref::triangle_location of the triangle with vertices `t` at `node`: 1 positive, -1 on the
+  // closed negative side, 0 straddling or touching an edge plane from the positive side.
   // The three plane values first, without a branch; exact tests only for the vertices the bound
   // leaves open, and none once the triangle is known to straddle.
   int triangle_location(const ref::TopTree& tree, std::uint32_t node, const VolumeCorners& corners,
@@ -63,6 +63,8 @@ class PlaneSide {
       negative |= unsigned(side < 0) << k;
     }
     if (positive && negative) return 0;
+    // ref::triangle_location: a vertex on an edge plane (neither bit) with one positive.
+    if (positive && (positive | negative) != 7u && !ref::is_capping_node(node)) return 0;
     return positive ? 1 : -1;
   }
 

@@ -88,9 +88,18 @@ TEST_P(TopTreeInvariants, ChildrenLieOnTheirSideOfTheNodePlane) {
   std::uint64_t straddling = 0;
   for (std::uint32_t node = 0; node < b.tree.nodes.size(); ++node) {
     const TopNode& n = b.tree.nodes[node];
-    for (std::uint32_t v : subtree_volumes(b.tree, n.positive))
+    for (std::uint32_t v : subtree_volumes(b.tree, n.positive)) {
       EXPECT_EQ(triangle_location(b.tree, *b.planes, node, triangle_of(b, v)), 1)
           << "node " << node << " positive subtree, volume " << v;
+      // Strictly: a point on an edge plane searches only the negative side, so a volume that
+      // touches the plane (a shared edge or vertex) must not be here.
+      if (!is_capping_node(node)) {
+        const Triangle& t = triangle_of(b, v);
+        for (const glm::vec3& vertex : {t.v0, t.v1, t.v2})
+          EXPECT_GT(b.planes->side(b.tree, node, glm::dvec3(vertex)), 0)
+              << "node " << node << " positive subtree, volume " << v;
+      }
+    }
     if (!is_capping_node(node)) {
       for (std::uint32_t v : without(subtree_volumes(b.tree, node + 1), volume_of(node)))
         EXPECT_EQ(triangle_location(b.tree, *b.planes, node, triangle_of(b, v)), -1)
