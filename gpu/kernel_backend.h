@@ -4,6 +4,7 @@
 // algorithm's backend struct adds its kernel entry points.
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "shadowcts/variant_table_algorithm.h"
 
