@@ -5,8 +5,6 @@
 // tile) tests plus sample tests, with the rest of the traversal's work beside them.
 #include <cstdint>
 
-#include "shadowcts/algorithm.h"
-
 namespace shadowcts::ptsv {
 
 struct TraversalCounters {
@@ -21,20 +19,5 @@ struct TraversalCounters {
 
   std::uint64_t test_and_set() const { return node_tests + sample_tests; }
 };
-
-struct SetupCounts;  // reference/ptsv/triangle_setup.h
-
-// The view-sample hierarchy's size: its nodes, its levels and the bits of its cluster keys (0 for
-// the 2011 depth-buffer variant, which has no keys).
-struct HierarchyShape {
-  std::uint64_t nodes = 0, levels = 0, key_bits = 0;
-};
-
-// Every ptsv backend's counters, in the order they are reported: test_and_set_operations, the
-// traversal's counts, the triangle setup's (shadow_volumes, front_faces_culled,
-// edge_on_triangles, zero_area_triangles, culling_planes), the hierarchy's shape and
-// light_on_caster_samples.
-Counters to_counters(const TraversalCounters& traversal, const SetupCounts& setup,
-                     const HierarchyShape& hierarchy, std::uint64_t light_on_caster_samples);
 
 }  // namespace shadowcts::ptsv
