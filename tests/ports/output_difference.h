@@ -94,4 +94,17 @@ inline std::string light_list_difference(const LightLists& a, const LightLists& 
   return "";
 }
 
+// All of an output: its counters (`emulated`: the port adds emulated_threads), then whichever of
+// the shadow mask, the visible fractions and the light lists it carries.
+inline std::string output_difference(const AlgorithmOutput& reference, const AlgorithmOutput& port,
+                                     bool emulated) {
+  for (const std::string& why :
+       {counter_difference(reference.counters, port.counters, emulated),
+        sample_difference(reference.shadowed, port.shadowed),
+        sample_difference(reference.visible_fraction, port.visible_fraction),
+        light_list_difference(reference.light_lists, port.light_lists)})
+    if (!why.empty()) return why;
+  return "";
+}
+
 }  // namespace shadowcts::port_test

@@ -144,12 +144,6 @@ std::string first_intermediate_difference(const PreparedScene& scene, const std:
   return {};
 }
 
-// Empty when the outputs are the reference's, else the first difference.
-std::string first_difference(const AlgorithmOutput& ref, const AlgorithmOutput& emu) {
-  const std::string why = port_test::light_list_difference(ref.light_lists, emu.light_lists);
-  return why.empty() ? port_test::counter_difference(ref.counters, emu.counters, true) : why;
-}
-
 // Every emulated variant on one case: the reference's unsupported reasons, intermediates, outputs.
 void expect_identical(const Case& c, const ViewSamples& samples, const std::string& what) {
   const PreparedScene scene = prepare_scene(c, samples);
@@ -161,7 +155,7 @@ void expect_identical(const Case& c, const ViewSamples& samples, const std::stri
     EXPECT_EQ(first_intermediate_difference(scene, variant), "");
     const AlgorithmOutput ref = reference().run(scene, variant);
     const AlgorithmOutput emu = emulated().run(scene, variant);
-    EXPECT_EQ(first_difference(ref, emu), "");
+    EXPECT_EQ(port_test::output_difference(ref, emu, true), "");
     EXPECT_GT(ref.light_lists.lights.size(), 0u) << "nothing listed: a weak case";
   }
 }
@@ -307,7 +301,7 @@ TEST(LightAssignEmu, NoLightsGiveEmptyLists) {
   for (const std::string& variant : emulated().info().variants) {
     const AlgorithmOutput ref = reference().run(scene, variant);
     const AlgorithmOutput emu = emulated().run(scene, variant);
-    EXPECT_EQ(first_difference(ref, emu), "") << variant;
+    EXPECT_EQ(port_test::output_difference(ref, emu, true), "") << variant;
     EXPECT_TRUE(emu.light_lists.lights.empty()) << variant;
   }
 }
@@ -328,7 +322,7 @@ TEST(LightAssignEmu, RandomScheduleWithRaceChecksGivesTheSameLists) {
     const emu::ScopedOptions scoped(options);
     AlgorithmOutput emu;
     ASSERT_NO_THROW(emu = emulated().run(scene, variant)) << variant;
-    EXPECT_EQ(first_difference(ref, emu), "") << variant;
+    EXPECT_EQ(port_test::output_difference(ref, emu, true), "") << variant;
   }
 }
 

@@ -76,15 +76,6 @@ std::string diff_structures(const Case& c, const ViewSamples& samples, const Pre
   return "";
 }
 
-// "" when the port's mask and every reference counter agree (the port adds emulated_threads).
-// `emulated`: the port adds emulated_threads to the reference's counters.
-std::string diff_outputs(const AlgorithmOutput& port, const AlgorithmOutput& reference,
-                         bool emulated) {
-  const std::string why =
-      port_test::counter_difference(reference.counters, port.counters, emulated);
-  return why.empty() ? port_test::sample_difference(reference.shadowed, port.shadowed) : why;
-}
-
 void expect_like_reference(const Case& c, const ViewSamples& samples) {
   const auto reference = make_ptsv();
   const auto port = make_cuda_emu_ptsv();
@@ -94,7 +85,9 @@ void expect_like_reference(const Case& c, const ViewSamples& samples) {
     EXPECT_EQ(port->unsupported_reason(c, samples, variant), why) << variant;
     if (why) continue;
     EXPECT_EQ(diff_structures(c, samples, scene, variant), "") << c.name << " " << variant;
-    EXPECT_EQ(diff_outputs(port->run(scene, variant), reference->run(scene, variant), true), "")
+    EXPECT_EQ(port_test::output_difference(reference->run(scene, variant),
+                                           port->run(scene, variant), true),
+              "")
         << c.name << " " << variant << " (cuda-emu != reference)";
   }
 }
@@ -135,12 +128,13 @@ TEST(CudaEmuPtsv, SameOutputsForOneAndTwoThreadsAndARandomSchedule) {
     const AlgorithmOutput one = port->run(c, samples, variant);
     c.parameters.threads = 2;
     const AlgorithmOutput two = port->run(c, samples, variant);
-    EXPECT_EQ(diff_outputs(two, one, false), "") << variant;
+    EXPECT_EQ(port_test::output_difference(one, two, false), "") << variant;
     emu::Options options;
     options.schedule = emu::Schedule::random;
     options.seed = 7;
     const emu::ScopedOptions scoped(options);
-    EXPECT_EQ(diff_outputs(port->run(c, samples, variant), one, false), "") << variant << " random";
+    EXPECT_EQ(port_test::output_difference(one, port->run(c, samples, variant), false), "")
+        << variant << " random";
   }
 }
 

@@ -353,16 +353,6 @@ TEST(SofttileEmu, NoRaceAndTheSameResultsUnderRandomSchedules) {
   }
 }
 
-// `emulated`: the port adds emulated_threads to the reference's counters.
-std::string first_difference(const AlgorithmOutput& reference, const AlgorithmOutput& port,
-                             bool emulated) {
-  const std::string why =
-      port_test::counter_difference(reference.counters, port.counters, emulated);
-  return why.empty()
-             ? port_test::sample_difference(reference.visible_fraction, port.visible_fraction)
-             : why;
-}
-
 // The reference's counters, then emulated_threads.
 TEST(SofttileEmu, AnswersAndCountersEqualTheReference) {
   const auto reference = make_softtile();
@@ -381,7 +371,7 @@ TEST(SofttileEmu, AnswersAndCountersEqualTheReference) {
          full ? ported->info().variants : std::vector<std::string>{"grid16+rot"}) {
       SCOPED_TRACE(std::string(fixture) + " " + variant);
       const AlgorithmOutput want = reference->run(scene, variant);
-      EXPECT_EQ(first_difference(want, ported->run(scene, variant), true), "");
+      EXPECT_EQ(port_test::output_difference(want, ported->run(scene, variant), true), "");
       EXPECT_EQ(ported->soft_error_budget(variant).per_sample,
                 reference->soft_error_budget(variant).per_sample);
     }
@@ -402,7 +392,7 @@ TEST(SofttileEmu, ResultsDoNotDependOnTheThreadCount) {
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
     two = ported->run(scene, "post");
   }
-  EXPECT_EQ(first_difference(one, two, false), "");
+  EXPECT_EQ(port_test::output_difference(one, two, false), "");
 }
 
 TEST(SofttileEmu, RejectsVariantsItDoesNotRegister) {

@@ -50,12 +50,6 @@ bool same_float(float a, float b) {
   return std::memcmp(&a, &b, sizeof(float)) == 0;
 }
 
-// Empty when identical, else the first difference.
-std::string first_difference(const AlgorithmOutput& ref, const AlgorithmOutput& simd) {
-  const std::string why = port_test::light_list_difference(ref.light_lists, simd.light_lists);
-  return why.empty() ? port_test::counter_difference(ref.counters, simd.counters, false) : why;
-}
-
 // Every ported variant on one case: the reference's unsupported reasons, the same outputs.
 void expect_identical(const Case& c, const ViewSamples& samples, const std::string& what) {
   const PreparedScene scene = prepare_scene(c, samples);
@@ -66,7 +60,7 @@ void expect_identical(const Case& c, const ViewSamples& samples, const std::stri
     if (why) continue;
     const AlgorithmOutput ref = reference().run(scene, variant);
     const AlgorithmOutput simd = ported().run(scene, variant);
-    EXPECT_EQ(first_difference(ref, simd), "");
+    EXPECT_EQ(port_test::output_difference(ref, simd, false), "");
     EXPECT_GT(ref.light_lists.lights.size(), 0u) << "nothing listed: a weak case";
   }
 }
@@ -499,7 +493,7 @@ TEST(SimdLightAssign, ResultsDoNotDependOnTheThreadCountOrTheHighwayTarget) {
       const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
       two = ported().run(scene, variant);
     }
-    EXPECT_EQ(first_difference(one, two), "");
+    EXPECT_EQ(port_test::output_difference(one, two, false), "");
     // Every other target this CPU runs (SSE4 and AVX2 where AVX3 is the best, and so on).
     const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
     for (std::size_t t = 1; t < targets.size(); ++t) {
@@ -507,7 +501,7 @@ TEST(SimdLightAssign, ResultsDoNotDependOnTheThreadCountOrTheHighwayTarget) {
       hwy::SetSupportedTargetsForTest(targets[t]);
       const AlgorithmOutput other = ported().run(scene, variant);
       hwy::SetSupportedTargetsForTest(0);
-      EXPECT_EQ(first_difference(one, other), "");
+      EXPECT_EQ(port_test::output_difference(one, other, false), "");
     }
   }
 }

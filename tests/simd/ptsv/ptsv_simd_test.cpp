@@ -72,11 +72,6 @@ std::string diff_structures(const Case& c, const ViewSamples& samples, const Pre
   return "";
 }
 
-std::string diff_outputs(const AlgorithmOutput& port, const AlgorithmOutput& reference) {
-  const std::string why = port_test::counter_difference(reference.counters, port.counters, false);
-  return why.empty() ? port_test::sample_difference(reference.shadowed, port.shadowed) : why;
-}
-
 void expect_like_reference(const Case& c, const ViewSamples& samples) {
   const auto reference = make_ptsv();
   const auto port = make_simd_ptsv();
@@ -86,7 +81,9 @@ void expect_like_reference(const Case& c, const ViewSamples& samples) {
     EXPECT_EQ(port->unsupported_reason(c, samples, variant), why) << variant;
     if (why) continue;
     EXPECT_EQ(diff_structures(c, samples, scene, variant), "") << c.name << " " << variant;
-    EXPECT_EQ(diff_outputs(port->run(scene, variant), reference->run(scene, variant)), "")
+    EXPECT_EQ(port_test::output_difference(reference->run(scene, variant),
+                                           port->run(scene, variant), false),
+              "")
         << c.name << " " << variant << " (simd != reference)";
   }
 }
@@ -163,14 +160,15 @@ TEST(SimdPtsv, SameOutputsForOneAndTwoThreadsAndAnotherTarget) {
       tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 2);
       two = port->run(scene, variant);
     }
-    EXPECT_EQ(diff_outputs(one, two), "") << variant;
+    EXPECT_EQ(port_test::output_difference(one, two, false), "") << variant;
     // The best target but one (AVX2 lanes are half as wide as AVX3's).
     const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
     if (targets.size() >= 2) {
       hwy::SetSupportedTargetsForTest(targets[1]);
       const AlgorithmOutput other = port->run(scene, variant);
       hwy::SetSupportedTargetsForTest(0);
-      EXPECT_EQ(diff_outputs(one, other), "") << variant << " on " << hwy::TargetName(targets[1]);
+      EXPECT_EQ(port_test::output_difference(one, other, false), "")
+          << variant << " on " << hwy::TargetName(targets[1]);
     }
   }
 }

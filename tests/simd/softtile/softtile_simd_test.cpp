@@ -413,13 +413,6 @@ TEST(SimdSofttile, ConeTreeNodesHoldTheTipsBelowThemAndStayNearThem) {
   }
 }
 
-std::string first_difference(const AlgorithmOutput& reference, const AlgorithmOutput& port) {
-  const std::string why = port_test::counter_difference(reference.counters, port.counters, false);
-  return why.empty()
-             ? port_test::sample_difference(reference.visible_fraction, port.visible_fraction)
-             : why;
-}
-
 TEST(SimdSofttile, AnswersAndCountersEqualTheReference) {
   const auto reference = make_softtile();
   const auto ported = make_simd_softtile();
@@ -438,7 +431,7 @@ TEST(SimdSofttile, AnswersAndCountersEqualTheReference) {
       SCOPED_TRACE(std::string(fixture) + " " + variant);
       const AlgorithmOutput want = reference->run(scene, variant);
       const AlgorithmOutput got = ported->run(scene, variant);
-      EXPECT_EQ(first_difference(want, got), "");
+      EXPECT_EQ(port_test::output_difference(want, got, false), "");
       EXPECT_EQ(ported->soft_error_budget(variant).per_sample,
                 reference->soft_error_budget(variant).per_sample);
     }
@@ -508,8 +501,10 @@ TEST(SimdSofttile, ResultsDoNotDependOnTheThreadCountOrTheHighwayTarget) {
       const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
       two = ported->run(scene, variant);
     }
-    EXPECT_EQ(first_difference(one, two), "");
-    for_each_target([&] { EXPECT_EQ(first_difference(one, ported->run(scene, variant)), ""); });
+    EXPECT_EQ(port_test::output_difference(one, two, false), "");
+    for_each_target([&] {
+      EXPECT_EQ(port_test::output_difference(one, ported->run(scene, variant), false), "");
+    });
   }
 }
 
