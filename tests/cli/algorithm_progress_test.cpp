@@ -15,6 +15,7 @@
 #include "shadowcts/prepared_scene.h"
 #include "shadowcts/registry.h"
 #include "shadowcts/view_samples.h"
+#include "tests/test_name.h"
 
 namespace shadowcts {
 namespace {
@@ -36,10 +37,8 @@ std::vector<ProgressCase> all_cases() {
 }
 
 std::string case_name(const testing::TestParamInfo<ProgressCase>& info) {
-  std::string name = info.param.algorithm + "_" + info.param.variant + "_" + info.param.backend;
-  for (char& ch : name)
-    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-  return name;
+  return test_support::test_name(info.param.algorithm + "_" + info.param.variant + "_" +
+                                 info.param.backend);
 }
 
 // One small fixture per light kind: a point light over closed fans (hard shadows, stencil's

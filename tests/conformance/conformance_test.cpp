@@ -13,6 +13,7 @@
 #include "shadowcts/registry.h"
 #include "shadowcts/runner.h"
 #include "shadowcts/view_samples.h"
+#include "tests/test_name.h"
 #if SHADOWCTS_HAVE_CUDA
 #include "gpu/device.h"
 #endif
@@ -41,11 +42,8 @@ std::vector<ConformanceCase> all_cases() {
 }
 
 std::string case_name(const testing::TestParamInfo<ConformanceCase>& info) {
-  std::string name = info.param.algorithm + "_" + info.param.variant + "_" + info.param.backend +
-                     "_" + info.param.fixture;
-  for (char& ch : name)
-    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-  return name;
+  return test_support::test_name(info.param.algorithm + "_" + info.param.variant + "_" +
+                                 info.param.backend + "_" + info.param.fixture);
 }
 
 class Conformance : public testing::TestWithParam<ConformanceCase> {};

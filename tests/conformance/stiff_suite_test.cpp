@@ -13,6 +13,7 @@
 #include "shadowcts/fixtures.h"
 #include "shadowcts/registry.h"
 #include "shadowcts/runner.h"
+#include "tests/test_name.h"
 
 namespace shadowcts {
 namespace {
@@ -23,10 +24,8 @@ class StiffSuite : public testing::TestWithParam<std::string> {};
 
 TEST_P(StiffSuite, EveryAlgorithmPassesOrFailsAsExpected) {
   const std::string& fixture = GetParam();
-  std::string dir = fixture;
-  for (char& ch : dir)
-    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-  const fs::path out = fs::temp_directory_path() / ("shadowcts_stiff_" + dir);
+  const fs::path out =
+      fs::temp_directory_path() / ("shadowcts_stiff_" + test_support::test_name(fixture));
   fs::remove_all(out);
   RunOptions options;
   options.fixtures = {fixture};
@@ -69,14 +68,8 @@ TEST_P(StiffSuite, EveryAlgorithmPassesOrFailsAsExpected) {
   if (!HasFailure()) fs::remove_all(out);
 }
 
-std::string case_name(const testing::TestParamInfo<std::string>& info) {
-  std::string name = info.param;
-  for (char& ch : name)
-    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-  return name;
-}
-
-INSTANTIATE_TEST_SUITE_P(Stiff, StiffSuite, testing::ValuesIn(stiff_fixtures()), case_name);
+INSTANTIATE_TEST_SUITE_P(Stiff, StiffSuite, testing::ValuesIn(stiff_fixtures()),
+                         test_support::param_test_name);
 
 }  // namespace
 }  // namespace shadowcts

@@ -16,6 +16,7 @@
 #include "shadowcts/fixtures.h"
 #include "shadowcts/hard_shadow_oracle.h"
 #include "shadowcts/registry.h"
+#include "tests/test_name.h"
 
 namespace shadowcts::metamorphic {
 namespace {
@@ -120,11 +121,7 @@ bool robust(BandClass b) {
   return b == BandClass::robust_lit || b == BandClass::robust_shadowed;
 }
 
-std::string test_name(std::string s) {
-  for (char& ch : s)
-    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-  return s;
-}
+using test_support::test_name;
 
 // --- The exact oracle: exact transforms of exact inputs change neither answer nor band. -------
 

@@ -35,6 +35,7 @@
 #include "shadowcts/light_assignment_oracle.h"
 #include "shadowcts/registry.h"
 #include "shadowcts/soft_shadow_oracle.h"
+#include "tests/test_name.h"
 
 namespace shadowcts::metamorphic {
 namespace {
@@ -132,11 +133,7 @@ const CaseWithSamples& original(const std::string& fixture, std::uint32_t side) 
   return it->second;
 }
 
-std::string test_name(std::string s) {
-  for (char& ch : s)
-    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-  return s;
-}
+using test_support::test_name;
 
 // --- Light assignment --------------------------------------------------------------------------
 

@@ -4,6 +4,7 @@
 
 #include "shadowcts/fixtures.h"
 #include "shadowcts/hard_shadow_oracle.h"
+#include "tests/test_name.h"
 
 namespace shadowcts {
 namespace {
@@ -37,15 +38,8 @@ TEST_P(DefaultFixtureAgreement, ExactAndEmbreeAgreeOnRobustSamples) {
   EXPECT_GT(robust, samples.samples.size() / 4);
 }
 
-std::string name(const testing::TestParamInfo<std::string>& info) {
-  std::string s = info.param;
-  for (char& ch : s)
-    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-  return s;
-}
-
 INSTANTIATE_TEST_SUITE_P(Default, DefaultFixtureAgreement, testing::ValuesIn(default_fixtures()),
-                         name);
+                         test_support::param_test_name);
 
 }  // namespace
 }  // namespace shadowcts

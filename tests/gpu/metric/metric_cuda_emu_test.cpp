@@ -26,6 +26,7 @@
 #include "reference/metric/metric_shadows.h"
 #include "reference/metric/traversal.h"
 #include "shadowcts/hard_shadow_inputs.h"
+#include "tests/test_name.h"
 #if SHADOWCTS_METRIC_TEST_DEVICE
 #include "gpu/device.h"
 #endif
@@ -262,7 +263,7 @@ TEST_P(CudaEmuMetricOnFixtures, SameResultsWhenStacksOverflow) {
 
 INSTANTIATE_TEST_SUITE_P(DefaultFixtures, CudaEmuMetricOnFixtures,
                          ::testing::ValuesIn(ref::testing::hard_shadow_fixtures()),
-                         ref::testing::fixture_test_name);
+                         test_support::param_test_name);
 
 // The stiff cases metric's own traps live in, at their own resolution: identical answers.
 class CudaEmuMetricOnStiffCases : public ::testing::TestWithParam<std::string> {};
@@ -288,7 +289,7 @@ INSTANTIATE_TEST_SUITE_P(
                       "stiff.light_inside_cluster", "stiff.capsule_zero_length",
                       "stiff.tessellated_convex_sphere", "stiff.walls_on_a_floor",
                       "stiff.light_in_receiver_plane", "stiff.sun_radius_45_degrees"),
-    ref::testing::fixture_test_name);
+    test_support::param_test_name);
 
 // Random blockers with samples on shadow-boundary images, the light outside and inside the
 // blocker field, point and directional.

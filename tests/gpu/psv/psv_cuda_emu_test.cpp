@@ -21,6 +21,7 @@
 #include "shadowcts/fixtures.h"
 #include "shadowcts/thread_limit.h"
 #include "shadowcts/view_samples.h"
+#include "tests/test_name.h"
 
 namespace shadowcts {
 namespace {
@@ -207,20 +208,16 @@ TEST_P(PsvCudaEmu, OverflowingStacksAnswerAsTheReference) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Fixtures, PsvCudaEmu,
-                         ::testing::Values(FixtureCase{"ground_blockers", 2000, 1},
-                                           FixtureCase{"closed_shapes", 2000, 3},
-                                           FixtureCase{"gate_house", 3000, 1},
-                                           FixtureCase{"foliage", 2000, 2},
-                                           FixtureCase{"shared_edges", 2000, 1}),
-                         [](const ::testing::TestParamInfo<FixtureCase>& param_info) {
-                           std::string name = param_info.param.generator + "_" +
-                                              std::to_string(param_info.param.triangles) + "_" +
-                                              std::to_string(param_info.param.seed);
-                           for (char& ch : name)
-                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Fixtures, PsvCudaEmu,
+    ::testing::Values(FixtureCase{"ground_blockers", 2000, 1},
+                      FixtureCase{"closed_shapes", 2000, 3}, FixtureCase{"gate_house", 3000, 1},
+                      FixtureCase{"foliage", 2000, 2}, FixtureCase{"shared_edges", 2000, 1}),
+    [](const ::testing::TestParamInfo<FixtureCase>& param_info) {
+      return test_support::test_name(param_info.param.generator + "_" +
+                                     std::to_string(param_info.param.triangles) + "_" +
+                                     std::to_string(param_info.param.seed));
+    });
 
 // The numerical traps, where the float filter fails most often: the shared expansion-based
 // predicates of the kernel must give the signs CGAL gives the reference, or a sample takes another
@@ -236,12 +233,7 @@ INSTANTIATE_TEST_SUITE_P(Stiff, PsvCudaEmuStiff,
                                            "stiff.light_1ulp_off_caster_edge",
                                            "stiff.directional_parallel_to_wall",
                                            "stiff.t_junctions"),
-                         [](const ::testing::TestParamInfo<std::string>& param_info) {
-                           std::string name = param_info.param;
-                           for (char& ch : name)
-                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return name;
-                         });
+                         test_support::param_test_name);
 
 // Nothing in the kernel depends on the order threads run or on how many OS threads run blocks:
 // random interleavings with shared-memory race checks and 1 or 2 threads give the same result.

@@ -6,7 +6,6 @@
 // schedule. Each diff names the first difference.
 #include <algorithm>
 #include <bit>
-#include <cctype>
 #include <string>
 #include <vector>
 
@@ -25,6 +24,7 @@
 #include "tests/ports/output_difference.h"
 #include "tests/reference/ptsv/big_shadow_case.h"
 #include "tests/reference/ptsv/ptsv_test_support.h"
+#include "tests/test_name.h"
 
 namespace shadowcts {
 namespace {
@@ -101,12 +101,7 @@ TEST_P(CudaEmuPtsvOnFixture, KeysNodesCountersAndMaskAreTheReferences) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Fixtures, CudaEmuPtsvOnFixture, ::testing::ValuesIn(default_fixtures()),
-                         [](const ::testing::TestParamInfo<std::string>& param) {
-                           std::string name = param.param;
-                           for (char& ch : name)
-                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return name;
-                         });
+                         test_support::param_test_name);
 
 TEST(CudaEmuPtsv, BigShadowWithTrivialAcceptsIsTheReferences) {
   for (const bool directional : {false, true}) {

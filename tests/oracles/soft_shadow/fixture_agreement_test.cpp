@@ -10,6 +10,7 @@
 #include "shadowcts/fixtures.h"
 #include "shadowcts/soft_shadow_oracle.h"
 #include "tests/oracles/soft_shadow/soft_case.h"
+#include "tests/test_name.h"
 
 namespace shadowcts {
 namespace {
@@ -70,10 +71,7 @@ TEST_P(SoftFixtureAgreement, ExactWithinSampledBound) {
 INSTANTIATE_TEST_SUITE_P(SoftFixtures, SoftFixtureAgreement,
                          ::testing::Values(SoftFixture{"foliage.10k", 13}),
                          [](const auto& test_info) {
-                           std::string name = test_info.param.name;
-                           for (char& ch : name)
-                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return name;
+                           return test_support::test_name(test_info.param.name);
                          });
 
 }  // namespace

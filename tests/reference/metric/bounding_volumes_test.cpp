@@ -15,6 +15,7 @@
 #include "reference/metric/clustering.h"
 #include "reference/metric/metric_shadows.h"
 #include "shadowcts/hard_shadow_inputs.h"
+#include "tests/test_name.h"
 
 namespace shadowcts::metric {
 namespace {
@@ -93,7 +94,7 @@ TEST_P(BoundingVolumes, ContainEveryVertexExactly) {
 
 INSTANTIATE_TEST_SUITE_P(DefaultFixtures, BoundingVolumes,
                          ::testing::ValuesIn(testing::hard_shadow_fixtures()),
-                         testing::fixture_test_name);
+                         test_support::param_test_name);
 
 // Stiff inputs: a sliver cluster far from the origin, collinear fans, one triangle.
 TEST(BoundingVolumes, ContainStiffClustersExactly) {

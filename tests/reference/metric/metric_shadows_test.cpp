@@ -15,6 +15,7 @@
 #include "shadowcts/hard_shadow_comparison.h"
 #include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/hard_shadow_oracle.h"
+#include "tests/test_name.h"
 
 namespace shadowcts::metric {
 namespace {
@@ -144,7 +145,7 @@ TEST_P(MetricOnFixtures, EveryExactlyShadowedSampleIsInAConeWithABlocker) {
 
 INSTANTIATE_TEST_SUITE_P(DefaultFixtures, MetricOnFixtures,
                          ::testing::ValuesIn(testing::hard_shadow_fixtures()),
-                         testing::fixture_test_name);
+                         test_support::param_test_name);
 
 // Random blockers with samples placed on the shadow-boundary images of their vertices and edges,
 // the light outside and inside the blocker field (inside: cones covering every direction).

@@ -40,12 +40,5 @@ inline std::vector<std::string> hard_shadow_fixtures() {
   return names;
 }
 
-// GoogleTest parameter names: the fixture name with every other character as '_'.
-inline std::string fixture_test_name(const ::testing::TestParamInfo<std::string>& parameter) {
-  std::string name = parameter.param;
-  for (char& ch : name)
-    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-  return name;
-}
 
 }  // namespace shadowcts::metric::testing

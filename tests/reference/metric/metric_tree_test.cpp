@@ -10,6 +10,7 @@
 #include "metric_test_cases.h"
 #include "reference/metric/metric_shadows.h"
 #include "reference/metric/traversal.h"
+#include "tests/test_name.h"
 
 namespace shadowcts::metric {
 namespace {
@@ -109,7 +110,7 @@ TEST_P(MetricTreeInvariants, HoldForBothBuilds) {
 
 INSTANTIATE_TEST_SUITE_P(DefaultFixtures, MetricTreeInvariants,
                          ::testing::ValuesIn(testing::hard_shadow_fixtures()),
-                         testing::fixture_test_name);
+                         test_support::param_test_name);
 
 TEST(MetricTree, InsertionHalvesThePartitionDistanceOnNearSteps) {
   const testing::FixtureCase f = testing::load_fixture("gate_house.20k", 8);

@@ -9,6 +9,7 @@
 #include "shadowcts/fixtures.h"
 #include "shadowcts/hard_shadow_comparison.h"
 #include "shadowcts/hard_shadow_oracle.h"
+#include "tests/test_name.h"
 
 namespace shadowcts {
 namespace {
@@ -45,12 +46,9 @@ INSTANTIATE_TEST_SUITE_P(
                       FixtureCase{"foliage", 3000, 2}, FixtureCase{"model.sphere_with_hole", 0, 1},
                       FixtureCase{"model.2cylinder_engine", 0, 1}),
     [](const ::testing::TestParamInfo<FixtureCase>& param_info) {
-      std::string name = param_info.param.generator + "_" +
-                         std::to_string(param_info.param.triangles) + "_" +
-                         std::to_string(param_info.param.seed);
-      for (char& ch : name)
-        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-      return name;
+      return test_support::test_name(param_info.param.generator + "_" +
+                                     std::to_string(param_info.param.triangles) + "_" +
+                                     std::to_string(param_info.param.seed));
     });
 
 }  // namespace

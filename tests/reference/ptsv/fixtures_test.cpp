@@ -10,6 +10,7 @@
 #include "ptsv_test_support.h"
 #include "shadowcts/hard_shadow_comparison.h"
 #include "shadowcts/hard_shadow_oracle.h"
+#include "tests/test_name.h"
 
 namespace shadowcts {
 namespace {
@@ -42,12 +43,7 @@ TEST_P(PtsvOnDefaultFixture, EveryVariantIsRightOnEveryRobustSample) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Fixtures, PtsvOnDefaultFixture, ::testing::ValuesIn(default_fixtures()),
-                         [](const ::testing::TestParamInfo<std::string>& param) {
-                           std::string name = param.param;
-                           for (char& ch : name)
-                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return name;
-                         });
+                         test_support::param_test_name);
 
 class PtsvVertexOrder : public ::testing::TestWithParam<std::string> {};
 
@@ -81,12 +77,7 @@ TEST_P(PtsvVertexOrder, RotatingAndFlippingTrianglesChangesNoRobustResult) {
 
 INSTANTIATE_TEST_SUITE_P(Fixtures, PtsvVertexOrder,
                          ::testing::Values("shared_edges.20k", "closed_shapes.10k", "model.spider"),
-                         [](const ::testing::TestParamInfo<std::string>& param) {
-                           std::string name = param.param;
-                           for (char& ch : name)
-                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return name;
-                         });
+                         test_support::param_test_name);
 
 TEST(PtsvGateAndHouse, ClusterHierarchyNeedsFewerTestAndSetsThanTheDepthBuffer) {
   const ptsv_test::FixtureWithSamples f = ptsv_test::load_fixture("gate_house.20k");

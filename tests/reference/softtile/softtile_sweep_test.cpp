@@ -15,6 +15,7 @@
 #include "shadowcts/fixtures.h"
 #include "shadowcts/soft_shadow_oracle.h"
 #include "tests/oracles/soft_shadow/soft_case.h"
+#include "tests/test_name.h"
 
 namespace shadowcts {
 namespace {
@@ -76,12 +77,7 @@ TEST_P(SofttileSweep, EveryVariantWithinItsBudget) {
 }
 
 INSTANTIATE_TEST_SUITE_P(SoftFixtures, SofttileSweep, ::testing::Values("foliage.10k"),
-                         [](const auto& test_info) {
-                           std::string name = test_info.param;
-                           for (char& ch : name)
-                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return name;
-                         });
+                         [](const auto& param) { return test_support::test_name(param.param); });
 
 }  // namespace
 }  // namespace shadowcts

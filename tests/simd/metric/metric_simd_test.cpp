@@ -16,6 +16,7 @@
 #include "simd/metric/metric_shadows.h"
 #include "simd/metric/metric_tree.h"
 #include "simd/metric/traversal.h"
+#include "tests/test_name.h"
 
 namespace shadowcts::simd::metric {
 namespace {
@@ -121,7 +122,7 @@ TEST_P(SimdMetricOnFixtures, SameWalkWhenManyLanesAreHandedBack) {
 
 INSTANTIATE_TEST_SUITE_P(DefaultFixtures, SimdMetricOnFixtures,
                          ::testing::ValuesIn(ref::testing::hard_shadow_fixtures()),
-                         ref::testing::fixture_test_name);
+                         test_support::param_test_name);
 
 // The stiff cases metric's own traps live in (the light a float ulp off a caster's face or 1e-6
 // from it, a light inside a cluster, zero-length capsules, coplanar and crease receivers), at
@@ -145,7 +146,7 @@ INSTANTIATE_TEST_SUITE_P(
                       "stiff.light_inside_cluster", "stiff.capsule_zero_length",
                       "stiff.tessellated_convex_sphere", "stiff.walls_on_a_floor",
                       "stiff.light_in_receiver_plane", "stiff.sun_radius_45_degrees"),
-    ref::testing::fixture_test_name);
+    test_support::param_test_name);
 
 // The reference tests' random blockers with samples on shadow-boundary images, the light outside
 // and inside the blocker field, point and directional; every packet size.

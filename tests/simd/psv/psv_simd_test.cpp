@@ -20,11 +20,11 @@
 #include "shadowcts/prepared_scene.h"
 #include "simd/psv/psv_algorithm.h"
 #include "simd/psv/psv_shadows.h"
+#include "tests/test_name.h"
 
 namespace shadowcts::simd::psv {
 namespace {
 
-using shadowcts::metric::testing::fixture_test_name;
 using shadowcts::metric::testing::FixtureCase;
 using shadowcts::metric::testing::hard_shadow_fixtures;
 using shadowcts::metric::testing::load_fixture;
@@ -137,7 +137,8 @@ TEST_P(SimdPsvOnFixtures, SameAnswersVisitsAndCountersForEveryVariant) {
 }
 
 INSTANTIATE_TEST_SUITE_P(DefaultFixtures, SimdPsvOnFixtures,
-                         ::testing::ValuesIn(hard_shadow_fixtures()), fixture_test_name);
+                         ::testing::ValuesIn(hard_shadow_fixtures()),
+                         test_support::param_test_name);
 
 // The numerical traps at their own resolution.
 class SimdPsvOnStiffCases : public ::testing::TestWithParam<std::string> {};
@@ -161,7 +162,8 @@ std::vector<std::string> stiff_cases_with_a_shadow_light() {
 }
 
 INSTANTIATE_TEST_SUITE_P(Stiff, SimdPsvOnStiffCases,
-                         ::testing::ValuesIn(stiff_cases_with_a_shadow_light()), fixture_test_name);
+                         ::testing::ValuesIn(stiff_cases_with_a_shadow_light()),
+                         test_support::param_test_name);
 
 // Random blockers over a caster ground with samples on shadow boundaries: point lights above and
 // inside the blocker field, a directional light; at 2^-60 and 2^60 the float planes lose their

@@ -24,6 +24,7 @@
 #include "tests/ports/output_difference.h"
 #include "tests/reference/ptsv/big_shadow_case.h"
 #include "tests/reference/ptsv/ptsv_test_support.h"
+#include "tests/test_name.h"
 
 namespace shadowcts {
 namespace {
@@ -104,12 +105,7 @@ std::vector<std::string> fixtures_and_stiff_cases() {
 
 INSTANTIATE_TEST_SUITE_P(Fixtures, SimdPtsvOnFixture,
                          ::testing::ValuesIn(fixtures_and_stiff_cases()),
-                         [](const ::testing::TestParamInfo<std::string>& param) {
-                           std::string name = param.param;
-                           for (char& ch : name)
-                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return name;
-                         });
+                         test_support::param_test_name);
 
 // The reference tests' scene whose caster covers whole clusters: trivial accepts clear bits, so
 // the order of the volumes matters to the counters.
