@@ -3,7 +3,6 @@
 // sample's answer, for each ported variant, on the default fixtures, the stiff suite and the
 // reference tests' big-shadow scenes; then the same outputs for 1 and 2 threads and for another
 // Highway target. Each diff names the first difference.
-#include <bit>
 #include <cstring>
 #include <sstream>
 #include <string>
@@ -13,15 +12,13 @@
 #include <hwy/targets.h>
 #include <tbb/global_control.h>
 
-#include "reference/ptsv/cluster_keys.h"
 #include "reference/ptsv/hierarchy.h"
 #include "reference/ptsv/ptsv_algorithm.h"
-#include "reference/ptsv/receiver_rule.h"
-#include "reference/ptsv/view_frame.h"
 #include "shadowcts/fixtures.h"
 #include "shadowcts/prepared_scene.h"
 #include "simd/ptsv/ptsv_algorithm.h"
 #include "tests/ports/output_difference.h"
+#include "tests/ports/ptsv_structure_difference.h"
 #include "tests/reference/ptsv/big_shadow_case.h"
 #include "tests/reference/ptsv/ptsv_test_support.h"
 #include "tests/test_name.h"
@@ -32,43 +29,29 @@ namespace {
 namespace ref = ::shadowcts::ptsv;
 const char* const variants[] = {"twopass", "explicit+planes", "implicit"};
 
-bool same_bits(double a, double b) {
-  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
-}
-
 // "" when the simd structures equal the reference's, else the first difference.
 std::string diff_structures(const Case& c, const ViewSamples& samples, const PreparedScene& scene,
                             const std::string& variant) {
-  const bool implicit = variant == "implicit";
-  const ref::ViewFrame frame = ref::make_view_frame(c.camera, samples.width, samples.height);
-  const ref::ClusterKeyLayout layout =
-      ref::make_cluster_key_layout(c.camera, samples.width, samples.height).layout;
-  const ref::ClusterKeys keys = ref::assign_cluster_keys(layout, frame, samples, implicit);
-  if (!keys.problem.empty()) return "reference keys: " + keys.problem;
+  const port_test::PtsvReferenceStructures reference =
+      port_test::ptsv_reference_structures(c, samples, variant);
+  if (!reference.problem.empty()) return reference.problem;
   const simd::ptsv::Structures s = simd::ptsv::build_structures(scene, variant);
-  for (std::size_t i = 0; i < keys.key.size(); ++i)
-    if (s.key[i] != keys.key[i])
-      return "key of view sample " + std::to_string(i) + ": " + std::to_string(s.key[i]) +
-             " != reference " + std::to_string(keys.key[i]);
-  const ref::ReceiverRule rule(c, samples);
-  const ref::ClusterHierarchy h(layout, keys.key, samples, rule.reject_reach());
+  if (std::string d = port_test::ptsv_key_difference(s.key, reference.key); !d.empty()) return d;
+  const ref::ClusterHierarchy& h = *reference.hierarchy;
   if (s.hierarchy.leaf_level() != h.leaf_level()) return "leaf level";
   for (int l = 0; l <= h.leaf_level(); ++l) {
-    const ref::HierarchyLevel& r = h.level(l);
     const simd::ptsv::Level& p = s.hierarchy.levels[std::size_t(l)];
-    if (p.size() != r.index.size())
-      return "level " + std::to_string(l) + ": " + std::to_string(p.size()) + " nodes, reference " +
-             std::to_string(r.index.size());
-    for (std::size_t n = 0; n < p.size(); ++n) {
-      const std::string node = "level " + std::to_string(l) + " node " + std::to_string(n) + " ";
-      if (p.index[n] != r.index[n]) return node + "index";
-      if (p.child_mask[n] != r.child_mask[n]) return node + "child mask";
-      for (int k = 0; k < 3; ++k)
-        if (!same_bits(p.lo[std::size_t(k)][n], r.bounds[n].lo[k]) ||
-            !same_bits(p.hi[std::size_t(k)][n], r.bounds[n].hi[k]))
-          return node + "bounds, axis " + std::to_string(k);
-      if (!same_bits(p.reach[n], r.reject_reach[n])) return node + "reject reach";
-    }
+    const std::string d =
+        port_test::ptsv_level_difference(l, p.size(), h.level(l), [&](std::size_t n) {
+          port_test::PtsvNode node{.index = p.index[n], .child_mask = p.child_mask[n]};
+          for (std::size_t k = 0; k < 3; ++k) {
+            node.lo[k] = p.lo[k][n];
+            node.hi[k] = p.hi[k][n];
+          }
+          node.reach = p.reach[n];
+          return node;
+        });
+    if (!d.empty()) return d;
   }
   return "";
 }
