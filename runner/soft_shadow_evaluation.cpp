@@ -15,9 +15,18 @@
 namespace shadowcts {
 namespace {
 
-// The exact oracle costs about a millisecond per sample on one core (CGAL Boolean operations over
-// exact rationals); above this many compared samples the automatic choice is the sampled oracle.
-constexpr std::size_t exact_oracle_sample_limit = 300'000;
+// The exact oracle's cost follows the projected casters it unites per sample, k, not the sample
+// count (estimate_exact_soft_shadow_work). Its one-core seconds are estimated here as 2 µs per
+// sample + 150 µs x sum(k) + 150 ns x sum(k^2), fitted on the 2-core machines (2026-12-05): a
+// projection costs 60-100 µs for a closed mesh and for foliage.10k, 154 µs at foliage.100k in
+// 1080p; crossing grass blades under a 60-degree sun (k about 1,300) 460 µs, which the k^2 term
+// covers. Above the limit the automatic choice is the sampled oracle; the estimate visits every
+// 16th regular sample (docs/soft-shadow-oracle.md).
+constexpr double exact_oracle_seconds_per_sample = 2e-6;  // its cone query, with nothing to unite
+constexpr double exact_oracle_seconds_per_projection = 150e-6;
+constexpr double exact_oracle_seconds_per_squared_projection = 150e-9;
+constexpr double exact_oracle_seconds_limit = 300.0;
+constexpr std::uint32_t exact_oracle_estimate_stride = 16;
 // 1024 stratified rays: error bound 0.102 per sample at failure probability 1e-9.
 constexpr std::uint32_t sampled_rays_per_sample = 1024;
 
@@ -166,16 +175,29 @@ std::unique_ptr<CaseEvaluation> evaluate_soft_shadows(
     const Case& c, const ViewSamples& samples, const std::vector<std::uint8_t>& receiver_ambiguous,
     OracleChoice choice, const ImageTarget& images, const std::string& image_folder,
     std::vector<std::string>& left_out, const TruthCache* cache) {
-  const std::size_t regular = samples.count(SampleClass::regular);
-  const bool exact = choice == OracleChoice::exact ||
-                     (choice == OracleChoice::automatic && regular <= exact_oracle_sample_limit);
-  if (!exact)
-    left_out.push_back("exact soft-shadow oracle: " +
-                       (choice == OracleChoice::embree
-                            ? std::string("--oracle embree asked for the sampled one")
-                            : std::to_string(regular) + " samples exceed its limit of " +
-                                  std::to_string(exact_oracle_sample_limit)) +
-                       "; figures carry the sampled oracle's error bound");
+  bool exact = choice == OracleChoice::exact;
+  if (choice == OracleChoice::embree)
+    left_out.push_back(
+        "exact soft-shadow oracle: --oracle embree asked for the sampled one; figures carry the "
+        "sampled oracle's error bound");
+  if (choice == OracleChoice::automatic) {
+    const ExactSoftShadowWork work =
+        estimate_exact_soft_shadow_work(c, samples, exact_oracle_estimate_stride);
+    const double seconds =
+        exact_oracle_seconds_per_sample * double(samples.count(SampleClass::regular)) +
+        exact_oracle_seconds_per_projection * double(work.projections) +
+        exact_oracle_seconds_per_squared_projection * work.squared_projections;
+    exact = seconds <= exact_oracle_seconds_limit;
+    if (!exact) {
+      std::ostringstream why;
+      why << "exact soft-shadow oracle: about " << work.projections
+          << " projected casters to unite (estimated at every " << exact_oracle_estimate_stride
+          << "th regular sample), an estimated " << std::lround(seconds)
+          << " s on one core, above its limit of " << exact_oracle_seconds_limit
+          << " s; figures carry the sampled oracle's error bound (--oracle exact insists)";
+      left_out.push_back(why.str());
+    }
+  }
   return std::make_unique<SoftShadowEvaluation>(c, samples, receiver_ambiguous, exact, images,
                                                 image_folder, cache);
 }

@@ -25,14 +25,15 @@ struct SampleResult {
   bool fast_path = false;
 };
 
-SampleResult exact_sample(const Case& c, const SunDiskFrame& frame, const LightConeBvh& casters,
-                          const ViewSample& sample, double move) {
+// The projections of the casters the sample's light cone reaches (the union's input), and with
+// `sensitivity` its band sensitivity. One query serves both: triangles within `move` of the cone
+// are the band's candidates, and those the cone itself reaches (angle <= a) are the fraction's.
+std::vector<DiskPolygon> cone_projections(const Case& c, const SunDiskFrame& frame,
+                                          const LightConeBvh& casters, const ViewSample& sample,
+                                          double move, double* sensitivity) {
   const glm::dvec3 p(sample.position);
   const LightCone cone{p, frame.direction, frame.angular_radius};
-  SampleResult result;
   std::vector<DiskPolygon> projections;
-  // One query serves both: triangles within `move` of the cone are the band's candidates, and
-  // those the cone itself reaches (angle <= a) are the fraction's.
   casters.visit(cone, move, [&](std::uint32_t index) {
     if (index == sample.receiver) return;
     const Triangle& t = c.triangles[index];
@@ -43,10 +44,18 @@ SampleResult exact_sample(const Case& c, const SunDiskFrame& frame, const LightC
       const DiskPolygon projection = project_triangle(frame, p, v, FrontProjection::vertices, 2.0);
       if (projection.count > 0) projections.push_back(projection);
     }
-    if (result.sensitivity < 1.0)
-      result.sensitivity =
-          std::min(1.0, result.sensitivity + caster_band_sensitivity(frame, p, v, angle, move));
+    if (sensitivity && *sensitivity < 1.0)
+      *sensitivity =
+          std::min(1.0, *sensitivity + caster_band_sensitivity(frame, p, v, angle, move));
   });
+  return projections;
+}
+
+SampleResult exact_sample(const Case& c, const SunDiskFrame& frame, const LightConeBvh& casters,
+                          const ViewSample& sample, double move) {
+  SampleResult result;
+  const std::vector<DiskPolygon> projections =
+      cone_projections(c, frame, casters, sample, move, &result.sensitivity);
   result.candidates = std::uint32_t(projections.size());
   const CoveredDiskArea covered = covered_disk_area(projections);
   result.fast_path = covered.fast_path;
@@ -102,6 +111,31 @@ SoftShadowTruth exact_soft_shadow_oracle(const Case& c, const ViewSamples& sampl
   truth.candidate_triangles = candidates.load();
   truth.fast_path_samples = fast_paths.load();
   return truth;
+}
+
+ExactSoftShadowWork estimate_exact_soft_shadow_work(const Case& c, const ViewSamples& samples,
+                                                    std::uint32_t stride) {
+  const SunDiskFrame frame = sun_disk_frame(c);
+  stride = std::max<std::uint32_t>(stride, 1);
+  std::vector<std::uint32_t> visited;  // every stride-th regular sample, in sample order
+  std::uint64_t regular = 0;
+  for (std::uint32_t i = 0; i < samples.samples.size(); ++i)
+    if (samples.samples[i].sample_class == SampleClass::regular && regular++ % stride == 0)
+      visited.push_back(i);
+  std::vector<std::uint64_t> projections(visited.size(), 0);
+  run_with_thread_limit(c.parameters.threads, [&] {
+    const LightConeBvh casters(c);
+    tbb::parallel_for(std::size_t(0), visited.size(), [&](std::size_t i) {
+      projections[i] =
+          cone_projections(c, frame, casters, samples.samples[visited[i]], 0.0, nullptr).size();
+    });
+  });
+  ExactSoftShadowWork work;
+  for (const std::uint64_t k : projections) {
+    work.projections += stride * k;
+    work.squared_projections += double(stride) * double(k) * double(k);
+  }
+  return work;
 }
 
 }  // namespace shadowcts

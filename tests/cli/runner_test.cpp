@@ -97,6 +97,42 @@ TEST(Runner, PrintsPlainProgressLinesWhenStderrIsNoTerminal) {
   EXPECT_EQ(lines.find("\r"), std::string::npos);  // no terminal control characters
 }
 
+// The automatic soft-shadow oracle follows the exact oracle's estimated work, not the sample
+// count: 1,200 samples under a 60-degree sun (about 840,000 projected blades to unite, minutes of
+// exact Boolean operations) get the sampled oracle and the reason; under a 2-degree sun the exact
+// one.
+TEST(Runner, WideSunGetsTheSampledSoftOracleWithTheReasonNarrowSunTheExactOne) {
+  for (const int degrees : {60, 2}) {
+    const fs::path dir = fresh_dir("sun_" + std::to_string(degrees));
+    std::ofstream(dir / "case.json") << R"({"scene": {"generator": "foliage", "triangles": 10000},
+               "camera": {"width": 40, "height": 30},
+               "light": {"type": "sun", "direction": [0.2, 1, 0.1], "angular_radius_degrees": )"
+                                     << degrees << "}}";
+    RunOptions o;
+    o.case_files = {(dir / "case.json").string()};
+    o.out_dir = (dir / "out").string();
+    o.algorithms = {{"softtile", "grid16"}};
+    o.backends = {"simd"};
+    o.repeats = 1;
+    o.images = false;
+    std::ostringstream log, err;
+    ASSERT_EQ(run_suite(o, builtin_registry(), log, err), exit_pass) << log.str() << err.str();
+    const auto results = nlohmann::json::parse(read_file(dir / "out" / "results.json"));
+    const auto& soft = results["cases"][0]["oracles"]["soft"];
+    std::string why;
+    for (const auto& line : results["cases"][0]["left_out"])
+      if (line.get<std::string>().starts_with("exact soft-shadow oracle")) why = line;
+    if (degrees == 60) {
+      EXPECT_FALSE(soft["exact"].get<bool>()) << soft.dump();
+      EXPECT_NE(why.find("projected casters to unite"), std::string::npos) << why;
+      EXPECT_NE(why.find("above its limit of 300 s"), std::string::npos) << why;
+    } else {
+      EXPECT_TRUE(soft["exact"].get<bool>()) << soft.dump();
+      EXPECT_EQ(why, "");
+    }
+  }
+}
+
 // Judged by the fast oracle, the embree peer would be judged by Embree itself: the exact oracle
 // re-decides a deterministic subset of its robust samples, and the plan says so.
 TEST(Runner, FastOracleHasTheEmbreePeerSpotCheckedByTheExactOracle) {

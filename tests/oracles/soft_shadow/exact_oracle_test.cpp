@@ -203,5 +203,40 @@ TEST(ExactOracle, DeterministicForAnyThreadCount) {
             sampled_soft_shadow_oracle(h.c, h.samples, 64).visible_fraction);
 }
 
+// The runner chooses between the oracles by this estimate: at stride 1 it is what the exact
+// oracle unites, sample by sample; at a larger stride, every stride-th sample's count times stride.
+TEST(ExactOracle, WorkEstimateCountsWhatTheUnionsTake) {
+  for (double degrees : {0.27, 10.0, 45.0}) {
+    const ShadowLight light = sun_disk({0.3f, 1.0f, 0.2f}, degrees);
+    testing::HandBuiltCase h = random_soft_scene(11, light, 60, 0.8f, 120);
+    const SoftShadowTruth exact = exact_soft_shadow_oracle(h.c, h.samples);
+    EXPECT_GT(exact.candidate_triangles, 0u) << degrees;
+    const ExactSoftShadowWork all = estimate_exact_soft_shadow_work(h.c, h.samples, 1);
+    EXPECT_EQ(all.projections, exact.candidate_triangles) << degrees;
+    // Sample by sample (each alone, the others not compared): the sum of squares.
+    double squares = 0.0;
+    for (std::size_t i = 0; i < h.samples.samples.size(); ++i) {
+      const std::uint64_t k =
+          exact_soft_shadow_oracle(h.c,
+                                   testing::every_nth_regular(h.samples, 1'000'000, 1'000'000 - i))
+              .candidate_triangles;
+      squares += double(k) * double(k);
+    }
+    EXPECT_EQ(all.squared_projections, squares) << degrees;
+    std::uint64_t every_third = 0;
+    for (int offset = 0; offset < 3; ++offset) {
+      // The samples the estimate visits at stride 3 from `offset`: compare them alone.
+      const ViewSamples kept = testing::every_nth_regular(h.samples, 3, (3 - offset) % 3);
+      const std::uint64_t part = exact_soft_shadow_oracle(h.c, kept).candidate_triangles;
+      if (offset == 0) {
+        EXPECT_EQ(estimate_exact_soft_shadow_work(h.c, h.samples, 3).projections, 3 * part)
+            << degrees;
+      }
+      every_third += part;
+    }
+    EXPECT_EQ(every_third, exact.candidate_triangles) << degrees;
+  }
+}
+
 }  // namespace
 }  // namespace shadowcts
