@@ -12,6 +12,7 @@
 #include "oracles/soft_shadow/light_cone_bvh.h"
 #include "oracles/soft_shadow/sun_disk_projection.h"
 #include "shadowcts/hard_shadow_inputs.h"
+#include "shadowcts/phase_progress.h"
 #include "shadowcts/soft_shadow_oracle.h"
 #include "shadowcts/thread_limit.h"
 
@@ -89,9 +90,11 @@ SoftShadowTruth exact_soft_shadow_oracle(const Case& c, const ViewSamples& sampl
   std::atomic<std::uint64_t> candidates{0}, fast_paths{0};
   run_with_thread_limit(c.parameters.threads, [&] {
     const LightConeBvh casters(c);
+    phase_progress::begin(n, "view samples");
     // Each sample is computed on its own: the result does not depend on the partitioning.
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16),
                       [&](const tbb::blocked_range<std::size_t>& range) {
+                        phase_progress::advance(range.size());
                         std::uint64_t local_candidates = 0, local_fast = 0;
                         for (std::size_t i = range.begin(); i != range.end(); ++i) {
                           const ViewSample& sample = samples.samples[i];

@@ -16,6 +16,7 @@
 #include "shadowcts/embree_scene.h"
 #include "shadowcts/errors.h"
 #include "shadowcts/hard_shadow_inputs.h"
+#include "shadowcts/phase_progress.h"
 #include "shadowcts/soft_shadow_oracle.h"
 #include "shadowcts/thread_limit.h"
 
@@ -101,9 +102,11 @@ SoftShadowTruth sampled_soft_shadow_oracle(const Case& c, const ViewSamples& sam
   const EmbreeScene scene(c, casters_of(c), ignore_receiver, c.triangle_scale());
   run_with_thread_limit(c.parameters.threads, [&] {
     const LightConeBvh casters(c);
+    phase_progress::begin(n, "view samples");
     tbb::parallel_for(
         tbb::blocked_range<std::size_t>(0, n, 16),
         [&](const tbb::blocked_range<std::size_t>& range) {
+          phase_progress::advance(range.size());
           for (std::size_t i = range.begin(); i != range.end(); ++i) {
             const ViewSample& sample = samples.samples[i];
             if (sample.sample_class != SampleClass::regular) continue;

@@ -97,6 +97,31 @@ TEST(Runner, PrintsPlainProgressLinesWhenStderrIsNoTerminal) {
   EXPECT_EQ(lines.find("\r"), std::string::npos);  // no terminal control characters
 }
 
+// The soft-shadow oracles count their samples too (a 1080p exact oracle runs for many minutes).
+TEST(Runner, SoftShadowOraclesReportTheirSamplesInProgressLines) {
+  for (const OracleChoice oracle : {OracleChoice::exact, OracleChoice::embree}) {
+    const fs::path dir = fresh_dir(oracle == OracleChoice::exact ? "soft_exact" : "soft_sampled");
+    std::ofstream(dir / "case.json") << R"({"scene": {"generator": "foliage", "triangles": 10000},
+                                             "camera": {"width": 96, "height": 64}})";
+    RunOptions o;
+    o.case_files = {(dir / "case.json").string()};
+    o.out_dir = (dir / "out").string();
+    o.algorithms = {{"softtile", "grid16"}};
+    o.backends = {"simd"};
+    o.repeats = 1;
+    o.threads = 1;
+    o.images = false;
+    o.oracle = oracle;
+    o.progress_lines = true;
+    o.progress_line_seconds = 0.01;
+    std::ostringstream log, err;
+    ASSERT_EQ(run_suite(o, builtin_registry(), log, err), exit_pass) << log.str() << err.str();
+    EXPECT_TRUE(
+        std::regex_search(err.str(), std::regex("soft oracle — [0-9]+ / 6144 view samples \\(")))
+        << err.str();
+  }
+}
+
 // The automatic soft-shadow oracle follows the exact oracle's estimated work, not the sample
 // count: 1,200 samples under a 60-degree sun (about 840,000 projected blades to unite, minutes of
 // exact Boolean operations) get the sampled oracle and the reason; under a 2-degree sun the exact
