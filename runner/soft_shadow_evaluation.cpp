@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <iomanip>
 #include <sstream>
 
 #include "image_paths.h"
@@ -192,7 +193,7 @@ std::unique_ptr<CaseEvaluation> evaluate_soft_shadows(
       std::ostringstream why;
       why << "exact soft-shadow oracle: about " << work.projections
           << " projected casters to unite (estimated at every " << exact_oracle_estimate_stride
-          << "th regular sample), an estimated " << std::lround(seconds)
+          << "th regular sample), an estimated " << std::fixed << std::setprecision(0) << seconds
           << " s on one core, above its limit of " << exact_oracle_seconds_limit
           << " s; figures carry the sampled oracle's error bound (--oracle exact insists)";
       left_out.push_back(why.str());
