@@ -97,20 +97,26 @@ TEST(Runner, PrintsPlainProgressLinesWhenStderrIsNoTerminal) {
   EXPECT_EQ(lines.find("\r"), std::string::npos);  // no terminal control characters
 }
 
+// softtile:grid16 [simd] alone on dir/case.json, into dir/out, without images.
+RunOptions softtile_run(const fs::path& dir) {
+  RunOptions o;
+  o.case_files = {(dir / "case.json").string()};
+  o.out_dir = (dir / "out").string();
+  o.algorithms = {{"softtile", "grid16"}};
+  o.backends = {"simd"};
+  o.repeats = 1;
+  o.images = false;
+  return o;
+}
+
 // The soft-shadow oracles count their samples too (a 1080p exact oracle runs for many minutes).
 TEST(Runner, SoftShadowOraclesReportTheirSamplesInProgressLines) {
   for (const OracleChoice oracle : {OracleChoice::exact, OracleChoice::embree}) {
     const fs::path dir = fresh_dir(oracle == OracleChoice::exact ? "soft_exact" : "soft_sampled");
     std::ofstream(dir / "case.json") << R"({"scene": {"generator": "foliage", "triangles": 10000},
                                              "camera": {"width": 96, "height": 64}})";
-    RunOptions o;
-    o.case_files = {(dir / "case.json").string()};
-    o.out_dir = (dir / "out").string();
-    o.algorithms = {{"softtile", "grid16"}};
-    o.backends = {"simd"};
-    o.repeats = 1;
+    RunOptions o = softtile_run(dir);
     o.threads = 1;
-    o.images = false;
     o.oracle = oracle;
     o.progress_lines = true;
     o.progress_line_seconds = 0.01;
@@ -133,13 +139,7 @@ TEST(Runner, WideSunGetsTheSampledSoftOracleWithTheReasonNarrowSunTheExactOne) {
                "camera": {"width": 40, "height": 30},
                "light": {"type": "sun", "direction": [0.2, 1, 0.1], "angular_radius_degrees": )"
                                      << degrees << "}}";
-    RunOptions o;
-    o.case_files = {(dir / "case.json").string()};
-    o.out_dir = (dir / "out").string();
-    o.algorithms = {{"softtile", "grid16"}};
-    o.backends = {"simd"};
-    o.repeats = 1;
-    o.images = false;
+    const RunOptions o = softtile_run(dir);
     std::ostringstream log, err;
     ASSERT_EQ(run_suite(o, builtin_registry(), log, err), exit_pass) << log.str() << err.str();
     const auto results = nlohmann::json::parse(read_file(dir / "out" / "results.json"));
