@@ -14,6 +14,7 @@
 #include "gpu/psv/plane_side.cuh"
 #include "gpu/psv/psv_kernels.h"
 #include "gpu/psv/top_tree.cuh"
+#include "shadowcts/geometry/volume_location.h"
 
 namespace shadowcts::SHADOWCTS_KERNEL_NAMESPACE {
 namespace psv {
@@ -30,9 +31,7 @@ __device__ inline int triangle_location(const PlaneSide& planes, std::uint32_t n
     negative = negative || s < 0;
     on = on || s == 0;
   }
-  if (positive && negative) return 0;
-  if (positive && on && !is_capping_node(node)) return 0;  // touching an edge plane
-  return positive ? 1 : -1;
+  return geometry::volume_location(positive, negative, on, is_capping_node(node));
 }
 
 __global__ void psv_descend(PlaneSide planes, std::uint32_t root, const std::uint32_t* batch,

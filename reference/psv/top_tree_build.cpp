@@ -7,6 +7,7 @@
 
 #include "reference/psv/top_tree_depth.h"
 #include "shadowcts/float_rounding.h"
+#include "shadowcts/geometry/volume_location.h"
 #include "shadowcts/hard_shadow_inputs.h"
 
 namespace shadowcts::psv {
@@ -71,11 +72,7 @@ int triangle_location(const TopTree& tree, const PlaneSide& planes, std::uint32_
     negative = negative || side < 0;
     on = on || side == 0;
   }
-  if (positive && negative) return 0;
-  // A triangle that touches an edge plane from its positive side (a neighbour across a shared
-  // edge or vertex): its closed volume meets the plane, where the queries go negative only.
-  if (positive && on && !is_capping_node(node)) return 0;
-  return positive ? 1 : -1;
+  return geometry::volume_location(positive, negative, on, is_capping_node(node));
 }
 
 TopTree build_top_tree(const Case& c, const PlaneSide& planes,

@@ -47,15 +47,9 @@ TopTree build_top_tree(const Case& c, const PlaneSide& planes,
 // distance for a point light.
 float triangle_wedge(const PlaneSide& planes, const TopNode& node, const Triangle& t, float depth);
 
-// 1: every vertex strictly on the positive side (of a capping plane: on its closed positive side,
-// one strictly); -1: every vertex on the closed negative side (a triangle in the plane is inside
-// its closed negative side); 0: straddling, or touching an edge plane from its positive side. A
-// point on an edge plane goes to the negative child only, so every volume that can hold such a
-// point must be below the negative or the intersection child: the closed volume of a triangle
-// with a vertex on the plane meets the plane (a ray through an edge shared with the node's
-// triangle, or collinear with it, would leak otherwise). A capping plane's positive child holds
-// no such volume that counts: a point on the capping plane within the edge planes is on the
-// triangle.
+// The child of `node` that `t` is filed under, from its vertices' exact sides
+// (geometry::volume_location): 1 positive, -1 negative, 0 intersection (straddling, or touching an
+// edge plane from its positive side).
 int triangle_location(const TopTree& tree, const PlaneSide& planes, std::uint32_t node,
                       const Triangle& t);
 

@@ -1,5 +1,4 @@
 #include "reference/stencil/view_grid.h"
-#include "shadowcts/float_rounding.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,6 +9,8 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
+
+#include "shadowcts/float_rounding.h"
 
 namespace shadowcts::stencil {
 namespace {

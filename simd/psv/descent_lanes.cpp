@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <bit>
 
+#include "shadowcts/geometry/volume_location.h"
 #include "simd/psv/descent_lanes.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -250,9 +251,8 @@ void DescendInLanes(const ref::TopTree& tree, const VolumeCornerArray& corners,
       if ((positive & negative & lane) != 0) {
         location = 0;
       } else if ((decided & lane) != 0) {
-        location = (positive & lane) == 0                                     ? -1
-                   : (touching & lane) != 0 && !ref::is_capping_node(node[w]) ? 0
-                                                                              : 1;
+        location = geometry::volume_location((positive & lane) != 0, (negative & lane) != 0,
+                                             (touching & lane) != 0, ref::is_capping_node(node[w]));
       } else if (!had_corners) {
         // A vertex within the bound: the plane's defining points decide most (a neighbour's
         // shared vertex). Only these walks read them: fetched now, tested next round.

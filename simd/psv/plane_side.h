@@ -11,6 +11,7 @@
 
 #include "reference/psv/plane_side.h"
 #include "reference/psv/top_tree.h"
+#include "shadowcts/geometry/volume_location.h"
 #include "shadowcts/huge_pages.h"
 
 namespace shadowcts::simd::psv {
@@ -62,10 +63,9 @@ class PlaneSide {
       positive |= unsigned(side > 0) << k;
       negative |= unsigned(side < 0) << k;
     }
-    if (positive && negative) return 0;
-    // ref::triangle_location: a vertex on an edge plane (neither bit) with one positive.
-    if (positive && (positive | negative) != 7u && !ref::is_capping_node(node)) return 0;
-    return positive ? 1 : -1;
+    // A vertex with neither bit lies on the plane (when the triangle does not straddle it).
+    return geometry::volume_location(positive != 0, negative != 0, (positive | negative) != 7u,
+                                     ref::is_capping_node(node));
   }
 
   // Exact sign of the plane of `node` at p (1 outside, 0 on it, -1 inside), for a p with
