@@ -16,6 +16,7 @@
 #include "shadowcts/fixtures.h"
 #include "shadowcts/prepared_scene.h"
 #include "simd/psv/psv_algorithm.h"
+#include "simd/psv/psv_shadows.h"
 
 namespace shadowcts {
 namespace {
@@ -73,6 +74,28 @@ void BM_Psv(benchmark::State& state, const std::string& generator, const std::st
   state.counters["query_ms"] = query_ms / double(state.iterations());
 }
 
+// The simd query with `packet` samples per packet (issue 19: packets of 8 or 16 samples, or one
+// sample at a time), D-Stackless: each packet size's query phase on the same scene, and its mask
+// checked against the default packet's.
+void BM_PsvPacket(benchmark::State& state, const std::string& generator, std::uint32_t packet) {
+  const FullHdCase& f = full_hd_case(generator, std::uint64_t(state.range(0)));
+  simd::psv::SimdPsvOptions options;
+  options.psv = psv::psv_variant_options("stackless");
+  options.psv.seed = f.c.parameters.seed;
+  options.packet = packet;
+  simd::psv::SimdPsvResult result;
+  double query_ms = 0.0;
+  for (auto _ : state) {
+    result = simd::psv::psv_hard_shadows(*f.scene, options);
+    query_ms += result.phase_ms[1].second;
+  }
+  simd::psv::SimdPsvOptions default_options = options;
+  default_options.packet = simd::psv::SimdPsvOptions().packet;
+  if (result.shadowed != simd::psv::psv_hard_shadows(*f.scene, default_options).shadowed)
+    state.SkipWithError("the mask depends on the packet size");
+  state.counters["query_ms"] = query_ms / double(state.iterations());
+}
+
 void register_all() {
   for (const std::string generator :
        {"gate_house", "ground_blockers", "closed_shapes", "foliage"}) {
@@ -89,6 +112,14 @@ void register_all() {
     for (const std::string backend : {"reference", "simd"})
       for (const std::string variant : {"stackless", "depth", "hybrid", "stack32"})
         add(backend, variant);
+    for (const std::uint32_t packet : {1u, 4u, 8u, 16u})
+      benchmark::RegisterBenchmark(
+          ("psv_packet/" + std::to_string(packet) + "/" + generator).c_str(),
+          [=](benchmark::State& s) { BM_PsvPacket(s, generator, packet); })
+          ->Arg(100000)
+          ->Arg(1000000)
+          ->Unit(benchmark::kMillisecond)
+          ->Iterations(3);
   }
 }
 
