@@ -2,7 +2,8 @@
 // query, the baseline a user would pick), per fixture (gate_house, ground_blockers,
 // closed_shapes, foliage at 100k and 1M triangles) and variant: the whole run() on one prepared
 // scene, its build and query phases as counters. The simd mask and counters must be the
-// reference's (exact_plane_tests aside: each port counts its own); checked once per case.
+// reference's (exact_plane_tests aside: each port counts its own); checked once per case. And the
+// simd query by packet size (psv_packet/<samples per packet>/...).
 //   build/bench/psv_simd_bench [--benchmark_filter=gate_house/1000000]
 #include <benchmark/benchmark.h>
 
@@ -75,8 +76,8 @@ void BM_Psv(benchmark::State& state, const std::string& generator, const std::st
 }
 
 // The simd query with `packet` samples per packet (issue 19: packets of 8 or 16 samples, or one
-// sample at a time), D-Stackless: each packet size's query phase on the same scene, and its mask
-// checked against the default packet's.
+// sample at a time), D-Stackless: each packet size's query phase on the same scene; its mask and
+// per-sample node visits are checked against the default packet's.
 void BM_PsvPacket(benchmark::State& state, const std::string& generator, std::uint32_t packet) {
   const FullHdCase& f = full_hd_case(generator, std::uint64_t(state.range(0)));
   simd::psv::SimdPsvOptions options;
@@ -91,8 +92,9 @@ void BM_PsvPacket(benchmark::State& state, const std::string& generator, std::ui
   }
   simd::psv::SimdPsvOptions default_options = options;
   default_options.packet = simd::psv::SimdPsvOptions().packet;
-  if (result.shadowed != simd::psv::psv_hard_shadows(*f.scene, default_options).shadowed)
-    state.SkipWithError("the mask depends on the packet size");
+  const simd::psv::SimdPsvResult expected = simd::psv::psv_hard_shadows(*f.scene, default_options);
+  if (result.shadowed != expected.shadowed || result.nodes_visited != expected.nodes_visited)
+    state.SkipWithError("the mask or the nodes visited depend on the packet size");
   state.counters["query_ms"] = query_ms / double(state.iterations());
 }
 
