@@ -94,7 +94,6 @@ SoftShadowTruth exact_soft_shadow_oracle(const Case& c, const ViewSamples& sampl
     // Each sample is computed on its own: the result does not depend on the partitioning.
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16),
                       [&](const tbb::blocked_range<std::size_t>& range) {
-                        phase_progress::advance(range.size());
                         std::uint64_t local_candidates = 0, local_fast = 0;
                         for (std::size_t i = range.begin(); i != range.end(); ++i) {
                           const ViewSample& sample = samples.samples[i];
@@ -109,6 +108,7 @@ SoftShadowTruth exact_soft_shadow_oracle(const Case& c, const ViewSamples& sampl
                         }
                         candidates += local_candidates;
                         fast_paths += local_fast;
+                        phase_progress::advance(range.size());
                       });
   });
   truth.candidate_triangles = candidates.load();

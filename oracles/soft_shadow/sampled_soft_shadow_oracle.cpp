@@ -106,7 +106,6 @@ SoftShadowTruth sampled_soft_shadow_oracle(const Case& c, const ViewSamples& sam
     tbb::parallel_for(
         tbb::blocked_range<std::size_t>(0, n, 16),
         [&](const tbb::blocked_range<std::size_t>& range) {
-          phase_progress::advance(range.size());
           for (std::size_t i = range.begin(); i != range.end(); ++i) {
             const ViewSample& sample = samples.samples[i];
             if (sample.sample_class != SampleClass::regular) continue;
@@ -145,6 +144,7 @@ SoftShadowTruth sampled_soft_shadow_oracle(const Case& c, const ViewSamples& sam
             truth.band_sensitivity[i] = sample_band_sensitivity(c, frame, casters, sample, move);
             truth.robust[i] = truth.band_sensitivity[i] <= soft_robust_sensitivity ? 1 : 0;
           }
+          phase_progress::advance(range.size());
         });
   });
   return truth;

@@ -6,8 +6,6 @@
 #include <string>
 #include <vector>
 
-#include <gtest/gtest.h>
-
 #include "shadowcts/case.h"
 #include "shadowcts/fixtures.h"
 #include "shadowcts/view_samples.h"
@@ -39,6 +37,5 @@ inline std::vector<std::string> hard_shadow_fixtures() {
     if (make_fixture(name).light) names.push_back(name);
   return names;
 }
-
 
 }  // namespace shadowcts::metric::testing
