@@ -16,8 +16,8 @@ struct FixtureGenerator {
 };
 
 // Procedural: ground_blockers, closed_shapes, gate_house, foliage, shared_edges, many_lights.
-// Models (fixed size, from /usr/share/assimp/models): model.2cylinder_engine, model.spider,
-// model.wuson, model.sphere_with_hole.
+// Models (fixed size, from /usr/share/assimp/models or $SHADOWCTS_ASSIMP_MODELS):
+// model.2cylinder_engine, model.spider, model.wuson, model.sphere_with_hole.
 const std::vector<FixtureGenerator>& fixture_generators();
 
 // Builds generator `generator` with about `target_triangles` triangles (procedural generators;
