@@ -1,8 +1,8 @@
-// mutant_kill: runs the conformance suite on an executable whose reference algorithm carries one
-// mutant (tests/mutants/catalogue) and succeeds only if the suite catches it: some record of the
-// mutated algorithm gets Fail (a robust mismatch, a missing light, a soft sample over budget)
-// while the unmutated algorithm passes the same record. The unmutated verdicts come from the
-// suite's own `shadowcts` program, run on the same case in a child process: this executable
+// mutant_kill: runs the conformance suite on an executable whose algorithm (a reference or a port)
+// carries one mutant (tests/mutants/catalogue) and succeeds only if the suite catches it: some
+// record of the mutated algorithm gets Fail (a robust mismatch, a missing light, a soft sample over
+// budget) while the unmutated algorithm passes the same record. The unmutated verdicts come from
+// the suite's own `shadowcts` program, run on the same case in a child process: this executable
 // cannot hold the original of the mutated source next to the mutated one, and judging against a
 // list of known failures would credit a mutant with a case that nothing ever runs unmutated.
 // Cases run one at a time, in the order given, and the first one that kills the mutant ends the
@@ -14,11 +14,11 @@
 // a record counts as a kill only where the control passes it too, so the kill is the mutant's own
 // bug and not the control's.
 //   mutant_kill --mutant NAME --unmutated PATH_TO_SHADOWCTS --algorithm ID[:VARIANT]
-//               (--fixture NAME | --suite stiff)... [--survives WHY]
+//               [--backend NAME]... (--fixture NAME | --suite stiff)... [--survives WHY]
 //               [--control NAME --control-program PATH_TO_ITS_MUTANT]
 // Every mutant executable also answers the subset of `shadowcts run` used below, so that it can
 // serve as another mutant's control:
-//   mutant_kill run --algorithm ID[:VARIANT] --repeat 1 --no-images --out DIR
+//   mutant_kill run --algorithm ID[:VARIANT] [--backend NAME]... --repeat 1 --no-images --out DIR
 //               (--fixture NAME | --suite stiff)
 #include <sys/wait.h>
 #include <unistd.h>
@@ -47,6 +47,7 @@ struct Arguments {
   std::string unmutated;  // the `shadowcts` program, built from the unmutated sources
   AlgorithmSelection algorithm;
   std::string algorithm_text;            // ID[:VARIANT] as given
+  std::vector<std::string> backends;     // only these backends; empty: all
   std::vector<std::string> fixtures;     // "suite:stiff" for the stiff suite
   std::string survives;                  // why the cases cannot kill it; empty: they must
   std::string control, control_program;  // the control mutant and its executable; or empty
@@ -69,6 +70,8 @@ Arguments parse(int argc, char** argv) {
     } else if (key == "--algorithm") {
       a.algorithm = selection_of(value);
       a.algorithm_text = value;
+    } else if (key == "--backend") {
+      a.backends.push_back(value);
     } else if (key == "--fixture") {
       a.fixtures.push_back(value);
     } else if (key == "--suite") {
@@ -87,7 +90,8 @@ Arguments parse(int argc, char** argv) {
       a.fixtures.empty() || a.control.empty() != a.control_program.empty())
     throw std::runtime_error(
         "usage: mutant_kill --mutant NAME --unmutated SHADOWCTS --algorithm ID[:VARIANT] "
-        "(--fixture F | --suite S)... [--survives WHY] [--control NAME --control-program PATH]");
+        "[--backend B]... (--fixture F | --suite S)... [--survives WHY] "
+        "[--control NAME --control-program PATH]");
   return a;
 }
 
@@ -114,6 +118,8 @@ int run_program(const std::string& program, const Arguments& args, const std::st
   std::vector<std::string> command = {program,         "run", "--algorithm", args.algorithm_text,
                                       "--repeat",      "1",   "--no-images", "--out",
                                       out_dir.string()};
+  for (const std::string& backend : args.backends)
+    command.insert(command.end(), {"--backend", backend});
   if (fixture.rfind("suite:", 0) == 0) {
     command.insert(command.end(), {"--suite", fixture.substr(6)});
   } else {
@@ -167,6 +173,8 @@ int run_mode(int argc, char** argv) {
       options.repeats = std::uint32_t(std::stoul(value));
     } else if (key == "--out") {
       options.out_dir = value;
+    } else if (key == "--backend") {
+      options.backends.push_back(value);
     } else if (key == "--fixture") {
       options.fixtures = {value};
     } else if (key == "--suite") {
@@ -192,6 +200,7 @@ int main(int argc, char** argv) try {
     else
       options.fixtures = {fixture};
     options.algorithms = {args.algorithm};
+    options.backends = args.backends;
     options.repeats = 1;     // the verdict is what matters here, not the time
     options.images = false;  // nor the pictures
     options.out_dir = (out_root / fixture / "mutated").string();
