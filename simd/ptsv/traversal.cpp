@@ -123,16 +123,15 @@ class Engine {
         shadowed_(shadowed),
         culling_(in.config.extra_planes) {}
 
-  // ref::classify_node for the children [first, first + count) of level `level` that `live` names.
-  // Its verdict is the same whichever plane is tested first, so the lanes stop at the first plane
-  // that rejects all of them and compute the accept point's values only for the lanes left.
-  Verdicts test_children(const PackedVolume& vol, int level, std::uint32_t first,
-                         std::uint32_t count, std::uint32_t live) const {
+  // ref::classify_node for the children [first, first + count) of level `level` that `live` names,
+  // bounded by implicit cells (their 8 corners). Its verdict is the same whichever plane is tested
+  // first, so the lanes stop at the first plane that rejects all of them.
+  Verdicts test_children_implicit(const PackedVolume& vol, int level, std::uint32_t first,
+                                  std::uint32_t count, std::uint32_t live) const {
     const D d;
     const std::uint32_t lanes = std::uint32_t(hn::Lanes(d));
     const Level& L = h_.levels[std::size_t(level)];
     const ref::NodeTolerances& tol = in_.tolerances;
-    const bool implicit = in_.config.implicit_cells;
     const V rounding = hn::Set(d, tol.rounding);
     const std::uint32_t culling = culling_ ? vol.extra_mask : 0u;
     // 64-bit words, not a Verdicts: the accumulators live on the stack (the corner pointers take
@@ -144,52 +143,33 @@ class Engine {
       const std::uint32_t wanted = (live >> base) & lane_bits;
       if (wanted == 0) continue;
       const std::size_t at = first + base;
-      V high[4];  // implicit cells: the largest corner value, kept from the reject pass
-      // The lowest value over the bounds (and, for cells, the highest) of plane k.
-      const auto range = [&](int k, bool want_high, V& low, V& hi) {
+      V high[4];  // the largest corner value, kept from the reject pass
+      // The lowest and highest value of plane k over the cells' corners.
+      const auto range = [&](int k, V& low, V& hi) {
         const PlaneLanes p = plane_lanes(d, vol, k);
-        if (implicit) {
-          for (std::size_t c = 0; c < 8; ++c) {
-            const V value = plane_at(p.nx, p.ny, p.nz, p.ax, p.ay, p.az, p.shift,
-                                     hn::LoadU(d, L.corner[c * 3 + 0].data() + at),
-                                     hn::LoadU(d, L.corner[c * 3 + 1].data() + at),
-                                     hn::LoadU(d, L.corner[c * 3 + 2].data() + at));
-            low = c == 0 ? value : hn::Min(low, value);
-            hi = c == 0 ? value : hn::Max(hi, value);
-          }
-          return;
-        }
-        // The trivial-reject point takes lo where the normal is >= 0, the accept point hi.
-        const double* r[3];
-        const double* a[3];
-        for (std::size_t axis = 0; axis < 3; ++axis) {
-          const bool positive = plane_normal(vol, k)[axis] >= 0.0;
-          r[axis] = (positive ? L.lo[axis] : L.hi[axis]).data() + at;
-          a[axis] = (positive ? L.hi[axis] : L.lo[axis]).data() + at;
-        }
-        if (!want_high) {
-          low = plane_at(p.nx, p.ny, p.nz, p.ax, p.ay, p.az, p.shift, hn::LoadU(d, r[0]),
-                         hn::LoadU(d, r[1]), hn::LoadU(d, r[2]));
-        } else {
-          hi = plane_at(p.nx, p.ny, p.nz, p.ax, p.ay, p.az, p.shift, hn::LoadU(d, a[0]),
-                        hn::LoadU(d, a[1]), hn::LoadU(d, a[2]));
+        for (std::size_t c = 0; c < 8; ++c) {
+          const V value = plane_at(p.nx, p.ny, p.nz, p.ax, p.ay, p.az, p.shift,
+                                   hn::LoadU(d, L.corner[c * 3 + 0].data() + at),
+                                   hn::LoadU(d, L.corner[c * 3 + 1].data() + at),
+                                   hn::LoadU(d, L.corner[c * 3 + 2].data() + at));
+          low = c == 0 ? value : hn::Min(low, value);
+          hi = c == 0 ? value : hn::Max(hi, value);
         }
       };
       std::uint32_t rej = 0;
       for (int k = 0; k < 4 && rej != wanted; ++k) {
         V low = hn::Zero(d);
         high[k] = hn::Zero(d);
-        range(k, false, low, high[k]);
+        range(k, low, high[k]);
         rej |= bits_of(d, hn::Gt(low, rounding)) & wanted;
       }
       reject |= rej << base;
       if (rej == wanted) continue;
-      // Accepted: the accept point inside all four planes, by the rounding (the triangle plane
-      // also by the accept bias and by the reject reach of the node's samples).
+      // Accepted: every corner inside all four planes (each plane's highest value is known: the
+      // reject pass ran all four), by the rounding (the triangle plane also by the accept bias
+      // and by the reject reach of the node's samples).
       std::uint32_t acc = wanted & ~rej;
       for (int k = 0; k < 4 && acc != 0; ++k) {
-        V unused = hn::Zero(d);
-        if (!implicit) range(k, true, unused, high[k]);
         if (k < 3) {
           acc &= bits_of(d, hn::Lt(high[k], hn::Set(d, -tol.rounding)));
         } else {
@@ -203,7 +183,7 @@ class Engine {
       std::uint32_t cul = 0;
       for (std::uint32_t planes = culling; planes != 0 && cul != rest; planes &= planes - 1) {
         V low = hn::Zero(d), unused = hn::Zero(d);
-        range(4 + std::countr_zero(planes), false, low, unused);
+        range(4 + std::countr_zero(planes), low, unused);
         cul |= bits_of(d, hn::Gt(low, rounding)) & rest;
       }
       cull |= cul << base;
@@ -213,7 +193,7 @@ class Engine {
                     std::uint32_t(cull)};
   }
 
-  // test_children for explicit bounds, with each plane's lanes and corner choice set up once per
+  // The same for explicit bounds, with each plane's lanes and corner choice set up once per
   // visit instead of once per group of children (measured: about a tenth less time in the node
   // tests).
   Verdicts test_children_explicit(const PackedVolume& vol, int level, std::uint32_t first,
@@ -241,7 +221,7 @@ class Engine {
       return plane_at(q.nx, q.ny, q.nz, q.ax, q.ay, q.az, q.shift, hn::LoadU(d, at[0] + base),
                       hn::LoadU(d, at[1] + base), hn::LoadU(d, at[2] + base));
     };
-    std::uint64_t reject = 0, accept = 0, cull = 0, refine = 0;  // as in test_children
+    std::uint64_t reject = 0, accept = 0, cull = 0, refine = 0;  // as in test_children_implicit
     for (std::uint32_t base = 0; base < count; base += lanes) {
       const std::uint32_t lane_bits = lanes >= 32 ? ~0u : ((1u << lanes) - 1u);
       const std::uint32_t wanted = (live >> base) & lane_bits;
@@ -417,7 +397,7 @@ class Engine {
               verdicts[i] =
                   start == 0 ? Verdicts{0, 0, 0, 0}
                   : in_.config.implicit_cells
-                      ? test_children(vols_.slot[visitors[i]], l + 1, first, count, start)
+                      ? test_children_implicit(vols_.slot[visitors[i]], l + 1, first, count, start)
                       : test_children_explicit(vols_.slot[visitors[i]], l + 1, first, count, start);
             }
             phase_progress::advance(v.size());
