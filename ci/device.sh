@@ -33,7 +33,15 @@ if [ -n "$bundle" ]; then
   [ -f "$bundle" ] || { echo "device: no bundle at $bundle" >&2; exit 2; }
   unpacked="$(mktemp -d)"
   trap 'rm -rf "$unpacked"' EXIT
-  xz -dc "$bundle" | tar -C "$unpacked" -xf - || { echo "device: cannot unpack $bundle" >&2; exit 2; }
+  # xz, or Python's lzma where the machine has no xz (an image built for Python work).
+  unxz() {
+    if command -v xz >/dev/null; then
+      xz -dc "$1"
+    else
+      python3 -c 'import lzma, shutil, sys; shutil.copyfileobj(lzma.open(sys.argv[1]), sys.stdout.buffer)' "$1"
+    fi
+  }
+  unxz "$bundle" | tar -C "$unpacked" -xf - || { echo "device: cannot unpack $bundle" >&2; exit 2; }
   root="$unpacked/shadowcts-device"
   loader="$(ls "$root"/lib/ld-linux-x86-64.so.* 2>/dev/null | head -n 1)"
   [ -n "$loader" ] || { echo "device: $bundle holds no dynamic loader" >&2; exit 2; }
