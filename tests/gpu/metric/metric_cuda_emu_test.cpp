@@ -286,9 +286,10 @@ TEST_P(CudaEmuMetricOnStiffCases, SameAnswersAndCountersAsTheReference) {
 INSTANTIATE_TEST_SUITE_P(
     Stiff, CudaEmuMetricOnStiffCases,
     ::testing::Values("stiff.light_1ulp_off_caster_face", "stiff.light_1e-6_from_caster",
-                      "stiff.light_inside_cluster", "stiff.capsule_zero_length",
-                      "stiff.tessellated_convex_sphere", "stiff.walls_on_a_floor",
-                      "stiff.light_in_receiver_plane", "stiff.sun_radius_45_degrees"),
+                      "stiff.light_inside_cluster", "stiff.light_near_elongated_caster",
+                      "stiff.capsule_zero_length", "stiff.tessellated_convex_sphere",
+                      "stiff.walls_on_a_floor", "stiff.light_in_receiver_plane",
+                      "stiff.sun_radius_45_degrees"),
     test_support::param_test_name);
 
 // Random blockers with samples on shadow-boundary images, the light outside and inside the
