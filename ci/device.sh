@@ -19,13 +19,9 @@
 set -uo pipefail
 cd "$(dirname "$0")/.." || exit 1
 
-declare -A path_in_build=(
-  [shadowcts]=shadowcts
-  [hard_shadow_bruteforce_cuda_test]=tests/gpu/hard_shadow_bruteforce_cuda_test
-  [gpu_metric_cuda_test]=tests/gpu/metric/gpu_metric_cuda_test
-  [conformance_test]=tests/conformance/conformance_test
-  [device_emulator_comparison_test]=tests/gpu/device_emulator_comparison_test
-)
+source ci/device_programs.sh
+declare -A path_in_build=()
+for p in "${device_programs[@]}"; do path_in_build[$(basename "$p")]="$p"; done
 
 bundle="${SHADOWCTS_DEVICE_BUNDLE:-}"
 [ -z "$bundle" ] && [ -f .device-bundle.tar.xz ] && bundle=.device-bundle.tar.xz

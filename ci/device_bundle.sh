@@ -13,8 +13,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 build="${SHADOWCTS_BUILD_DIR:-build}"
 bundle="${SHADOWCTS_DEVICE_BUNDLE:-.device-bundle.tar.xz}"
-programs=(shadowcts tests/gpu/hard_shadow_bruteforce_cuda_test tests/gpu/metric/gpu_metric_cuda_test
-          tests/conformance/conformance_test tests/gpu/device_emulator_comparison_test)
+source ci/device_programs.sh
+programs=("${device_programs[@]}")
 
 configured="$(cmake -S . -B "$build" 2>&1)" || { echo "$configured" >&2; exit 1; }
 if ! grep -q "CUDA backend is built" <<<"$configured"; then
