@@ -23,12 +23,12 @@ source ci/device_programs.sh
 declare -A path_in_build=()
 for p in "${device_programs[@]}"; do path_in_build[$(basename "$p")]="$p"; done
 
+scratch="$(mktemp -d)"
+trap 'rm -rf "$scratch"' EXIT
 bundle="${SHADOWCTS_DEVICE_BUNDLE:-}"
 [ -z "$bundle" ] && [ -f .device-bundle.tar.xz ] && bundle=.device-bundle.tar.xz
 if [ -n "$bundle" ]; then
   [ -f "$bundle" ] || { echo "device: no bundle at $bundle" >&2; exit 2; }
-  unpacked="$(mktemp -d)"
-  trap 'rm -rf "$unpacked"' EXIT
   # xz, or Python's lzma where the machine has no xz (an image built for Python work).
   unxz() {
     if command -v xz >/dev/null; then
@@ -37,8 +37,8 @@ if [ -n "$bundle" ]; then
       python3 -c 'import lzma, shutil, sys; shutil.copyfileobj(lzma.open(sys.argv[1]), sys.stdout.buffer)' "$1"
     fi
   }
-  unxz "$bundle" | tar -C "$unpacked" -xf - || { echo "device: cannot unpack $bundle" >&2; exit 2; }
-  root="$unpacked/shadowcts-device"
+  unxz "$bundle" | tar -C "$scratch" -xf - || { echo "device: cannot unpack $bundle" >&2; exit 2; }
+  root="$scratch/shadowcts-device"
   loader="$(ls "$root"/lib/ld-linux-x86-64.so.* 2>/dev/null | head -n 1)"
   [ -n "$loader" ] || { echo "device: $bundle holds no dynamic loader" >&2; exit 2; }
   echo "device: programs of commit $(paste -sd' ' "$root/commit") from $bundle"
@@ -46,8 +46,8 @@ if [ -n "$bundle" ]; then
   # after them.
   driver_dirs="$(ldconfig -p 2>/dev/null | awk '/libcuda\.so\.1 / { print $NF }' |
     xargs -r -n 1 dirname | sort -u | paste -sd:)"
-  library_path="$root/lib:/usr/local/nvidia/lib64:/usr/lib/x86_64-linux-gnu${driver_dirs:+:$driver_dirs}"
-  [ -n "${LD_LIBRARY_PATH:-}" ] && library_path="$root/lib:$LD_LIBRARY_PATH:${library_path#*:}"
+  library_path="$root/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}:/usr/local/nvidia/lib64"
+  library_path+=":/usr/lib/x86_64-linux-gnu${driver_dirs:+:$driver_dirs}"
   export SHADOWCTS_ASSIMP_MODELS="$root/models"
   program() {
     local name="$1"
@@ -70,16 +70,14 @@ else
 fi
 
 status=0
-probe="$(mktemp)"
+probe="$scratch/probe.log"
 program hard_shadow_bruteforce_cuda_test 2>&1 | tee "$probe"
 [ "${PIPESTATUS[0]}" -eq 0 ] || status=1
 if grep -q "no CUDA device" "$probe"; then
   # Everything below would be skipped: say so and fail, a device check that checked nothing.
   echo "device: $(grep -m 1 -o "no CUDA device.*" "$probe"): nothing to check on this machine" >&2
-  rm -f "$probe"
   exit 3
 fi
-rm -f "$probe"
 program gpu_metric_cuda_test --gtest_brief=1 || status=1
 program conformance_test --gtest_filter='*_cuda_*:-*_cuda_emu_*' --gtest_brief=1 || status=1
 program device_emulator_comparison_test || status=1

@@ -14,7 +14,7 @@ cd "$(dirname "$0")/.."
 build="${SHADOWCTS_BUILD_DIR:-build}"
 bundle="${SHADOWCTS_DEVICE_BUNDLE:-.device-bundle.tar.xz}"
 source ci/device_programs.sh
-programs=("${device_programs[@]}")
+models="${SHADOWCTS_ASSIMP_MODELS:-/usr/share/assimp/models}"
 
 configured="$(cmake -S . -B "$build" 2>&1)" || { echo "$configured" >&2; exit 1; }
 if ! grep -q "CUDA backend is built" <<<"$configured"; then
@@ -22,20 +22,20 @@ if ! grep -q "CUDA backend is built" <<<"$configured"; then
   exit 2
 fi
 targets=()
-for p in "${programs[@]}"; do targets+=(--target "$(basename "$p")"); done
+for p in "${device_programs[@]}"; do targets+=(--target "$(basename "$p")"); done
 cmake --build "$build" -j "$(nproc)" "${targets[@]}"
 
 stage="$(mktemp -d)"
 trap 'rm -rf "$stage"' EXIT
 root="$stage/shadowcts-device"
 mkdir -p "$root/bin" "$root/lib" "$root/models"
-for p in "${programs[@]}"; do
+for p in "${device_programs[@]}"; do
   cp "$build/$p" "$root/bin/"
   strip "$root/bin/$(basename "$p")"
 done
 # Shared libraries: the closure ldd reports, less the driver (it must be the machine's own).
 declare -A libraries=()
-for p in "${programs[@]}"; do
+for p in "${device_programs[@]}"; do
   while read -r path; do libraries["$path"]=1; done < <(ldd "$build/$p" | awk '$3 ~ /^\// { print $3 }
     $1 ~ /^\/.*ld-linux/ { print $1 }')
 done
@@ -49,12 +49,12 @@ libc_dir="$(dirname "$(ldd "$build/shadowcts" | awk '$1 == "libc.so.6" { print $
 for part in libdl.so.2 libpthread.so.0 librt.so.1 libm.so.6 libresolv.so.2; do
   [ -e "$libc_dir/$part" ] && cp -L "$libc_dir/$part" "$root/lib/"
 done
-loader="$(ls "$root"/lib/ld-linux-x86-64.so.* 2>/dev/null | head -n 1)"
-[ -n "$loader" ] || { echo "device_bundle: ldd named no dynamic loader" >&2; exit 1; }
+ls "$root"/lib/ld-linux-x86-64.so.* >/dev/null 2>&1 ||
+  { echo "device_bundle: ldd named no dynamic loader" >&2; exit 1; }
 # The model fixtures' files, in assimp-testmodels' layout (SHADOWCTS_ASSIMP_MODELS).
 "$build/shadowcts" list | awk '$2 == "assimp-testmodels" { print $3 }' | while read -r model; do
   mkdir -p "$root/models/$(dirname "$model")"
-  cp "/usr/share/assimp/models/$model" "$root/models/$model"
+  cp "$models/$model" "$root/models/$model"
 done
 git rev-parse HEAD > "$root/commit"
 git status --porcelain --untracked-files=no | grep -q . && echo "(with uncommitted changes)" >> "$root/commit"
