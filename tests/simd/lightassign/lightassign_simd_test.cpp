@@ -257,9 +257,8 @@ std::string bvh_difference(const std::vector<RangedLight>& lights) {
 
 // Light sets for the BVH: a fixture's, and random ones with shared centres (equal Morton codes,
 // ordered by index), centres within a few ulps of each other (codes equal in their upper half),
-// tiny ranges and huge ones (rounding at every magnitude), negative and mixed coordinates. No
-// subnormal floats: Embree leaves flush-to-zero on in the oneTBB workers it ran on, so the
-// reference's own leaf boxes at those magnitudes depend on the thread that computes them.
+// tiny ranges and huge ones (rounding at every magnitude, subnormal floats included), negative and
+// mixed coordinates.
 std::vector<std::vector<RangedLight>> bvh_light_sets() {
   std::vector<std::vector<RangedLight>> sets;
   sets.push_back(make_fixture("many_lights.20k").ranged_lights);
@@ -285,12 +284,13 @@ std::vector<std::vector<RangedLight>> bvh_light_sets() {
         }
         case 3:
           l.centre = {1e-30f * coordinate(random), -3e5f * unit(random), coordinate(random)};
+          if (i % 3 == 0) l.centre[2] = 1e-40f * coordinate(random);  // subnormal
           break;
         default:
           l.centre = {coordinate(random), 2.0f, -coordinate(random)};
       }
-      const float ranges[] = {1e-30f, 1e-7f, 0.3f * unit(random) + 1e-3f, 7.0f, 1e6f};
-      l.range = ranges[random() % 5];
+      const float ranges[] = {1e-30f, 2e-41f, 1e-7f, 0.3f * unit(random) + 1e-3f, 7.0f, 1e6f};
+      l.range = ranges[random() % 6];
     }
     sets.push_back(std::move(lights));
   }
