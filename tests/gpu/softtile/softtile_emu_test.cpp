@@ -362,7 +362,8 @@ TEST(SofttileEmu, AnswersAndCountersEqualTheReference) {
   EXPECT_EQ(ported->info().variants,
             (std::vector<std::string>{"grid16", "grid16+rot", "rows15", "rows31", "post"}));
   // The default soft fixture at its full size, and a wide sun.
-  for (const char* fixture : {"foliage.10k", "stiff.sun_radius_45_degrees"}) {
+  for (const char* fixture :
+       {"foliage.10k", "stiff.sun_radius_45_degrees", "stiff.sun_radius_60_degrees_cone_wall"}) {
     const Case c = make_fixture(fixture);
     const ViewSamples samples = generate_view_samples(c);
     const PreparedScene scene = prepare_scene(c, samples);
