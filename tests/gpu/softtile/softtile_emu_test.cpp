@@ -363,7 +363,8 @@ TEST(SofttileEmu, AnswersAndCountersEqualTheReference) {
             (std::vector<std::string>{"grid16", "grid16+rot", "rows15", "rows31", "post"}));
   // The default soft fixture at its full size, and a wide sun.
   for (const char* fixture :
-       {"foliage.10k", "stiff.sun_radius_45_degrees", "stiff.sun_radius_60_degrees_cone_wall"}) {
+       {"foliage.10k", "stiff.sun_radius_45_degrees", "stiff.sun_radius_60_degrees_cone_wall",
+        "stiff.sun_radius_60_degrees_cone_tree_wall"}) {
     const Case c = make_fixture(fixture);
     const ViewSamples samples = generate_view_samples(c);
     const PreparedScene scene = prepare_scene(c, samples);

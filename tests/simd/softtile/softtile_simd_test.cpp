@@ -421,7 +421,8 @@ TEST(SimdSofttile, AnswersAndCountersEqualTheReference) {
   EXPECT_EQ(ported->info().variants,
             (std::vector<std::string>{"grid16", "grid16+rot", "rows15", "rows31", "post"}));
   for (const char* fixture :
-       {"foliage.10k", "stiff.sun_radius_45_degrees", "stiff.sun_radius_60_degrees_cone_wall"}) {
+       {"foliage.10k", "stiff.sun_radius_45_degrees", "stiff.sun_radius_60_degrees_cone_wall",
+        "stiff.sun_radius_60_degrees_cone_tree_wall"}) {
     const Case c = std::string(fixture) == "foliage.10k" ? small_foliage() : make_fixture(fixture);
     const ViewSamples samples = generate_view_samples(c);
     const PreparedScene scene = prepare_scene(c, samples);
