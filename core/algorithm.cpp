@@ -7,6 +7,21 @@
 
 namespace shadowcts {
 
+std::optional<std::string> sample_outside_its_pixel(const Case& c, const ViewSamples& samples) {
+  const CameraFrame frame = camera_frame(c.camera);
+  for (std::size_t i = 0; i < samples.samples.size(); ++i) {
+    const ViewSample& s = samples.samples[i];
+    if (s.sample_class == SampleClass::regular &&
+        !in_pixel_wedge(frame, samples.width, samples.height, s.pixel_x, s.pixel_y,
+                        glm::dvec3(s.position)))
+      return "needs every view sample inside its own pixel's view frustum (samples cast from "
+             "the camera); view sample " +
+             std::to_string(i) + " lies outside that of pixel (" + std::to_string(s.pixel_x) +
+             ", " + std::to_string(s.pixel_y) + ")";
+  }
+  return std::nullopt;
+}
+
 std::optional<std::string> Algorithm::unsupported_reason(const Case& c, const ViewSamples& samples,
                                                          const std::string& variant) const {
   const AlgorithmInfo& meta = info();
@@ -37,19 +52,8 @@ std::optional<std::string> Algorithm::unsupported_reason(const Case& c, const Vi
   if (caps.needs_closed_meshes)
     for (const Mesh& m : c.meshes)
       if (m.caster && !m.closed) return "needs closed caster meshes; '" + m.name + "' is open";
-  if (caps.needs_samples_in_their_pixels) {
-    const CameraFrame frame = camera_frame(c.camera);
-    for (std::size_t i = 0; i < samples.samples.size(); ++i) {
-      const ViewSample& s = samples.samples[i];
-      if (s.sample_class == SampleClass::regular &&
-          !in_pixel_wedge(frame, samples.width, samples.height, s.pixel_x, s.pixel_y,
-                          glm::dvec3(s.position)))
-        return "needs every view sample inside its own pixel's view frustum (samples cast from "
-               "the camera); view sample " +
-               std::to_string(i) + " lies outside that of pixel (" + std::to_string(s.pixel_x) +
-               ", " + std::to_string(s.pixel_y) + ")";
-    }
-  }
+  if (caps.needs_samples_in_their_pixels)
+    if (auto why = sample_outside_its_pixel(c, samples)) return why;
   if (caps.max_sample_triangle_pairs != 0) {
     const std::uint64_t pairs =
         std::uint64_t(samples.count(SampleClass::regular)) * std::uint64_t(c.triangles.size());

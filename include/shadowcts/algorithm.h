@@ -96,6 +96,11 @@ struct AlgorithmOutput {
   PhaseTimes phase_ms;
 };
 
+// Why not every regular sample lies inside its own pixel's view frustum (the check of
+// Capabilities::needs_samples_in_their_pixels, for a backend that needs it for some variants
+// only), or nullopt.
+std::optional<std::string> sample_outside_its_pixel(const Case& c, const ViewSamples& samples);
+
 class Algorithm {
  public:
   virtual ~Algorithm() = default;

@@ -57,6 +57,10 @@ std::optional<std::string> LightAssignAlgorithm::input_problem(const Case& c,
              ") lies behind the camera plane";
     deepest = std::max(deepest, d);
   }
+  // Tiled culls by each tile's screen rectangle and sub-frustum (Paper I), which hold a tile's
+  // samples only when they lie in their pixels; clustered boxes grow to hold their samples.
+  if (variant.name == "tiled")
+    if (auto why = sample_outside_its_pixel(c, samples)) return why;
   if (const auto& settings = variant.config) {
     const ClusterGrid grid(c.camera, settings->tile_size, settings->normal_divisions, deepest);
     if (auto why = grid.overflow_reason()) return why;

@@ -34,7 +34,8 @@ class LightAssignAlgorithm : public VariantTableAlgorithm<std::optional<Clustere
 
  protected:
   // The case's ranged lights must fit the lists' indices; but for brute, every regular sample
-  // must lie in front of the eye (tiles and slices), and clustered keys must fit their bits.
+  // must lie in front of the eye (tiles and slices), tiled's in their own pixels, and clustered
+  // keys must fit their bits.
   std::optional<std::string> input_problem(const Case& c, const ViewSamples& samples,
                                            const Variant& variant) const override;
 };

@@ -1,6 +1,6 @@
 // Stiff inputs for the light assignment: lights larger than the scene, centres behind the camera,
 // on the near plane and at the eye, a near/far ratio of 1e-7, key-bit overflow, samples behind the
-// camera, zero-range lights.
+// camera, samples outside their pixels, zero-range lights.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -73,6 +73,40 @@ TEST(LightAssignStiff, SamplesBehindTheCameraAreNotSupportedByTilesAndClusters) 
     EXPECT_NE(why->find("behind the camera"), std::string::npos) << *why;
   }
   EXPECT_EQ(lightassign().unsupported_reason(c, samples, "brute"), std::nullopt);
+}
+
+// A G-buffer from elsewhere (or a fuzzer) may put a sample outside its pixel: here the first
+// regular sample takes the place of the last one, across the screen. Tiled would cull its lights
+// by its own tile's rectangle and sub-frustum and miss them (found by fuzz_differential), so it
+// declines the case; clustered boxes grow to hold their samples and stay complete.
+TEST(LightAssignStiff, ASampleOutsideItsPixelIsNotSupportedByTiledOnly) {
+  Case c = small_city();
+  ViewSamples samples = generate_view_samples(c);
+  std::size_t first = 0, last = samples.samples.size() - 1;
+  while (samples.samples[first].sample_class != SampleClass::regular) ++first;
+  while (samples.samples[last].sample_class != SampleClass::regular) --last;
+  samples.samples[first].position = samples.samples[last].position;
+  // A small light around it, which only the last pixel's tile sees.
+  RangedLight small;
+  small.centre = samples.samples[last].position;
+  small.range = 1e-3f;
+  c.ranged_lights.push_back(small);
+  const auto why = lightassign().unsupported_reason(c, samples, "tiled");
+  ASSERT_TRUE(why.has_value());
+  EXPECT_NE(why->find("view sample " + std::to_string(first) + " lies outside"), std::string::npos)
+      << *why;
+  const LightAssignmentTruth plain = exact_light_assignment_oracle(c, samples, false);
+  const LightAssignmentTruth normals = exact_light_assignment_oracle(c, samples, true);
+  for (const std::string& variant : lightassign().info().variants) {
+    if (variant == "tiled") continue;
+    SCOPED_TRACE(variant);
+    ASSERT_EQ(lightassign().unsupported_reason(c, samples, variant), std::nullopt);
+    const auto run = run_and_compare(c, samples, variant, plain, normals);
+    EXPECT_EQ(run.comparison.verdict, Verdict::pass) << run.comparison.reason;
+  }
+  // What tiled would answer.
+  const auto tiled = run_and_compare(c, samples, "tiled", plain, normals);
+  EXPECT_GT(tiled.comparison.completeness_misses, 0u);
 }
 
 TEST(LightAssignStiff, ZeroRangeLightsAreRejectedByValidation) {
