@@ -11,6 +11,7 @@
 #include <glm/common.hpp>
 #include <nlohmann/json.hpp>
 
+#include "manifest_lights.h"
 #include "shadowcts/errors.h"
 #include "shadowcts/gbuffer_exr.h"
 
@@ -18,7 +19,7 @@ namespace shadowcts {
 namespace {
 
 namespace fs = std::filesystem;
-using Json = nlohmann::json;
+using Json = nlohmann::ordered_json;
 
 static_assert(std::endian::native == std::endian::little, "glTF buffers are little-endian");
 
@@ -73,21 +74,6 @@ void write_gltf(const fs::path& gltf_path, const Case& c, std::size_t first, std
   write_text(gltf_path, gltf.dump(1));
 }
 
-Json light_json(const ShadowLight& light) {
-  switch (light.kind) {
-    case ShadowLightKind::point:
-      return {{"type", "point"}, {"position", vec3_json(light.position)}};
-    case ShadowLightKind::directional:
-      return {{"type", "directional"}, {"direction", vec3_json(light.direction)}};
-    case ShadowLightKind::sun_disk:
-      return {{"type", "sun"},
-              {"direction", vec3_json(light.direction)},
-              {"angular_radius_degrees",
-               double(light.angular_radius) * 180.0 / 3.14159265358979323846}};
-  }
-  return {};
-}
-
 }  // namespace
 
 std::string write_reproducer(const std::string& folder, const Case& c, const ViewSamples& samples) {
@@ -123,7 +109,8 @@ std::string write_reproducer(const std::string& folder, const Case& c, const Vie
         {"threads", c.parameters.threads},
         {"seed", c.parameters.seed}}},
   };
-  if (c.light) manifest["light"] = light_json(*c.light);
+  if (c.light) manifest["light"] = shadow_light_json(*c.light);
+  if (!c.ranged_lights.empty()) manifest["ranged_lights"] = ranged_lights_json(c.ranged_lights);
   const fs::path manifest_path = fs::path(folder) / "case.json";
   write_text(manifest_path, manifest.dump(2) + "\n");
   return manifest_path.string();

@@ -1,9 +1,11 @@
 #pragma once
 // The conformance property of a case with explicit samples, for one algorithm x variant: it
-// supports the case and then never throws, answers NaN or a fraction outside [0, 1], and (hard
-// shadows) agrees with the exact oracle on every sample the oracle calls robust. The geometry fuzz
-// targets check it for every registered algorithm (fuzz/support/conformance_check.h);
-// `shadowcts certify` for a plugin's variant when it shrinks a failing fuzz case.
+// supports the case and then never throws, answers NaN or a fraction outside [0, 1], and agrees
+// with the exact truths it is given as the runner's verdict would: hard shadows on every sample
+// the oracle calls robust, soft shadows within the variant's declared budget, light lists complete
+// and sound. The geometry fuzz targets check it for every registered algorithm
+// (fuzz/support/conformance_check.h); `shadowcts certify` for a plugin's variant when it shrinks
+// a failing fuzz case.
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -11,6 +13,8 @@
 #include "fixtures/fuzz/sample_case.h"
 #include "shadowcts/algorithm.h"
 #include "shadowcts/hard_shadow_oracle.h"
+#include "shadowcts/light_assignment_oracle.h"
+#include "shadowcts/soft_shadow_oracle.h"
 
 namespace shadowcts {
 
@@ -21,17 +25,42 @@ struct Violation {
   std::optional<std::size_t> sample;
 };
 
-// The exact hard-shadow truth, of the sun disk's centre direction for a sun disk (as the runner
-// compares hard-shadow algorithms there); nullopt without a shadow light.
-std::optional<HardShadowTruth> exact_hard_shadow_truth(const Case& c, const ViewSamples& samples);
+// The exact truths of a case; a kind of output is compared only where its truth is present.
+struct ExactTruths {
+  // Of the sun disk's centre direction for a sun disk (as the runner compares hard-shadow
+  // algorithms there); samples may be marked not_compared (a peer's documented limit).
+  std::optional<HardShadowTruth> hard;
+  std::optional<SoftShadowTruth> soft;                                // a sun disk
+  std::optional<LightAssignmentTruth> lights, lights_by_normal_rule;  // ranged lights
+};
 
-// nullopt when the algorithm answers NotSupported or keeps the property; `truth` may have samples
-// marked not_compared (a peer's documented limit) or be nullopt (nothing compared).
+// Which exact oracles exact_truths runs.
+struct TruthKinds {
+  bool hard = true, soft = true, lights = true;
+};
+
+// The exact truths of the case's lights, of the kinds asked for.
+ExactTruths exact_truths(const Case& c, const ViewSamples& samples, TruthKinds kinds = {});
+
+// Whether `output`, the algorithm's answer on the case, keeps the property (nullopt) or not.
+std::optional<Violation> output_violation(const Algorithm& algorithm, const std::string& variant,
+                                          const Case& c, const ViewSamples& samples,
+                                          const AlgorithmOutput& output, const ExactTruths& truths);
+
+// The first regular sample where a port's output differs from its reference's (soft shadows: the
+// visible fraction bit for bit; light lists: the sample's list as a set), or nullopt. For outputs
+// of one kind that each keep the property; hard shadows are not compared (ports may differ on
+// ambiguous samples).
+std::optional<Violation> difference_from_reference(OutputKind kind, const ViewSamples& samples,
+                                                   const AlgorithmOutput& port,
+                                                   const AlgorithmOutput& reference);
+
+// nullopt when the algorithm answers NotSupported or keeps the property.
 std::optional<Violation> find_violation(const Algorithm& algorithm, const std::string& variant,
                                         const Case& c, const ViewSamples& samples,
-                                        const std::optional<HardShadowTruth>& truth);
+                                        const ExactTruths& truths);
 
-// find_violation against the case's own exact truth.
+// find_violation against the case's own exact truths.
 std::optional<Violation> violation_on(const Algorithm& algorithm, const std::string& variant,
                                       const fuzzing::SampleCase& candidate);
 

@@ -14,6 +14,7 @@
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
+#include "manifest_lights.h"
 #include "shadowcts/case_manifest.h"
 #include "shadowcts/errors.h"
 #include "shadowcts/gbuffer_exr.h"
@@ -216,29 +217,8 @@ void export_case(const Case& c, const std::string& dir_text, std::ostream& out) 
                           {"far", cam.far_plane},
                           {"width", cam.width},
                           {"height", cam.height}};
-    if (c.light) {
-      const ShadowLight& l = *c.light;
-      if (l.kind == ShadowLightKind::point)
-        manifest["light"] = {{"type", "point"}, {"position", vec(l.position)}};
-      else if (l.kind == ShadowLightKind::directional)
-        manifest["light"] = {{"type", "directional"}, {"direction", vec(l.direction)}};
-      else
-        manifest["light"] = {{"type", "sun"},
-                             {"direction", vec(l.direction)},
-                             {"angular_radius_degrees", double(l.angular_radius) * 180.0 / pi}};
-    }
-    Json ranged = Json::array();
-    for (const RangedLight& r : c.ranged_lights) {
-      Json light = {{"type", r.kind == RangedLightKind::sphere ? "sphere" : "spot"},
-                    {"centre", vec(r.centre)},
-                    {"range", r.range}};
-      if (r.kind == RangedLightKind::spot) {
-        light["direction"] = vec(r.direction);
-        light["cone_half_angle_degrees"] = double(r.cone_half_angle) * 180.0 / pi;
-      }
-      ranged.push_back(light);
-    }
-    manifest["ranged_lights"] = ranged;
+    if (c.light) manifest["light"] = shadow_light_json(*c.light);
+    manifest["ranged_lights"] = ranged_lights_json(c.ranged_lights);
     manifest["parameters"] = {{"eps_rel", c.parameters.eps_rel},
                               {"repeats", c.parameters.repeats},
                               {"threads", c.parameters.threads},
