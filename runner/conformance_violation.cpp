@@ -151,18 +151,22 @@ std::optional<Violation> difference_from_reference(OutputKind kind, const ViewSa
 
 std::optional<Violation> find_violation(const Algorithm& algorithm, const std::string& variant,
                                         const Case& original, const ViewSamples& samples,
-                                        const ExactTruths& truths) {
+                                        const ExactTruths& truths,
+                                        std::optional<AlgorithmOutput>* output) {
   const Case c = algorithm.info().capabilities.output == OutputKind::hard_shadow
                      ? hard_shadow_view(original)
                      : original;
   if (algorithm.unsupported_reason(c, samples, variant)) return std::nullopt;
-  AlgorithmOutput output;
+  std::optional<AlgorithmOutput> answer;
   try {
-    output = algorithm.run(c, samples, variant);
+    answer = algorithm.run(c, samples, variant);
   } catch (const std::exception& e) {
     return Violation{std::string("threw on a valid case: ") + e.what(), std::nullopt};
   }
-  return output_violation(algorithm, variant, c, samples, output, truths);
+  std::optional<Violation> violation =
+      output_violation(algorithm, variant, c, samples, *answer, truths);
+  if (output) *output = std::move(answer);
+  return violation;
 }
 
 std::optional<Violation> violation_on(const Algorithm& algorithm, const std::string& variant,

@@ -55,10 +55,12 @@ std::optional<Violation> difference_from_reference(OutputKind kind, const ViewSa
                                                    const AlgorithmOutput& port,
                                                    const AlgorithmOutput& reference);
 
-// nullopt when the algorithm answers NotSupported or keeps the property.
+// nullopt when the algorithm answers NotSupported or keeps the property. `output`, where given,
+// receives what the algorithm answered, when it ran without throwing.
 std::optional<Violation> find_violation(const Algorithm& algorithm, const std::string& variant,
                                         const Case& c, const ViewSamples& samples,
-                                        const ExactTruths& truths);
+                                        const ExactTruths& truths,
+                                        std::optional<AlgorithmOutput>* output = nullptr);
 
 // find_violation against the case's own exact truths.
 std::optional<Violation> violation_on(const Algorithm& algorithm, const std::string& variant,

@@ -14,7 +14,6 @@
 #include "runner/conformance_violation.h"
 #include "shadowcts/case_manifest.h"
 #include "shadowcts/gbuffer_exr.h"
-#include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/registry.h"
 
 namespace shadowcts::fuzzing {
@@ -67,24 +66,19 @@ std::optional<Violation> subject_violation(const Subject& subject, const SampleC
                                            std::map<std::string, AlgorithmOutput>& references) {
   const Algorithm& algorithm = *subject.algorithm;
   const OutputKind kind = algorithm.info().capabilities.output;
-  const Case c = kind == OutputKind::hard_shadow ? hard_shadow_view(sample_case.c) : sample_case.c;
+  const Case& c = sample_case.c;
   const ViewSamples& samples = sample_case.samples;
-  if (algorithm.unsupported_reason(c, samples, subject.variant)) return std::nullopt;
-  AlgorithmOutput output;
-  try {
-    output = algorithm.run(c, samples, subject.variant);
-  } catch (const std::exception& e) {
-    return Violation{std::string("threw on a valid case: ") + e.what(), std::nullopt};
-  }
-  if (auto violation = output_violation(algorithm, subject.variant, c, samples, output, truths))
+  std::optional<AlgorithmOutput> output;
+  if (auto violation = find_violation(algorithm, subject.variant, c, samples, truths, &output))
     return violation;
+  if (!output) return std::nullopt;  // NotSupported
   const Algorithm* reference = kind == OutputKind::hard_shadow ? nullptr : reference_of(subject);
   if (!reference || reference->unsupported_reason(c, samples, subject.variant)) return std::nullopt;
   const std::string key = reference->info().id + ":" + subject.variant;
   auto it = references.find(key);
   if (it == references.end())
     it = references.emplace(key, reference->run(c, samples, subject.variant)).first;
-  if (auto difference = difference_from_reference(kind, samples, output, it->second)) {
+  if (auto difference = difference_from_reference(kind, samples, *output, it->second)) {
     difference->what = differs_prefix + key + " [reference]: " + difference->what;
     return difference;
   }
