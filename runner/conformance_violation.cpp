@@ -39,7 +39,7 @@ std::optional<Violation> hard_shadow_violation(const AlgorithmOutput& output,
 
 std::optional<Violation> soft_shadow_violation(const AlgorithmOutput& output,
                                                const ViewSamples& samples,
-                                               const std::optional<SoftShadowTruth>& truth,
+                                               const ExactTruths& truths,
                                                const SoftErrorBudget& budget) {
   if (output.visible_fraction.size() != samples.samples.size())
     return Violation{"visible_fraction has the wrong size", std::nullopt};
@@ -48,8 +48,22 @@ std::optional<Violation> soft_shadow_violation(const AlgorithmOutput& output,
     if (!(f >= 0.0f && f <= 1.0f))
       return Violation{"visible fraction " + std::to_string(f) + " is not in [0, 1]", i};
   }
-  if (!truth) return std::nullopt;
-  const SoftShadowComparison s = compare_soft_shadows(output.visible_fraction, *truth, budget);
+  if (!truths.soft) return std::nullopt;
+  const SoftShadowTruth& truth = *truths.soft;
+  if (truths.soft_gross_errors_only) {
+    for (std::size_t i = 0; i < samples.samples.size(); ++i) {
+      if (!truth.compared[i] || !truth.robust[i]) continue;
+      const double exact = truth.visible_fraction[i], f = output.visible_fraction[i];
+      if ((exact == 0.0 && f > 0.5) || (exact == 1.0 && f < 0.5)) {
+        std::ostringstream what;
+        what << "visible fraction " << f << " at robust sample " << i << ", which the exact oracle "
+             << (exact == 0.0 ? "puts in full umbra" : "sees fully lit");
+        return Violation{what.str(), i};
+      }
+    }
+    return std::nullopt;
+  }
+  const SoftShadowComparison s = compare_soft_shadows(output.visible_fraction, truth, budget);
   if (s.verdict != Verdict::fail) return std::nullopt;
   return Violation{s.reason,
                    s.worst_sample >= 0 ? std::optional<std::size_t>(s.worst_sample) : std::nullopt};
@@ -95,8 +109,7 @@ std::optional<Violation> output_violation(const Algorithm& algorithm, const std:
     case OutputKind::hard_shadow:
       return truths.hard ? hard_shadow_violation(output, samples, *truths.hard) : std::nullopt;
     case OutputKind::soft_shadow:
-      return soft_shadow_violation(output, samples, truths.soft,
-                                   algorithm.soft_error_budget(variant));
+      return soft_shadow_violation(output, samples, truths, algorithm.soft_error_budget(variant));
     case OutputKind::light_lists: {
       const std::optional<LightAssignmentTruth>& truth =
           light_lists_use_normal_rule(variant) ? truths.lights_by_normal_rule : truths.lights;

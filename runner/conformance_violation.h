@@ -32,6 +32,12 @@ struct ExactTruths {
   std::optional<HardShadowTruth> hard;
   std::optional<SoftShadowTruth> soft;                                // a sun disk
   std::optional<LightAssignmentTruth> lights, lights_by_normal_rule;  // ranged lights
+  // false: soft fractions are judged against the variant's declared budget, as the runner does.
+  // true: only for gross errors, which no faithful variant makes whatever its budget: a robust
+  // sample in full umbra answered more than half lit, or one in full light answered more than
+  // half shadowed (every variant samples points inside the disk, where it is then exact up to
+  // rounding).
+  bool soft_gross_errors_only = false;
 };
 
 // Which exact oracles exact_truths runs.

@@ -85,9 +85,12 @@ std::optional<Violation> subject_violation(const Subject& subject, const SampleC
   return std::nullopt;
 }
 
-// The truths check_every_algorithm judges by: no soft truth (see conformance_check.h).
+// The truths check_every_algorithm judges by: soft fractions for gross errors only (see
+// conformance_check.h).
 ExactTruths fuzz_truths(const SampleCase& sample_case) {
-  return exact_truths(sample_case.c, sample_case.samples, {.soft = false});
+  ExactTruths truths = exact_truths(sample_case.c, sample_case.samples);
+  truths.soft_gross_errors_only = true;
+  return truths;
 }
 
 Check check_of(const Subject& subject) {

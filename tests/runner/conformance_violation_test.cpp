@@ -1,7 +1,7 @@
 // The conformance property of fuzz cases (runner/conformance_violation.h) for soft shadows and
 // light lists: the differential generator's sun disks and ranged lights, violations found where a
-// list misses a light or a fraction leaves its budget, ports diffed against their reference, and
-// reproducers that keep the lights bit for bit.
+// list misses a light or a fraction leaves its budget (or errs grossly), ports diffed against
+// their reference, and reproducers that keep the lights bit for bit.
 #include "conformance_violation.h"
 
 #include <algorithm>
@@ -136,6 +136,33 @@ TEST(ConformanceViolation, ASoftFractionOutsideItsBudgetIsAViolation) {
   const auto nan = output_violation(softtile, "rows31", s.c, s.samples, output, no_soft);
   ASSERT_TRUE(nan.has_value());
   EXPECT_NE(nan->what.find("not in [0, 1]"), std::string::npos) << nan->what;
+}
+
+// What the fuzz targets judge soft fractions by: a robust sample in full light (or umbra) answered
+// more than half shadowed (or lit); smaller errors, over budget or not, are left to the suite.
+TEST(ConformanceViolation, GrossSoftErrorsAreJudgedWithoutTheBudget) {
+  const fuzzing::SampleCase s = first_differential_case(
+      [](const fuzzing::SampleCase& k) { return has_sun_disk(k) && !k.explicit_samples; });
+  const Algorithm& softtile = builtin("softtile", "reference");
+  ExactTruths gross = exact_truths(s.c, s.samples, {.hard = false, .lights = false});
+  gross.soft_gross_errors_only = true;
+  const SoftShadowTruth& truth = *gross.soft;
+  std::size_t lit = 0;
+  while (lit < truth.robust.size() && !(truth.robust[lit] && truth.visible_fraction[lit] == 1.0))
+    ++lit;
+  ASSERT_LT(lit, truth.robust.size()) << "no robust sample in full light";
+  AlgorithmOutput output = softtile.run(s.c, s.samples, "post");
+  ASSERT_EQ(output_violation(softtile, "post", s.c, s.samples, output, gross), std::nullopt);
+  output.visible_fraction[lit] = 0.625f;  // over post's per-sample budget, not gross
+  EXPECT_EQ(output_violation(softtile, "post", s.c, s.samples, output, gross), std::nullopt);
+  ExactTruths budget = gross;
+  budget.soft_gross_errors_only = false;
+  EXPECT_TRUE(output_violation(softtile, "post", s.c, s.samples, output, budget).has_value());
+  output.visible_fraction[lit] = 0.375f;
+  const auto violation = output_violation(softtile, "post", s.c, s.samples, output, gross);
+  ASSERT_TRUE(violation.has_value());
+  EXPECT_EQ(violation->sample, lit);
+  EXPECT_NE(violation->what.find("fully lit"), std::string::npos) << violation->what;
 }
 
 TEST(ConformanceViolation, PortsAreDiffedAgainstTheirReferenceAtTheFirstDifferingSample) {
