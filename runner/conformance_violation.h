@@ -2,10 +2,10 @@
 // The conformance property of a case with explicit samples, for one algorithm x variant: it
 // supports the case and then never throws, answers NaN or a fraction outside [0, 1], and agrees
 // with the exact truths it is given as the runner's verdict would: hard shadows on every sample
-// the oracle calls robust, soft shadows within the variant's declared budget, light lists complete
-// and sound. The geometry fuzz targets check it for every registered algorithm
-// (fuzz/support/conformance_check.h); `shadowcts certify` for a plugin's variant when it shrinks
-// a failing fuzz case.
+// the oracle calls robust, soft shadows within the variant's declared budget (or, where asked,
+// without gross errors), light lists complete and sound. The geometry fuzz targets check it for
+// every registered algorithm (fuzz/support/conformance_check.h); `shadowcts certify` for a plugin's
+// variant when it shrinks a failing fuzz case.
 #include <cstddef>
 #include <optional>
 #include <string>
