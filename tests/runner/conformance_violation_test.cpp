@@ -43,7 +43,7 @@ bool has_sun_disk(const fuzzing::SampleCase& s) {
 }
 
 TEST(DifferentialCases, WidenSomeLightsToSunDisksAndAddRangedLights) {
-  int suns = 0, ranged = 0, spots = 0, on_a_sample = 0;
+  int suns = 0, ranged = 0, spots = 0, on_a_sample = 0, inner_bvh_nodes = 0;
   for (int i = 0; i < 64; ++i) {
     const fuzzing::SampleCase s =
         fuzzing::make_fuzz_case("fuzz.differential.1." + std::to_string(i)).sample_case;
@@ -53,6 +53,7 @@ TEST(DifferentialCases, WidenSomeLightsToSunDisksAndAddRangedLights) {
       EXPECT_LT(s.c.light->angular_radius, 1.06f);
     }
     ranged += !s.c.ranged_lights.empty();
+    inner_bvh_nodes += s.c.ranged_lights.size() > 32;  // the light BVH has 32 leaves per node
     for (const RangedLight& l : s.c.ranged_lights) {
       EXPECT_GT(l.range, 0.0f);
       if (l.kind == RangedLightKind::spot) {
@@ -68,6 +69,7 @@ TEST(DifferentialCases, WidenSomeLightsToSunDisksAndAddRangedLights) {
   EXPECT_GT(ranged, 16);
   EXPECT_GT(spots, 0);
   EXPECT_GT(on_a_sample, 0);
+  EXPECT_GT(inner_bvh_nodes, 0);
 }
 
 TEST(ConformanceViolation, AListThatMissesALightIsAViolationAtItsSample) {
