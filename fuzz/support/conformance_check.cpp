@@ -53,11 +53,7 @@ using Check = std::function<std::optional<Violation>(const SampleCase&)>;
 // The reference backend of the subject's algorithm, or nullptr (the subject is one, or has none).
 const Algorithm* reference_of(const Subject& subject) {
   const AlgorithmInfo& info = subject.algorithm->info();
-  if (info.backend == "reference") return nullptr;
-  for (const auto& algorithm : builtin_registry().algorithms())
-    if (algorithm->info().id == info.id && algorithm->info().backend == "reference")
-      return algorithm.get();
-  return nullptr;
+  return info.backend == "reference" ? nullptr : builtin_registry().find(info.id, "reference");
 }
 
 // The property of one subject on a case whose truths are known.
