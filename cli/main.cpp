@@ -11,6 +11,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "fixtures/fuzz/fuzz_fixtures.h"
 #include "list_command.h"
 #include "report_command.h"
 #include "runner/certify.h"
@@ -68,9 +69,15 @@ int write_gbuffer(const std::string& case_file, const std::string& fixture,
                   const std::string& out) {
   if (case_file.empty() == fixture.empty())
     throw UsageError("gbuffer: give exactly one of --case FILE or --fixture NAME");
-  const Case c = case_file.empty() ? make_fixture(fixture) : load_case_manifest(case_file);
-  validate(c);
-  const ViewSamples samples = generate_view_samples(c);
+  ViewSamples samples;
+  if (fuzzing::is_fuzz_case_name(fixture)) {
+    // A fuzz case places its own samples; the camera is only its frame's size.
+    samples = fuzzing::make_fuzz_case(fixture).sample_case.samples;
+  } else {
+    const Case c = case_file.empty() ? make_fixture(fixture) : load_case_manifest(case_file);
+    validate(c);
+    samples = generate_view_samples(c);
+  }
   write_gbuffer_exr(out, samples);
   std::cout << "wrote " << out << ": " << samples.width << "x" << samples.height << ", "
             << samples.count(SampleClass::regular) + samples.count(SampleClass::back_facing)
@@ -313,9 +320,14 @@ int main(int argc, char** argv) {
     if (*export_command) {
       if (export_case_file.empty() == export_fixture.empty())
         throw UsageError("export: give exactly one of --case FILE or --fixture NAME");
-      export_case(export_case_file.empty() ? make_fixture(export_fixture)
-                                           : load_case_manifest(export_case_file),
-                  export_out, std::cout);
+      if (fuzzing::is_fuzz_case_name(export_fixture)) {
+        const fuzzing::GeneratedCase generated = fuzzing::make_fuzz_case(export_fixture);
+        export_case(generated.sample_case.c, generated.sample_case.samples, export_out, std::cout);
+      } else {
+        export_case(export_case_file.empty() ? make_fixture(export_fixture)
+                                             : load_case_manifest(export_case_file),
+                    std::nullopt, export_out, std::cout);
+      }
       return exit_pass;
     }
     if (*certify_verify) return verify_certificate(verify_dir, std::cout);

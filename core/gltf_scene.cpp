@@ -230,13 +230,15 @@ class SceneBuilder {
           position_it->second, positions_user, TINYGLTF_TYPE_VEC3, {TINYGLTF_COMPONENT_TYPE_FLOAT});
       const std::size_t vertex_count = positions.size() / 3;
       std::vector<glm::vec3> world_positions(vertex_count);
+      // An identity transform keeps the file's floats, -0 included (1 * -0 + 0 is +0).
+      const bool identity = world == glm::dmat4(1.0);
       for (std::size_t v = 0; v < vertex_count; ++v) {
         const glm::dvec3 local(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
         if (!std::isfinite(local.x) || !std::isfinite(local.y) || !std::isfinite(local.z)) {
           throw InputError(path_, accessor_element(positions_user, position_it->second),
                            "vertex " + std::to_string(v) + " is not finite");
         }
-        const glm::dvec3 placed = glm::dvec3(world * glm::dvec4(local, 1.0));
+        const glm::dvec3 placed = identity ? local : glm::dvec3(world * glm::dvec4(local, 1.0));
         world_positions[v] = glm::vec3(placed);
         if (!std::isfinite(world_positions[v].x) || !std::isfinite(world_positions[v].y) ||
             !std::isfinite(world_positions[v].z)) {

@@ -24,6 +24,7 @@
 #include "shadowcts/errors.h"
 #include "shadowcts/fixtures.h"
 #include "shadowcts/gbuffer_exr.h"
+#include "shadowcts/manifest_direction.h"
 #include "shadowcts/scene_file.h"
 
 namespace shadowcts {
@@ -237,10 +238,8 @@ class ManifestObject {
   std::optional<glm::vec3> direction(const char* key) const {
     const auto v = vec3(key);
     if (!v) return std::nullopt;
-    const double largest = std::max({std::fabs(v->x), std::fabs(v->y), std::fabs(v->z)});
-    if (!(largest > 0.0)) throw InputError(source_, element(key), "has zero length");
-    const glm::dvec3 scaled = *v / largest;
-    return glm::vec3(scaled / glm::length(scaled));
+    if (*v == glm::dvec3(0.0)) throw InputError(source_, element(key), "has zero length");
+    return manifest_direction(*v);
   }
 
   const std::string& source() const { return source_; }
@@ -384,7 +383,13 @@ struct Placement {
   glm::dvec3 exact_point(const glm::vec3& p) const {
     return translate + scale * rotate(glm::dvec3(p));
   }
-  glm::vec3 point(const glm::vec3& p) const { return glm::vec3(exact_point(p)); }
+  // Without a placement the file's floats stay as they are, -0 included (the arithmetic of
+  // exact_point would turn -0 into +0, and a reproducer must give back the very floats).
+  glm::vec3 point(const glm::vec3& p) const {
+    const bool identity =
+        translate == glm::dvec3(0.0) && scale == 1.0 && cos_angle == 1.0 && sin_angle == 0.0;
+    return identity ? p : glm::vec3(exact_point(p));
+  }
   glm::vec3 direction(const glm::vec3& d) const {
     return glm::vec3(glm::normalize(rotate(glm::dvec3(d))));
   }

@@ -12,9 +12,10 @@
 namespace shadowcts {
 
 // Writes the reproducer into `folder` (created if needed) and returns the manifest's path.
-// The samples must be width x height = camera.width x camera.height; the case's directional
-// light direction must be fixtures/fuzz/stable_direction.h's manifest_stable_direction() of itself
-// (the manifest normalizes it).
+// The samples must be width x height = camera.width x camera.height; the case's light and spot
+// directions must be manifest_stable_direction() of themselves (shadowcts/manifest_direction.h:
+// the manifest normalizes them), and each mesh closed exactly when is_closed_surface says so (the
+// loader decides it so).
 std::string write_reproducer(const std::string& folder, const Case& c, const ViewSamples& samples);
 
 }  // namespace shadowcts

@@ -8,8 +8,7 @@ namespace shadowcts {
 namespace {
 
 // The original with only the samples and triangles at these indices (ascending), receivers
-// renumbered, meshes that lost a triangle marked open (as in shrink_case), explicit samples
-// placed in one row again.
+// renumbered, explicit samples placed in one row again (finish() decides closedness anew).
 fuzzing::SampleCase subset(const fuzzing::SampleCase& original,
                            const std::vector<std::size_t>& samples,
                            const std::vector<std::size_t>& triangles) {
@@ -21,8 +20,6 @@ fuzzing::SampleCase subset(const fuzzing::SampleCase& original,
     renumbered[t] = std::uint32_t(s.c.triangles.size());
     s.c.triangles.push_back(original.c.triangles[t]);
   }
-  for (std::size_t t = 0; t < n; ++t)
-    if (renumbered[t] == no_receiver) s.c.meshes[original.c.triangles[t].mesh].closed = false;
   s.samples.samples.clear();
   for (std::size_t i : samples) {
     ViewSample v = original.samples.samples[i];
@@ -82,8 +79,7 @@ fuzzing::SampleCase shrink_case(
     for (const ViewSample& s : best.samples.samples) is_receiver |= s.receiver == t;
     if (is_receiver || best.c.triangles.size() == 1) continue;
     fuzzing::SampleCase candidate = best;
-    // A mesh that loses a triangle is no longer closed (and the reproducer's loader agrees).
-    candidate.c.meshes[candidate.c.triangles[t].mesh].closed = false;
+    // finish() decides again whether its mesh is closed, as the reproducer's loader will.
     candidate.c.triangles.erase(candidate.c.triangles.begin() + std::ptrdiff_t(t));
     for (ViewSample& s : candidate.samples.samples)
       if (s.receiver != no_receiver && s.receiver > t) --s.receiver;

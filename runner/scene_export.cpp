@@ -5,7 +5,6 @@
 #include <array>
 #include <bit>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -14,10 +13,12 @@
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
+#include "case_round_trip.h"
 #include "manifest_lights.h"
 #include "shadowcts/case_manifest.h"
 #include "shadowcts/errors.h"
 #include "shadowcts/gbuffer_exr.h"
+#include "shadowcts/manifest_direction.h"
 #include "shadowcts/view_samples.h"
 
 namespace shadowcts {
@@ -150,14 +151,11 @@ void write_json(const Json& j, const fs::path& path) {
   if (!file) throw OutputError(path.string(), "cannot be written");
 }
 
-bool same_bits(const glm::vec3& a, const glm::vec3& b) {
-  return std::memcmp(&a, &b, sizeof a) == 0;
-}
-
 }  // namespace
 
-void export_case(const Case& c, const std::string& dir_text, std::ostream& out) {
-  validate(c);
+void export_case(const Case& original, const std::optional<ViewSamples>& given_samples,
+                 const std::string& dir_text, std::ostream& out) {
+  validate(original);
   const fs::path dir(dir_text);
   std::error_code ec;
   if (fs::exists(dir, ec) && !(fs::is_directory(dir, ec) && fs::is_empty(dir, ec)))
@@ -165,14 +163,29 @@ void export_case(const Case& c, const std::string& dir_text, std::ostream& out) 
   fs::create_directories(dir, ec);
   if (ec) throw OutputError(dir_text, "cannot create folder: " + ec.message());
   try {
+    // The case as case.json gives it back: the loader normalizes directions, so they are written
+    // as directions that normalizing leaves alone (an ulp from the fixture's at most).
+    Case c = original;
+    if (c.light && c.light->kind != ShadowLightKind::point)
+      c.light->direction = manifest_stable_direction(c.light->direction);
+    for (RangedLight& r : c.ranged_lights)
+      if (r.kind == RangedLightKind::spot) r.direction = manifest_stable_direction(r.direction);
+
     tinygltf::Model casters = new_model(), receivers = new_model();
-    std::vector<Triangle> expected;  // the order the manifest loads them back in
+    // The triangles in the order the manifest loads them (casters' meshes, then receivers'), and
+    // where each of the case's triangles lands.
+    Case written = c;
+    written.triangles.clear();
+    std::vector<std::uint32_t> new_index(c.triangles.size(), no_receiver);
     for (bool caster : {true, false})
       for (std::uint32_t m = 0; m < c.meshes.size(); ++m) {
         if (c.meshes[m].caster != caster) continue;
         add_mesh(caster ? casters : receivers, c, m);
-        for (const Triangle& t : c.triangles)
-          if (t.mesh == m) expected.push_back(t);
+        for (std::size_t t = 0; t < c.triangles.size(); ++t)
+          if (c.triangles[t].mesh == m) {
+            new_index[t] = std::uint32_t(written.triangles.size());
+            written.triangles.push_back(c.triangles[t]);
+          }
       }
     casters.extensionsUsed.push_back("KHR_lights_punctual");
     if (c.light) {
@@ -223,29 +236,34 @@ void export_case(const Case& c, const std::string& dir_text, std::ostream& out) 
                               {"repeats", c.parameters.repeats},
                               {"threads", c.parameters.threads},
                               {"seed", c.parameters.seed}};
+    manifest["gbuffer"] = "gbuffer.exr";
     const fs::path manifest_path = dir / "case.json";
     write_json(manifest, manifest_path);
 
-    // The engine renders what case.json loads: it must be the case's triangles, bit for bit.
-    const Case loaded = load_case_manifest(manifest_path.string());
-    if (loaded.triangles.size() != expected.size())
-      throw std::logic_error("export: case.json loads " + std::to_string(loaded.triangles.size()) +
-                             " triangles, the case has " + std::to_string(expected.size()));
-    for (std::size_t t = 0; t < expected.size(); ++t)
-      if (!same_bits(loaded.triangles[t].v0, expected[t].v0) ||
-          !same_bits(loaded.triangles[t].v1, expected[t].v1) ||
-          !same_bits(loaded.triangles[t].v2, expected[t].v2))
-        throw std::logic_error("export: triangle " + std::to_string(t) +
-                               " of case.json differs from the case's");
-    const ViewSamples samples = generate_view_samples(loaded);
+    // The case's own samples (their receivers renumbered to the load order), or the camera's.
+    ViewSamples samples;
+    if (given_samples) {
+      samples = *given_samples;
+      for (ViewSample& s : samples.samples)
+        if (s.receiver != no_receiver) s.receiver = new_index[s.receiver];
+    } else {
+      samples = generate_view_samples(written);
+    }
     write_gbuffer_exr((dir / "gbuffer.exr").string(), samples);
-    manifest["gbuffer"] = "gbuffer.exr";
-    write_json(manifest, manifest_path);
+
+    // The engine renders what case.json loads: it must be this case, bit for bit.
+    const std::string difference =
+        first_difference(written, samples, load_case_with_gbuffer(manifest_path.string()));
+    if (!difference.empty())
+      throw std::logic_error("export: " + manifest_path.string() +
+                             " loads back differently: " + difference);
     out << "wrote " << (dir / "scene.glb").string()
         << (receivers.meshes.empty() ? "" : ", " + (dir / "receivers.glb").string()) << ", "
         << manifest_path.string() << " and " << (dir / "gbuffer.exr").string() << ": "
-        << expected.size() << " triangles in " << casters.meshes.size() + receivers.meshes.size()
-        << " meshes, " << samples.width << "x" << samples.height << " G-buffer\n";
+        << written.triangles.size() << " triangles in "
+        << casters.meshes.size() + receivers.meshes.size() << " meshes, " << samples.width << "x"
+        << samples.height << " G-buffer" << (given_samples ? " of the case's own samples" : "")
+        << "\n";
   } catch (...) {
     fs::remove_all(dir, ec);  // all or nothing
     throw;

@@ -1,30 +1,17 @@
 // Checks that a reproducer replays bit for bit: writes one for a small case with two meshes (a
 // non-caster receiver and a closed caster box), a directional light and explicit samples, loads
 // it the way `shadowcts run --case` does, and compares triangles, mesh flags, light, camera and
-// samples exactly. Exit code 0 on success; run by fuzz/run_ci.sh before the fuzzers.
+// samples exactly (runner/case_round_trip.h; tests/runner/case_round_trip_test.cpp does the same
+// for generated fuzz cases). Exit code 0 on success; run by fuzz/run_ci.sh, under the sanitizers,
+// before the fuzzers.
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <string>
 
 #include "fixtures/fuzz/sample_case.h"
-#include "fixtures/fuzz/stable_direction.h"
 #include "runner/case_reproducer.h"
-#include "shadowcts/case_manifest.h"
-#include "shadowcts/gbuffer_exr.h"
-
-namespace {
-
-int failures = 0;
-
-void expect(bool ok, const char* what) {
-  if (!ok) {
-    std::fprintf(stderr, "reproducer round trip: %s differs\n", what);
-    ++failures;
-  }
-}
-
-}  // namespace
+#include "runner/case_round_trip.h"
+#include "shadowcts/manifest_direction.h"
 
 int main() {
   using namespace shadowcts;
@@ -33,11 +20,11 @@ int main() {
   s.c.source = "reproducer_round_trip";
   ShadowLight light;
   light.kind = ShadowLightKind::directional;
-  light.direction = fuzzing::manifest_stable_direction({0.3f, 1.0f, -0.7f});
+  light.direction = manifest_stable_direction({0.3f, 1.0f, -0.7f});
   s.c.light = light;
-  s.begin_mesh("receiver", false, false);
+  s.begin_mesh("receiver", false);
   const std::uint32_t receiver = s.add_triangle({-4, 0, -4}, {4, 0, -4}, {0, 0, 4});
-  s.begin_mesh("box", true);
+  s.begin_mesh("box");
   // A unit cube with outward winding, offset by values that are not dyadic.
   const glm::vec3 o(0.1f, 1.3f, -0.7f);
   const glm::vec3 p[8] = {o + glm::vec3(0, 0, 0), o + glm::vec3(1, 0, 0), o + glm::vec3(1, 1, 0),
@@ -57,32 +44,17 @@ int main() {
   const std::string folder =
       (std::filesystem::temp_directory_path() / "shadowcts_reproducer_round_trip").string();
   std::filesystem::remove_all(folder);
+  if (!s.c.meshes[1].closed) {
+    std::fprintf(stderr, "reproducer round trip: the box is not closed\n");
+    return 1;
+  }
   const std::string manifest = write_reproducer(folder, s.c, s.samples);
-  Case c = load_case_manifest(manifest);
-  ViewSamples samples = read_gbuffer_exr(c.gbuffer_path);
-  classify_samples(c, samples, c.gbuffer_path);
-
-  expect(c.triangles.size() == s.c.triangles.size(), "triangle count");
-  for (std::size_t i = 0; i < std::min(c.triangles.size(), s.c.triangles.size()); ++i) {
-    const Triangle &a = c.triangles[i], &b = s.c.triangles[i];
-    expect(a.v0 == b.v0 && a.v1 == b.v1 && a.v2 == b.v2, "a triangle's vertices");
-    expect(c.meshes[a.mesh].caster == s.c.meshes[b.mesh].caster, "a mesh's caster flag");
-    expect(c.meshes[a.mesh].closed == s.c.meshes[b.mesh].closed, "a mesh's closed flag");
-  }
-  expect(c.light && c.light->kind == light.kind && c.light->direction == light.direction,
-         "the light");
-  expect(c.camera.position == s.c.camera.position && c.camera.target == s.c.camera.target &&
-             c.camera.width == s.c.camera.width && c.camera.height == s.c.camera.height,
-         "the camera");
-  expect(c.scale() == s.c.scale(), "the case scale");
-  expect(samples.width == s.samples.width && samples.height == s.samples.height, "the size");
-  for (std::size_t i = 0; i < std::min(samples.samples.size(), s.samples.samples.size()); ++i) {
-    const ViewSample &a = samples.samples[i], &b = s.samples.samples[i];
-    expect(a.position == b.position && a.normal == b.normal && a.receiver == b.receiver &&
-               a.sample_class == b.sample_class && a.pixel_x == b.pixel_x,
-           "a sample");
-  }
+  const std::string difference = first_difference(s.c, s.samples, load_case_with_gbuffer(manifest));
   std::filesystem::remove_all(folder);
-  if (failures == 0) std::printf("reproducer round trip: identical\n");
-  return failures == 0 ? 0 : 1;
+  if (!difference.empty()) {
+    std::fprintf(stderr, "reproducer round trip: %s\n", difference.c_str());
+    return 1;
+  }
+  std::printf("reproducer round trip: identical\n");
+  return 0;
 }
