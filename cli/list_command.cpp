@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "fixtures/fuzz/fuzz_fixtures.h"
 #include "shadowcts/fixtures.h"
 #include "shadowcts/registry.h"
 
@@ -48,6 +49,8 @@ void print_listing(const Registry& registry, bool json, std::ostream& out) {
       root["fixtures"].push_back(
           {{"name", g.name}, {"summary", g.summary}, {"scalable", g.scalable}});
     root["default_fixtures"] = default_fixtures();
+    root["stiff_fixtures"] = stiff_fixtures();
+    root["fuzz_generators"] = fuzzing::fuzz_generator_names();
     root["algorithms"] = nlohmann::ordered_json::array();
     for (const auto& a : registry.algorithms()) {
       const AlgorithmInfo& m = a->info();
@@ -69,6 +72,10 @@ void print_listing(const Registry& registry, bool json, std::ostream& out) {
   for (const FixtureGenerator& g : fixture_generators())
     out << "  " << std::left << std::setw(28) << g.name << g.summary << "\n";
   out << "\ndefault set: " << join(default_fixtures(), ", ") << "\n";
+  out << "\nstiff suite (--suite stiff): " << join(stiff_fixtures(), ", ") << "\n";
+  out << "\nfuzz cases: fuzz.<generator>.<seed>.<index>, generators "
+      << join(fuzzing::fuzz_generator_names(), ", ")
+      << " (e.g. fuzz.watertight.1.3; run, export and certify rebuild them from the name)\n";
   out << "\nalgorithms\n";
   for (const auto& a : registry.algorithms()) {
     const AlgorithmInfo& m = a->info();

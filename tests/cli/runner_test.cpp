@@ -322,6 +322,17 @@ TEST(Tool, ListsFixturesAndAlgorithmsAsJson) {
   const auto listing = nlohmann::json::parse(read_file(dir / "stdout.txt"));
   EXPECT_FALSE(listing["fixtures"].empty());
   EXPECT_FALSE(listing["default_fixtures"].empty());
+  // Every stiff case and fuzz generator it lists runs by name.
+  EXPECT_GT(listing["stiff_fixtures"].size(), 30u);
+  EXPECT_EQ(listing["fuzz_generators"],
+            nlohmann::json::array({"watertight", "degenerate", "differential"}));
+  const std::string stiff = listing["stiff_fixtures"][0];
+  EXPECT_EQ(
+      run_tool("run --repeat 1 --no-images --algorithm bruteforce --out out --fixture " + stiff +
+                   " --fixture fuzz." + std::string(listing["fuzz_generators"][2]) + ".1.0",
+               dir),
+      exit_pass)
+      << read_file(dir / "stderr.txt");
   bool bruteforce = false, embree = false;
   for (const auto& a : listing["algorithms"]) {
     bruteforce |= a["id"] == "bruteforce" && a["backend"] == "reference";
