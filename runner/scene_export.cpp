@@ -173,9 +173,9 @@ void export_case(const Case& original, const std::optional<ViewSamples>& given_s
 
     tinygltf::Model casters = new_model(), receivers = new_model();
     // The triangles in the order the manifest loads them (casters' meshes, then receivers'), and
-    // where each of the case's triangles lands.
-    Case written = c;
-    written.triangles.clear();
+    // where each of the case's triangles lands; from then on c is the case case.json gives back.
+    std::vector<Triangle> load_order;
+    load_order.reserve(c.triangles.size());
     std::vector<std::uint32_t> new_index(c.triangles.size(), no_receiver);
     for (bool caster : {true, false})
       for (std::uint32_t m = 0; m < c.meshes.size(); ++m) {
@@ -183,10 +183,11 @@ void export_case(const Case& original, const std::optional<ViewSamples>& given_s
         add_mesh(caster ? casters : receivers, c, m);
         for (std::size_t t = 0; t < c.triangles.size(); ++t)
           if (c.triangles[t].mesh == m) {
-            new_index[t] = std::uint32_t(written.triangles.size());
-            written.triangles.push_back(c.triangles[t]);
+            new_index[t] = std::uint32_t(load_order.size());
+            load_order.push_back(c.triangles[t]);
           }
       }
+    c.triangles = std::move(load_order);
     casters.extensionsUsed.push_back("KHR_lights_punctual");
     if (c.light) {
       tinygltf::Light light;
@@ -247,23 +248,22 @@ void export_case(const Case& original, const std::optional<ViewSamples>& given_s
       for (ViewSample& s : samples.samples)
         if (s.receiver != no_receiver) s.receiver = new_index[s.receiver];
     } else {
-      samples = generate_view_samples(written);
+      samples = generate_view_samples(c);
     }
     write_gbuffer_exr((dir / "gbuffer.exr").string(), samples);
 
     // The engine renders what case.json loads: it must be this case, bit for bit.
     const std::string difference =
-        first_difference(written, samples, load_case_with_gbuffer(manifest_path.string()));
+        first_difference(c, samples, load_case_with_gbuffer(manifest_path.string()));
     if (!difference.empty())
       throw std::logic_error("export: " + manifest_path.string() +
                              " loads back differently: " + difference);
     out << "wrote " << (dir / "scene.glb").string()
         << (receivers.meshes.empty() ? "" : ", " + (dir / "receivers.glb").string()) << ", "
         << manifest_path.string() << " and " << (dir / "gbuffer.exr").string() << ": "
-        << written.triangles.size() << " triangles in "
-        << casters.meshes.size() + receivers.meshes.size() << " meshes, " << samples.width << "x"
-        << samples.height << " G-buffer" << (given_samples ? " of the case's own samples" : "")
-        << "\n";
+        << c.triangles.size() << " triangles in " << casters.meshes.size() + receivers.meshes.size()
+        << " meshes, " << samples.width << "x" << samples.height << " G-buffer"
+        << (given_samples ? " of the case's own samples" : "") << "\n";
   } catch (...) {
     fs::remove_all(dir, ec);  // all or nothing
     throw;

@@ -109,11 +109,13 @@ struct Exported {
   HardShadowTruth truth;
 };
 
-// `shadowcts export <source> --out export` in a fresh folder, and the exported case loaded back.
-Exported export_case(const std::string& name, const std::string& source) {
+// `shadowcts export <source> --out export` in a fresh folder (with `manifest` as source.json
+// there, where given), and the exported case loaded back.
+Exported export_case(const std::string& name, const std::string& source,
+                     const char* manifest = nullptr) {
   Exported e;
   e.dir = fresh_dir(name);
-  std::ofstream(e.dir / "source.json") << shared_edges_source;
+  if (manifest) std::ofstream(e.dir / "source.json") << manifest;
   EXPECT_EQ(run_tool("export " + source + " --out export", e.dir), 0)
       << read_file(e.dir / "stderr.txt");
   e.manifest = e.dir / "export" / "case.json";
@@ -126,7 +128,7 @@ Exported export_case(const std::string& name, const std::string& source) {
 
 // A smaller frame than the fixture's keeps the test's brute-force ray caster quick.
 Exported export_shared_edges(const std::string& name) {
-  return export_case(name, "--case source.json");
+  return export_case(name, "--case source.json", shared_edges_source);
 }
 
 json only_record(const fs::path& out) {
