@@ -1,7 +1,9 @@
 #pragma once
 // Per case and output kind: the oracle's truth, computed once, and the judgement of every run
 // against it. One implementation per output kind (hard shadows, soft shadows, light lists).
+#include <cstddef>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -35,6 +37,10 @@ class CaseEvaluation {
   // Fills record.error, record.headline and record.images, and sets record.verdict and
   // record.reason unless the record already failed (e.g. nondeterministic repeats).
   virtual void judge(const AlgorithmOutput& output, RunRecord& record) const = 0;
+  // The samples the output got wrong where the oracle is sure (hard shadows: robust mismatches),
+  // for telling a known limit on some samples from a failure elsewhere. Empty where the verdict
+  // rests on other figures (soft budgets, light lists).
+  virtual std::vector<std::size_t> robust_mismatches(const AlgorithmOutput&) const { return {}; }
 
  protected:
   OracleSummary oracle_;

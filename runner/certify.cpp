@@ -587,6 +587,9 @@ void write_run_outputs(const fs::path& dir, const std::vector<Entry>& entries,
         image = (fs::path(e.folder) / image.get<std::string>()).string();
     }
     const std::string& verdict = e.verdict;
+    // The worker's known limit explains its own verdict, not one the rerun changed.
+    if (record.value("verdict", "") != verdict || record.value("reason", "") != e.reason)
+      record.erase("known_limit");
     record["verdict"] = verdict;
     record["reason"] = e.reason;
     record["reproduce"] = reproduce;
@@ -602,6 +605,7 @@ void write_run_outputs(const fs::path& dir, const std::vector<Entry>& entries,
                 : verdict == "Timeout"        ? Verdict::timeout
                                               : Verdict::crash;
     r.reason = record.at("reason").get<std::string>();
+    r.known_limit = record.value("known_limit", "");
     r.reproduce = reproduce;
     r.median_ms = e.time_ms;
     junit.push_back(std::move(r));

@@ -165,6 +165,16 @@ class HardShadowEvaluation : public CaseEvaluation {
     }
   }
 
+  std::vector<std::size_t> robust_mismatches(const AlgorithmOutput& output) const override {
+    std::vector<std::size_t> wrong;
+    for (std::size_t i = 0; i < truth_.band.size(); ++i)
+      if ((truth_.band[i] == BandClass::robust_lit ||
+           truth_.band[i] == BandClass::robust_shadowed) &&
+          (output.shadowed[i] != 0) != (truth_.shadowed[i] != 0))
+        wrong.push_back(i);
+    return wrong;
+  }
+
   const Case& case_;
   const ViewSamples& samples_;
   ImageTarget images_;

@@ -45,7 +45,9 @@ void write_junit_xml(const std::filesystem::path& path, const std::vector<RunRec
       xml << "    <testcase classname=\"" << html_escape(name) << "\" name=\""
           << html_escape(r->test_name) << "\" time=\"" << seconds(r->median_ms) << "\">";
       // Failures carry the command that reruns just this record.
-      const std::string reason = html_escape(r->reason + " (reproduce: " + r->reproduce + ")");
+      const std::string reason = html_escape(
+          r->reason + (r->known_limit.empty() ? "" : " (a known limit: " + r->known_limit + ")") +
+          " (reproduce: " + r->reproduce + ")");
       switch (r->verdict) {
         case Verdict::fail:
           xml << "<failure message=\"" << reason << "\" type=\"Fail\"/>";

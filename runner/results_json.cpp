@@ -53,6 +53,7 @@ ordered_json record_json(const RunRecord& r) {
   j["backend"] = r.backend;
   j["verdict"] = verdict_name(r.verdict);
   j["reason"] = r.reason;
+  if (!r.known_limit.empty()) j["known_limit"] = r.known_limit;
   j["reproduce"] = r.reproduce;
   // Left out by the plan: it never ran. A NotSupported that ran (nothing to judge) keeps its
   // figures.

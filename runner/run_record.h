@@ -44,6 +44,8 @@ struct RunRecord {
   SoftErrorBudget soft_budget;  // soft_shadow outputs: what the variant declares
   Verdict verdict = Verdict::pass;
   std::string reason;
+  // A Fail that a documented limit of the method explains: why (runner/known_limits.h); else "".
+  std::string known_limit;
   std::vector<double> run_ms;  // every timed repeat
   double median_ms = 0;
   // The phases the algorithm declares for the variant (Algorithm::timed_phases), in its order;

@@ -31,6 +31,7 @@
 #include "heat_map.h"
 #include "image_paths.h"
 #include "junit_xml.h"
+#include "known_limits.h"
 #include "light_assignment_evaluation.h"
 #include "machine_info.h"
 #include "report/html_report.h"
@@ -77,10 +78,12 @@ std::string light_name(const Case& c) {
 // "--case FILE"), for the reproducer command of each record.
 // `gbuffer_formats[i]`: how case i's G-buffer is laid out (manifests only).
 // `given_samples[i]`: case i's view samples where its fixture places them itself (the fuzz cases
-// `fuzz.<generator>.<seed>.<index>`, fixtures/fuzz/fuzz_fixtures.h).
+// `fuzz.<generator>.<seed>.<index>`, fixtures/fuzz/fuzz_fixtures.h), and `case_limits[i]` the
+// limits of peers that its generator declares.
 std::vector<Case> load_cases(const RunOptions& options, std::vector<std::string>& selectors,
                              std::vector<GBufferFormat>& gbuffer_formats,
-                             std::vector<std::optional<ViewSamples>>& given_samples) {
+                             std::vector<std::optional<ViewSamples>>& given_samples,
+                             std::vector<std::vector<fuzzing::KnownLimit>>& case_limits) {
   std::vector<Case> cases;
   std::vector<std::string> fixtures = options.fixtures;
   if (options.suite == "stiff") {
@@ -100,9 +103,11 @@ std::vector<Case> load_cases(const RunOptions& options, std::vector<std::string>
         fuzzing::GeneratedCase generated = fuzzing::make_fuzz_case(name);
         cases.push_back(std::move(generated.sample_case.c));
         given_samples.push_back(std::move(generated.sample_case.samples));
+        case_limits.push_back(std::move(generated.known_limits));
       } else {
         cases.push_back(make_fixture(name));
         given_samples.emplace_back();
+        case_limits.emplace_back();
       }
       selectors.push_back("--fixture " + name);
       gbuffer_formats.emplace_back();
@@ -111,6 +116,7 @@ std::vector<Case> load_cases(const RunOptions& options, std::vector<std::string>
     if (in_shard()) {
       gbuffer_formats.emplace_back();
       given_samples.emplace_back();
+      case_limits.emplace_back();
       cases.push_back(load_case_manifest(file, gbuffer_formats.back()));
       selectors.push_back("--case " + file);
     }
@@ -542,6 +548,11 @@ void print_summary(std::ostream& out, const std::vector<RunRecord>& records,
               ? ", " + std::to_string(counts[int(Verdict::timeout)]) + " Timeout"
               : std::string())
       << "\n";
+  const auto limited = std::count_if(records.begin(), records.end(),
+                                     [](const RunRecord& r) { return !r.known_limit.empty(); });
+  if (limited)
+    out << "of the Fails, " << limited << (limited == 1 ? " is a known limit" : " are known limits")
+        << " of its method (\"a known limit\" under the record; docs/specification.md)\n";
 }
 
 }  // namespace
@@ -567,7 +578,9 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
   std::vector<std::string> selectors;
   std::vector<GBufferFormat> gbuffer_formats;
   std::vector<std::optional<ViewSamples>> given_samples;
-  const std::vector<Case> cases = load_cases(options, selectors, gbuffer_formats, given_samples);
+  std::vector<std::vector<fuzzing::KnownLimit>> case_limits;
+  const std::vector<Case> cases =
+      load_cases(options, selectors, gbuffer_formats, given_samples, case_limits);
   if (cases.empty())
     throw UsageError("the selection matches no case" +
                      (options.shard_count > 1 ? " in shard " + std::to_string(options.shard_index) +
@@ -770,7 +783,13 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
         record.median_ms = median(record.run_ms);
         for (PhaseRuns& phase : record.phases) phase.median_ms = median(phase.run_ms);
         record.counters = first->counters;
-        evaluations.at(record.output)->judge(*first, record);
+        const CaseEvaluation& evaluation = *evaluations.at(record.output);
+        const bool nondeterministic = record.verdict == Verdict::fail;
+        evaluation.judge(*first, record);
+        if (record.verdict == Verdict::fail && !nondeterministic)
+          record.known_limit =
+              known_limit(record.test_name, record.algorithm, case_limits[case_index],
+                          evaluation.robust_mismatches(*first));
         if (images.enabled)
           for (const auto& [name, per_sample] : first->per_sample_counters)
             record.images.push_back(
@@ -783,8 +802,9 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
       }
       out << "  " << std::left << std::setw(15) << verdict_name(record.verdict) << std::right
           << record.test_name << "  " << std::fixed << std::setprecision(2) << record.median_ms
-          << " ms" << phases_text(record) << "  " << std::defaultfloat << record.reason << "\n"
-          << std::flush;  // one line per record as it finishes, also when stdout is not a TTY
+          << " ms" << phases_text(record) << "  " << std::defaultfloat << record.reason << "\n";
+      if (!record.known_limit.empty()) out << "    a known limit: " << record.known_limit << "\n";
+      out << std::flush;  // one line per record as it finishes, also when stdout is not a TTY
       records.push_back(std::move(record));
     }
     summaries.push_back(std::move(summary));

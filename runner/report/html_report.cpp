@@ -29,6 +29,7 @@ table.summary th:nth-child(1) { width: 13%; }
 table.summary th:nth-child(2) { width: 14%; }
 tr.record td { font-size: 13px; }
 .range, .reason { color: #666; font-size: 12px; }
+.known-limit { color: #8a6d00; font-size: 12px; }
 .range { display: block; }
 .phase { display: block; font-size: 12px; margin-top: 2px; white-space: normal; }
 .phase .k { color: #666; }

@@ -176,7 +176,12 @@ std::string summary_table_html(const ReportData& data) {
           if (!compared) out += " <span class=\"only\">(only here)</span>";
           out += "</td>";
         }
-        const std::string reason = html_escape(v.json.value("reason", ""));
+        const std::string limit = v.json.value("known_limit", "");
+        const std::string reason =
+            html_escape(v.json.value("reason", "")) +
+            (limit.empty()
+                 ? ""
+                 : "<div class=\"known-limit\">a known limit: " + html_escape(limit) + "</div>");
         // A Pass's reason repeats its figures: it goes to the hover text. Others show theirs.
         const bool quiet = verdict == "Pass" && verdict_title.empty();
         out += "<td class=\"verdict v-" + verdict_class(verdict) + verdict_changed + "\"" +

@@ -108,6 +108,9 @@ std::string cell_html(const MatrixRow& row, std::size_t ci) {
          "\" data-record=\"" + html_escape(r->name) + "\" data-verdict=\"" + html_escape(verdict) +
          "\" title=\"" +
          html_escape(r->name + ": " + verdict + " — " + record.value("reason", "") +
+                     (record.contains("known_limit")
+                          ? " (a known limit: " + record.value("known_limit", "") + ")"
+                          : "") +
                      (changed ? " (was " + first + ")" : "")) +
          "\"><a href=\"#" + record_anchor(ci, row.record_index[ci]) + "\">" + figures + "</a></td>";
 }

@@ -1,6 +1,6 @@
 // The stiff-case suite for every registered algorithm x variant x backend: one CTest case per
-// stiff case (the oracle runs once per case). No record may Fail or Crash except the expected
-// failures of expected_failures.h, which must still fail.
+// stiff case (the oracle runs once per case). No record may Fail or Crash except the known limits
+// of runner/known_limits.h, which must still fail and say so in their records.
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "expected_failures.h"
+#include "runner/known_limits.h"
 #include "shadowcts/fixtures.h"
 #include "shadowcts/registry.h"
 #include "shadowcts/runner.h"
@@ -50,19 +50,22 @@ TEST_P(StiffSuite, EveryAlgorithmPassesOrFailsAsExpected) {
       std::cout << "[ WARNING  ] " << name << ": " << record["reason"].get<std::string>() << "\n";
     if (verdict == "Pass" || verdict == "NotSupported" || verdict == "QualityWarning") continue;
     failed.insert(name);
-    if (const ExpectedFailure* expected = expected_failure(name)) {
+    if (const RecordLimit* expected = stiff_record_limit(name)) {
       std::cout << "[ EXPECTED ] " << name << " " << verdict << ": "
                 << record["reason"].get<std::string>() << " -- " << expected->why << "\n";
+      // The user sees the same: the record names the limit that explains it.
+      EXPECT_EQ(record.value("known_limit", ""), expected->why) << name;
       continue;
     }
+    EXPECT_FALSE(record.contains("known_limit")) << name << " claims a limit the table lacks";
     ADD_FAILURE() << name << " " << verdict << ": " << record["reason"].get<std::string>()
                   << "\n  reproduce: " << record["reproduce"].get<std::string>();
   }
   // An expected failure that no longer fails has been fixed: the table must say so.
   for (const auto& record : results["results"]) {
     const std::string name = record["name"];
-    if (expected_failure(name) && !failed.count(name) && record["verdict"] != "NotSupported")
-      ADD_FAILURE() << name << " is listed in expected_failures.h but now gets "
+    if (stiff_record_limit(name) && !failed.count(name) && record["verdict"] != "NotSupported")
+      ADD_FAILURE() << name << " is listed in runner/known_limits.cpp but now gets "
                     << record["verdict"].get<std::string>() << ": remove the entry";
   }
   if (!HasFailure()) fs::remove_all(out);
