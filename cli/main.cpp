@@ -11,15 +11,14 @@
 
 #include <CLI/CLI.hpp>
 
-#include "fixtures/fuzz/fuzz_fixtures.h"
 #include "list_command.h"
 #include "report_command.h"
 #include "runner/certify.h"
 #include "runner/external_result.h"
+#include "runner/named_case.h"
 #include "runner/scene_export.h"
 #include "shadowcts/case_manifest.h"
 #include "shadowcts/errors.h"
-#include "shadowcts/fixtures.h"
 #include "shadowcts/gbuffer_exr.h"
 #include "shadowcts/registry.h"
 #include "shadowcts/runner.h"
@@ -70,13 +69,13 @@ int write_gbuffer(const std::string& case_file, const std::string& fixture,
   if (case_file.empty() == fixture.empty())
     throw UsageError("gbuffer: give exactly one of --case FILE or --fixture NAME");
   ViewSamples samples;
-  if (fuzzing::is_fuzz_case_name(fixture)) {
-    // A fuzz case places its own samples; the camera is only its frame's size.
-    samples = fuzzing::make_fuzz_case(fixture).sample_case.samples;
+  NamedCase named = case_file.empty() ? make_named_case(fixture)
+                                      : NamedCase{load_case_manifest(case_file), std::nullopt, {}};
+  if (named.samples) {
+    samples = std::move(*named.samples);  // a fuzz case's own; the camera is only its frame's size
   } else {
-    const Case c = case_file.empty() ? make_fixture(fixture) : load_case_manifest(case_file);
-    validate(c);
-    samples = generate_view_samples(c);
+    validate(named.c);
+    samples = generate_view_samples(named.c);
   }
   write_gbuffer_exr(out, samples);
   std::cout << "wrote " << out << ": " << samples.width << "x" << samples.height << ", "
@@ -320,14 +319,11 @@ int main(int argc, char** argv) {
     if (*export_command) {
       if (export_case_file.empty() == export_fixture.empty())
         throw UsageError("export: give exactly one of --case FILE or --fixture NAME");
-      if (fuzzing::is_fuzz_case_name(export_fixture)) {
-        const fuzzing::GeneratedCase generated = fuzzing::make_fuzz_case(export_fixture);
-        export_case(generated.sample_case.c, generated.sample_case.samples, export_out, std::cout);
-      } else {
-        export_case(export_case_file.empty() ? make_fixture(export_fixture)
-                                             : load_case_manifest(export_case_file),
-                    std::nullopt, export_out, std::cout);
-      }
+      const NamedCase named =
+          export_case_file.empty()
+              ? make_named_case(export_fixture)
+              : NamedCase{load_case_manifest(export_case_file), std::nullopt, {}};
+      export_case(named.c, named.samples, export_out, std::cout);
       return exit_pass;
     }
     if (*certify_verify) return verify_certificate(verify_dir, std::cout);

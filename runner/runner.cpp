@@ -26,7 +26,6 @@
 
 #include "case_evaluation.h"
 #include "case_gbuffer.h"
-#include "fixtures/fuzz/fuzz_fixtures.h"
 #include "hard_shadow_evaluation.h"
 #include "heat_map.h"
 #include "image_paths.h"
@@ -34,6 +33,7 @@
 #include "known_limits.h"
 #include "light_assignment_evaluation.h"
 #include "machine_info.h"
+#include "named_case.h"
 #include "report/html_report.h"
 #include "results_json.h"
 #include "run_record.h"
@@ -99,16 +99,10 @@ std::vector<Case> load_cases(const RunOptions& options, std::vector<std::string>
   auto in_shard = [&] { return position++ % options.shard_count == options.shard_index; };
   for (const std::string& name : fixtures)
     if (in_shard()) {
-      if (fuzzing::is_fuzz_case_name(name)) {
-        fuzzing::GeneratedCase generated = fuzzing::make_fuzz_case(name);
-        cases.push_back(std::move(generated.sample_case.c));
-        given_samples.push_back(std::move(generated.sample_case.samples));
-        case_limits.push_back(std::move(generated.known_limits));
-      } else {
-        cases.push_back(make_fixture(name));
-        given_samples.emplace_back();
-        case_limits.emplace_back();
-      }
+      NamedCase named = make_named_case(name);
+      cases.push_back(std::move(named.c));
+      given_samples.push_back(std::move(named.samples));
+      case_limits.push_back(std::move(named.known_limits));
       selectors.push_back("--fixture " + name);
       gbuffer_formats.emplace_back();
     }
