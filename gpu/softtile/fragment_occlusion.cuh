@@ -7,6 +7,7 @@
 
 #include "gpu/emulator/kernel.h"
 #include "gpu/softtile/softtile_kernel.h"
+#include "shadowcts/geometry/disk_reach.h"
 #include "shadowcts/geometry/rounded_arithmetic.h"
 
 namespace shadowcts::SHADOWCTS_KERNEL_NAMESPACE {
@@ -34,9 +35,14 @@ struct FragmentSetup {
 };
 
 // The three edge functions of the triangle seen from the fragment, edges[3 i + c] component c of
-// edge i; false when it cannot touch the disk (the reference's triangle_edges).
+// edge i; false when it cannot touch the disk (the reference's triangle_edges, its early-out by
+// the light-space box first).
 __device__ inline bool triangle_edges(const FragmentSetup& fragment, float inverse_scale,
-                                      const SofttileTriangle& triangle, float edges[9]) {
+                                      float reach_per_height, const SofttileTriangle& triangle,
+                                      float edges[9]) {
+  if (beside_disk(fragment.position[0], fragment.position[1], fragment.position[2],
+                  light_space_box(triangle.vertices), reach_per_height))
+    return false;
   float h[3][3];
   bool any_front = false;
   for (int i = 0; i < 3; ++i) {

@@ -14,6 +14,7 @@
 #include "reference/softtile/disk_bitmask.h"
 #include "reference/softtile/softtile_algorithm.h"
 #include "reference/softtile/softtile_tile.h"
+#include "shadowcts/geometry/disk_reach.h"
 #include "shadowcts/hard_shadow_inputs.h"
 #include "shadowcts/phase_clock.h"
 #include "shadowcts/thread_limit.h"
@@ -81,6 +82,7 @@ void add_gathered(const ref::Gathered& gathered, const ref::Variant& variant,
   }
   raster.disk_cells = std::uint32_t(disk.disk_cells());
   raster.inverse_scale = ref::disk_inverse_scale(gathered, variant);
+  raster.reach_per_height = disk_reach_per_height(raster.inverse_scale);
   input.batch_capacity = std::uint32_t(softtile_tile_triangle_limit);
 }
 

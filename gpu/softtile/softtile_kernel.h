@@ -69,7 +69,8 @@ struct SofttileRaster {
   std::uint32_t full_row;
   int rows, columns;
   float half_columns;
-  float inverse_scale;  // 1 / tan(a) or 1 / sin(a), in float
+  float inverse_scale;     // 1 / tan(a) or 1 / sin(a), in float
+  float reach_per_height;  // disk_reach_per_height(inverse_scale)
   std::uint32_t disk_cells;
 };
 

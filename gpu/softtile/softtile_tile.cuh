@@ -277,7 +277,9 @@ __global__ void SHADOWCTS_SOFTTILE_LAUNCH_BOUNDS softtile_tiles(KernelParams p) 
         if (triangle.triangle == sample.receiver) continue;
         ++tests;
         float edges[9];
-        if (!triangle_edges(fragment, p.raster.inverse_scale, triangle, edges)) continue;
+        if (!triangle_edges(fragment, p.raster.inverse_scale, p.raster.reach_per_height, triangle,
+                            edges))
+          continue;
         clear_triangle(p.raster, edges, mask);
         ++rasterized;
       }

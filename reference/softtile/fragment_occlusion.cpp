@@ -4,10 +4,18 @@
 
 #include <glm/geometric.hpp>
 
+#include "shadowcts/geometry/disk_reach.h"
+
 namespace shadowcts::softtile {
 
 bool triangle_edges(const FragmentSetup& fragment, const std::array<glm::vec3, 3>& light_space,
                     std::array<glm::vec3, 3>& edges) {
+  const float vertices[9] = {light_space[0].x, light_space[0].y, light_space[0].z,
+                             light_space[1].x, light_space[1].y, light_space[1].z,
+                             light_space[2].x, light_space[2].y, light_space[2].z};
+  if (beside_disk(fragment.position.x, fragment.position.y, fragment.position.z,
+                  light_space_box(vertices), fragment.reach_per_height))
+    return false;
   std::array<glm::vec3, 3> h;
   bool any_front = false;
   for (int i = 0; i < 3; ++i) {

@@ -7,6 +7,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "shadowcts/geometry/disk_reach.h"
+
 namespace shadowcts::softtile {
 namespace {
 
@@ -95,6 +97,7 @@ bool prepare_tile_pixels(const Case& c, const ViewSamples& samples, const Gather
     const ViewSample& s = samples.samples[tile.pixels[j]];
     tile.fragments[j].position = gathered.light_space.to_light(s.position);
     tile.fragments[j].inverse_scale = inverse_scale;
+    tile.fragments[j].reach_per_height = disk_reach_per_height(inverse_scale);
     if (variant.rotate) {
       const double angle = rotation_angle(c.parameters.seed, s.pixel_x, s.pixel_y);
       tile.fragments[j].cos_rotation = float(std::cos(angle));

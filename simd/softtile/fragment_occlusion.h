@@ -21,13 +21,15 @@ namespace shadowcts::simd::softtile {
 inline constexpr std::size_t fragment_block = 16;
 
 // A tile's fragment setups as structure of arrays, with each fragment's receiver triangle, padded
-// to a whole number of 64-bit words of fragments, and the lowest light-space z of each block's
-// fragments (NaN ignored; +inf for a block of NaN only).
+// to a whole number of 64-bit words of fragments, and per block of fragments the bounds that
+// decide a whole block at once (NaN ignored): the lowest light-space z (+inf for a block of NaN
+// only), the x and y ranges and the largest |x| + |y| (disk_reach.h).
 struct FragmentArrays {
   std::vector<float> x, y, z, cos_rotation, sin_rotation;
   std::vector<std::uint32_t> receiver;
-  std::vector<float> block_lowest_z;
+  std::vector<float> block_lowest_z, block_x0, block_x1, block_y0, block_y1, block_coordinates;
   float inverse_scale = 1.0f;
+  float reach_per_height = 1.0f;
   std::size_t size = 0;
   bool rotated = false;  // some fragment's grid is rotated (cos_rotation != 1 or sin_rotation != 0)
 
@@ -49,9 +51,10 @@ std::size_t triangle_edges(const FragmentArrays& fragments,
 
 // The triangle (light-space vertices, its id `triangle`) cleared from masks[j] of every fragment j
 // that accepts it, as triangle_edges() and then DiskRaster::clear_triangles() would, and counted
-// in rasterized[j]; returns triangle_edges()'s count of tests. A block of fragments that every
-// vertex lies behind (vertex z <= the block's lowest z) is only counted: no fragment of it has a
-// vertex in front, so none accepts.
+// in rasterized[j]; returns triangle_edges()'s count of tests. A block of fragments that no
+// fragment of can accept is only counted: every vertex lies behind it (vertex z <= the block's
+// lowest z), or the triangle's box lies beside the reach of the disk of a fragment at the block's
+// bounds (disk_reach.h: every bound is monotone, so then it lies beside every fragment's).
 std::size_t occlude_fragments(const FragmentArrays& fragments,
                               const std::array<glm::vec3, 3>& light_space, std::uint32_t triangle,
                               const DiskRaster& raster, DiskRows* masks, std::uint64_t* rasterized);

@@ -38,12 +38,16 @@ namespace shadowcts::SHADOWCTS_KERNEL_NAMESPACE::softtile_test {
 
 __global__ void edges_kernel(const softtile::FragmentSetup* fragments,
                              const SofttileTriangle* triangles, float inverse_scale,
-                             std::uint32_t count, std::uint32_t* accepted, float* edges) {
+                             float reach_per_height, std::uint32_t count, std::uint32_t* accepted,
+                             float* edges) {
   const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= count) return;
   const softtile::FragmentSetup fragment = fragments[i];
   const SofttileTriangle triangle = triangles[i];
-  accepted[i] = softtile::triangle_edges(fragment, inverse_scale, triangle, edges + 9 * i) ? 1 : 0;
+  accepted[i] =
+      softtile::triangle_edges(fragment, inverse_scale, reach_per_height, triangle, edges + 9 * i)
+          ? 1
+          : 0;
 }
 
 // Thread i clears triangles[i * per_thread ..] (9 edge components each) from the empty disk.
@@ -99,6 +103,7 @@ TEST(SofttileEmu, EdgeFunctionsEqualTheReferenceBitwise) {
     ref::FragmentSetup& f = setups[i];
     f.position = {unit(random), unit(random), unit(random)};
     f.inverse_scale = inverse_scale;
+    f.reach_per_height = disk_reach_per_height(inverse_scale);
     if (i % 2 == 1) {
       const float angle = 3.2f * unit(random);
       f.cos_rotation = std::cos(angle);
@@ -122,7 +127,8 @@ TEST(SofttileEmu, EdgeFunctionsEqualTheReferenceBitwise) {
   Device<std::uint32_t> accepted{std::vector<std::uint32_t>(count)};
   Device<float> edges{std::vector<float>(9 * count)};
   SHADOWCTS_LAUNCH(kernels::edges_kernel, (count + 255) / 256, 256, 0)
-  (d_fragments.data, d_triangles.data, inverse_scale, count, accepted.data, edges.data);
+  (d_fragments.data, d_triangles.data, inverse_scale, disk_reach_per_height(inverse_scale), count,
+   accepted.data, edges.data);
   const std::vector<std::uint32_t> got_accepted = accepted.get();
   const std::vector<float> got_edges = edges.get();
   std::size_t accepted_count = 0;

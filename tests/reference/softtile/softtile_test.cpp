@@ -1,7 +1,9 @@
 // The reference softtile's parts and behaviour: the post's disk masks and scanline rasterization,
 // edge flipping for triangles crossing the fragment plane, the hard-shadow limit a -> 0, the tile
 // overflow, light-facing culling of closed meshes, the sin(a) shortcut, determinism.
+#include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 
@@ -10,8 +12,10 @@
 
 #include "oracles/soft_shadow/soft_shadow_comparison.h"
 #include "reference/softtile/disk_bitmask.h"
+#include "reference/softtile/fragment_occlusion.h"
 #include "reference/softtile/softtile_algorithm.h"
 #include "reference/softtile/softtile_variant.h"
+#include "shadowcts/geometry/disk_reach.h"
 #include "shadowcts/hard_shadow_oracle.h"
 #include "shadowcts/soft_shadow_oracle.h"
 #include "tests/oracles/soft_shadow/soft_case.h"
@@ -57,6 +61,79 @@ TEST(DiskBitmask, HalfPlaneClearsTheCellsOnItsSide) {
     EXPECT_EQ(mask.lit_cells(), expected_lit) << name;
     EXPECT_LT(mask.lit_cells(), before);
   }
+}
+
+// The early-out by the triangle's light-space box (shadowcts/geometry/disk_reach.h) skips only
+// triangles whose setup would clear no cell: triangles placed at the reach's boundary, a few ulps
+// and a few margins either side, one vertex at the box's corner nearest the disk, with rotated
+// grids, at scales 2^-40 to 2^40 and on every grid. Each one the early-out calls beside is set up
+// anyway (reach_per_height infinity turns the early-out off) and must clear nothing.
+TEST(Softtile, TrianglesBesideTheDisksReachClearNoCell) {
+  std::mt19937_64 random(17);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::size_t beside = 0, set_up = 0;  // called beside; of them, accepted by the setup alone
+  for (const char* name : {"grid16", "rows3", "rows31", "post"}) {
+    const softtile::Variant variant = softtile::parse_variant(name);
+    for (int trial = 0; trial < 20000; ++trial) {
+      const double scale = std::ldexp(1.0, int(random() % 81) - 40);
+      const double a = (0.1 + 40.0 * std::abs(unit(random))) * std::numbers::pi / 180.0;
+      softtile::FragmentSetup fragment;
+      fragment.position = glm::vec3(glm::dvec3(unit(random), unit(random), unit(random)) * scale);
+      fragment.inverse_scale =
+          float(1.0 / (variant.sine_normalization ? std::sin(a) : std::tan(a)));
+      fragment.reach_per_height = disk_reach_per_height(fragment.inverse_scale);
+      if (trial % 2 == 1) {
+        const double angle = 2.0 * std::numbers::pi * unit(random);
+        fragment.cos_rotation = float(std::cos(angle));
+        fragment.sin_rotation = float(std::sin(angle));
+      }
+      // The nearest corner: the disk's reach at the corner's height, times 1 + d, d from -1 (well
+      // inside) through the margins (2^-8 and less) to 1 (well beside), on a random side.
+      const double height = scale * (0.01 + std::abs(unit(random)));
+      const double reach = height / double(fragment.inverse_scale);
+      const double d = std::ldexp(unit(random), -int(random() % 12));
+      const glm::dvec3 p(fragment.position);
+      const double side = random() % 2 == 0 ? 1.0 : -1.0;
+      const bool along_x = random() % 2 == 0;
+      const double off = side * reach * (1.0 + d);
+      const double across = reach * unit(random);
+      glm::dvec3 corner = p + glm::dvec3(along_x ? off : across, along_x ? across : off, height);
+      std::array<glm::vec3, 3> light_space;
+      light_space[0] = glm::vec3(corner);
+      for (int v = 1; v < 3; ++v) {
+        // The other vertices farther out on that side, lower or below the fragment.
+        const double out = side * scale * std::abs(unit(random));
+        light_space[v] =
+            glm::vec3(corner + glm::dvec3(along_x ? out : scale * unit(random),
+                                          along_x ? scale * unit(random) : out,
+                                          -height * std::abs(unit(random)) * (v == 2 ? 2.0 : 1.0)));
+      }
+      std::array<glm::vec3, 3> edges;
+      if (softtile::triangle_edges(fragment, light_space, edges)) continue;
+      softtile::FragmentSetup without = fragment;
+      without.reach_per_height = std::numeric_limits<float>::infinity();
+      const bool accepted_without = softtile::triangle_edges(without, light_space, edges);
+      const float vertices[9] = {light_space[0].x, light_space[0].y, light_space[0].z,
+                                 light_space[1].x, light_space[1].y, light_space[1].z,
+                                 light_space[2].x, light_space[2].y, light_space[2].z};
+      if (!beside_disk(fragment.position.x, fragment.position.y, fragment.position.z,
+                       light_space_box(vertices), fragment.reach_per_height)) {
+        EXPECT_FALSE(accepted_without) << name << ", trial " << trial;  // rejected by the setup
+        continue;
+      }
+      ++beside;
+      if (!accepted_without) continue;
+      // The setup alone would have accepted it: its edges must leave every cell lit.
+      softtile::DiskBitmask mask(variant);
+      mask.clear_triangle(edges);
+      ASSERT_EQ(mask.lit_cells(), mask.disk_cells())
+          << name << ", trial " << trial << ": a triangle beside the reach cleared cells";
+      ++set_up;
+    }
+  }
+  // The early-out decided many of them, some that the setup alone accepts among them.
+  EXPECT_GT(beside, 20000u);
+  EXPECT_GT(set_up, 1000u);
 }
 
 // One caster over a non-caster ground, samples under it; softtile against the exact oracle.

@@ -21,6 +21,7 @@
 #include "reference/softtile/softtile_tile.h"
 #include "reference/softtile/softtile_variant.h"
 #include "shadowcts/fixtures.h"
+#include "shadowcts/geometry/disk_reach.h"
 #include "shadowcts/prepared_scene.h"
 #include "simd/softtile/fragment_occlusion.h"
 #include "simd/softtile/shadow_cone.h"
@@ -113,6 +114,7 @@ TEST(SimdSofttile, UnrotatedFragmentsGiveTheReferenceMasksThroughSignedZeros) {
   for (ref::FragmentSetup& f : setups) {
     f.position = {pick(), pick(), random() % 2 == 0 ? 0.0f : -0.0f};
     f.inverse_scale = 28.636253f;
+    f.reach_per_height = disk_reach_per_height(f.inverse_scale);
   }
   port::FragmentArrays fragments;
   fragments.assign(setups, std::vector<std::uint32_t>(setups.size(), 7u));
