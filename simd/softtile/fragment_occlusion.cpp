@@ -157,57 +157,82 @@ std::size_t TriangleEdges(const FragmentArrays& f, const std::array<glm::vec3, 3
   return tests;
 }
 
+// The blocks first..first + lanes that a fragment of may accept the triangle, as mask bits: the
+// triangle's highest vertex lies above the block's lowest fragment (a fragment's tz = v.z - p.z
+// rounds to a positive value only where v.z > p.z, and a NaN never does), and its box does not
+// lie beside the disk reach at the block's bounds (beside_disk() with the height to the block's
+// lowest z and its largest |x| + |y|: each operation rounds monotonically, so that reach is at
+// least every fragment's, and every fragment lies within the block's x and y ranges).
+HWY_INLINE std::uint64_t blocks_in_reach(D d, const FragmentArrays& f, std::size_t first,
+                                         const LightSpaceBox& box) {
+  const V z1 = hn::Set(d, box.z1);
+  const V lowest = hn::LoadU(d, f.block_lowest_z.data() + first);
+  const V height = hn::Sub(z1, lowest);
+  const V coordinates =
+      hn::Add(hn::LoadU(d, f.block_coordinates.data() + first), hn::Set(d, box.magnitude));
+  const V slack = hn::Add(hn::Mul(coordinates, hn::Set(d, 0x1p-18f)), hn::Set(d, 0x1p-120f));
+  const V reach = hn::Add(hn::Mul(height, hn::Set(d, f.reach_per_height)), slack);
+  const M beside = hn::Or(
+      hn::Or(hn::Gt(hn::Sub(hn::LoadU(d, f.block_x0.data() + first), hn::Set(d, box.x1)), reach),
+             hn::Gt(hn::Sub(hn::Set(d, box.x0), hn::LoadU(d, f.block_x1.data() + first)), reach)),
+      hn::Or(hn::Gt(hn::Sub(hn::LoadU(d, f.block_y0.data() + first), hn::Set(d, box.y1)), reach),
+             hn::Gt(hn::Sub(hn::Set(d, box.y0), hn::LoadU(d, f.block_y1.data() + first)), reach)));
+  std::uint8_t bytes[8] = {};
+  hn::StoreMaskBits(d, hn::AndNot(beside, hn::Gt(z1, lowest)), bytes);
+  std::uint64_t bits = 0;
+  std::memcpy(&bits, bytes, sizeof bits);
+  return bits;
+}
+
+template <bool kRotated>
+HWY_INLINE void occlude_vector(D d, const FragmentArrays& f, std::size_t j,
+                               const std::array<glm::vec3, 3>& light_space,
+                               const LightSpaceBox& box, std::uint32_t triangle,
+                               const DiskRaster::Setup& raster, DiskRows* masks,
+                               std::uint64_t* rasterized) {
+  const VectorEdges v = vector_edges<kRotated>(d, f, j, light_space, box, triangle);
+  if (hn::AllFalse(d, v.accepted)) return;
+  HWY_ALIGN float lane_edges[9][HWY_MAX_BYTES / sizeof(float)];
+  for (int i = 0; i < 3; ++i) {
+    hn::Store(v.e[i].x, d, lane_edges[3 * i + 0]);
+    hn::Store(v.e[i].y, d, lane_edges[3 * i + 1]);
+    hn::Store(v.e[i].z, d, lane_edges[3 * i + 2]);
+  }
+  std::uint8_t bytes[8] = {};
+  hn::StoreMaskBits(d, v.accepted, bytes);
+  std::uint64_t bits = 0;
+  std::memcpy(&bits, bytes, sizeof bits);
+  for (; bits != 0; bits &= bits - 1) {
+    const std::size_t lane = std::size_t(__builtin_ctzll(bits));
+    glm::vec3 e[3];
+    for (int i = 0; i < 3; ++i)
+      e[i] = {lane_edges[3 * i][lane], lane_edges[3 * i + 1][lane], lane_edges[3 * i + 2][lane]};
+    ClearTriangleRows(raster, e, 1, masks[j + lane].bits.data());
+    ++rasterized[j + lane];
+  }
+}
+
 template <bool kRotated>
 HWY_INLINE std::size_t occlude(const FragmentArrays& f, const std::array<glm::vec3, 3>& light_space,
                                std::uint32_t triangle, const DiskRaster::Setup& raster,
                                DiskRows* masks, std::uint64_t* rasterized) {
   const D d;
   const std::size_t lanes = hn::Lanes(d);
-  std::size_t tests = 0;
-  HWY_ALIGN float lane_edges[9][HWY_MAX_BYTES / sizeof(float)];
-  // beside_disk() at a block's bounds: every fragment's reach is at most the block's (the height
-  // to its lowest z, its largest |x| + |y|; each operation rounds monotonically), and every
-  // fragment lies within its x and y ranges.
   const LightSpaceBox box = light_space_box(&light_space[0].x);
-  const auto block_beside = [&](std::size_t b) {
-    const float reach =
-        disk_reach(rounded_sub(box.z1, f.block_lowest_z[b]),
-                   rounded_add(f.block_coordinates[b], box.magnitude), f.reach_per_height);
-    return rounded_sub(f.block_x0[b], box.x1) > reach ||
-           rounded_sub(box.x0, f.block_x1[b]) > reach ||
-           rounded_sub(f.block_y0[b], box.y1) > reach || rounded_sub(box.y0, f.block_y1[b]) > reach;
-  };
-  for (std::size_t j = 0; j < f.size; j += lanes) {
-    // A fragment's tz = v.z - p.z rounds to a positive value only where v.z > p.z (a NaN vertex
-    // z never does), so where the highest vertex lies at or below a block's lowest fragment,
-    // every fragment there rejects (28 % of the vectors at foliage.100k).
-    if (lanes <= fragment_block &&
-        (!(box.z1 > f.block_lowest_z[j / fragment_block]) || block_beside(j / fragment_block))) {
-      tests += hn::CountTrue(d, tested_lanes(d, f, j, triangle));
-      continue;
-    }
-    const VectorEdges v = vector_edges<kRotated>(d, f, j, light_space, box, triangle);
-    tests += hn::CountTrue(d, v.tested);
-    if (hn::AllFalse(d, v.accepted)) continue;
-    for (int i = 0; i < 3; ++i) {
-      hn::Store(v.e[i].x, d, lane_edges[3 * i + 0]);
-      hn::Store(v.e[i].y, d, lane_edges[3 * i + 1]);
-      hn::Store(v.e[i].z, d, lane_edges[3 * i + 2]);
-    }
-    std::uint8_t bytes[8] = {};
-    hn::StoreMaskBits(d, v.accepted, bytes);
-    std::uint64_t bits = 0;
-    std::memcpy(&bits, bytes, sizeof bits);
-    for (; bits != 0; bits &= bits - 1) {
-      const std::size_t lane = std::size_t(__builtin_ctzll(bits));
-      glm::vec3 e[3];
-      for (int i = 0; i < 3; ++i)
-        e[i] = {lane_edges[3 * i][lane], lane_edges[3 * i + 1][lane], lane_edges[3 * i + 2][lane]};
-      ClearTriangleRows(raster, e, 1, masks[j + lane].bits.data());
-      ++rasterized[j + lane];
-    }
+  if (lanes > fragment_block) {
+    for (std::size_t j = 0; j < f.size; j += lanes)
+      occlude_vector<kRotated>(d, f, j, light_space, box, triangle, raster, masks, rasterized);
+  } else {
+    // The blocks in reach, `lanes` blocks at a time; a block is one vector of fragments or more.
+    for (std::size_t first = 0; first < f.blocks(); first += lanes)
+      for (std::uint64_t bits = blocks_in_reach(d, f, first, box); bits != 0; bits &= bits - 1) {
+        const std::size_t block = first + std::size_t(__builtin_ctzll(bits));
+        const std::size_t end = std::min(f.size, (block + 1) * fragment_block);
+        for (std::size_t j = block * fragment_block; j < end; j += lanes)
+          occlude_vector<kRotated>(d, f, j, light_space, box, triangle, raster, masks, rasterized);
+      }
   }
-  return tests;
+  return f.size - f.on_receiver(triangle);
 }
 
 std::size_t OccludeFragments(const FragmentArrays& f, const std::array<glm::vec3, 3>& light_space,
@@ -248,7 +273,10 @@ void FragmentArrays::assign(const std::vector<shadowcts::softtile::FragmentSetup
   rotated = false;
   for (std::size_t j = 0; j < size; ++j)
     rotated = rotated || cos_rotation[j] != 1.0f || sin_rotation[j] != 0.0f;
-  const std::size_t blocks = (size + fragment_block - 1) / fragment_block;
+  sorted_receivers.assign(receiver.begin(), receiver.begin() + std::ptrdiff_t(size));
+  std::sort(sorted_receivers.begin(), sorted_receivers.end());
+  // Padded for whole vectors of blocks (16 lanes at most) with blocks below every triangle.
+  const std::size_t blocks = (this->blocks() + 15) / 16 * 16;
   constexpr float infinity = std::numeric_limits<float>::infinity();
   block_lowest_z.assign(blocks, infinity);
   block_x0.assign(blocks, infinity);
@@ -267,6 +295,12 @@ void FragmentArrays::assign(const std::vector<shadowcts::softtile::FragmentSetup
     const float coordinates = float_magnitude(x[j]) + float_magnitude(y[j]);
     if (coordinates > block_coordinates[b]) block_coordinates[b] = coordinates;
   }
+}
+
+std::size_t FragmentArrays::on_receiver(std::uint32_t triangle) const {
+  const auto [begin, end] =
+      std::equal_range(sorted_receivers.begin(), sorted_receivers.end(), triangle);
+  return std::size_t(end - begin);
 }
 
 std::size_t triangle_edges(const FragmentArrays& fragments,

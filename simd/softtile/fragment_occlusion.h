@@ -23,10 +23,12 @@ inline constexpr std::size_t fragment_block = 16;
 // A tile's fragment setups as structure of arrays, with each fragment's receiver triangle, padded
 // to a whole number of 64-bit words of fragments, and per block of fragments the bounds that
 // decide a whole block at once (NaN ignored): the lowest light-space z (+inf for a block of NaN
-// only), the x and y ranges and the largest |x| + |y| (disk_reach.h).
+// only), the x and y ranges and the largest |x| + |y| (disk_reach.h), padded to a multiple of 16
+// blocks with blocks that no triangle reaches.
 struct FragmentArrays {
   std::vector<float> x, y, z, cos_rotation, sin_rotation;
   std::vector<std::uint32_t> receiver;
+  std::vector<std::uint32_t> sorted_receivers;  // receiver[0, size), ascending
   std::vector<float> block_lowest_z, block_x0, block_x1, block_y0, block_y1, block_coordinates;
   float inverse_scale = 1.0f;
   float reach_per_height = 1.0f;
@@ -36,6 +38,9 @@ struct FragmentArrays {
   void assign(const std::vector<shadowcts::softtile::FragmentSetup>& fragments,
               const std::vector<std::uint32_t>& receivers);
   std::size_t words() const { return (size + 63) / 64; }
+  std::size_t blocks() const { return (size + fragment_block - 1) / fragment_block; }
+  // How many fragments lie on `triangle` (a triangle never shadows its own receiver).
+  std::size_t on_receiver(std::uint32_t triangle) const;
 };
 
 // The edge functions of one triangle (light-space vertices, its id `triangle`) for every
