@@ -45,6 +45,12 @@ struct VectorEdges {
   V3 e[3];     // valid where accepted
 };
 
+// disk_reach() in lanes, its operations in its order.
+HWY_INLINE V reach_lanes(D d, V height, V coordinates, float reach_per_height) {
+  const V slack = hn::Add(hn::Mul(coordinates, hn::Set(d, 0x1p-18f)), hn::Set(d, 0x1p-120f));
+  return hn::Add(hn::Mul(height, hn::Set(d, reach_per_height)), slack);
+}
+
 // The lanes where the triangle's box lies beside the fragment's disk: disk_reach.h's beside_disk,
 // its operations in its order.
 HWY_INLINE M beside_lanes(D d, const FragmentArrays& f, std::size_t j, const LightSpaceBox& box) {
@@ -52,8 +58,7 @@ HWY_INLINE M beside_lanes(D d, const FragmentArrays& f, std::size_t j, const Lig
           pz = hn::LoadU(d, f.z.data() + j);
   const V height = hn::Sub(hn::Set(d, box.z1), pz);
   const V coordinates = hn::Add(hn::Add(hn::Abs(px), hn::Abs(py)), hn::Set(d, box.magnitude));
-  const V slack = hn::Add(hn::Mul(coordinates, hn::Set(d, 0x1p-18f)), hn::Set(d, 0x1p-120f));
-  const V reach = hn::Add(hn::Mul(height, hn::Set(d, f.reach_per_height)), slack);
+  const V reach = reach_lanes(d, height, coordinates, f.reach_per_height);
   const M beside = hn::Or(hn::Or(hn::Gt(hn::Sub(px, hn::Set(d, box.x1)), reach),
                                  hn::Gt(hn::Sub(hn::Set(d, box.x0), px), reach)),
                           hn::Or(hn::Gt(hn::Sub(py, hn::Set(d, box.y1)), reach),
@@ -170,8 +175,7 @@ HWY_INLINE std::uint64_t blocks_in_reach(D d, const FragmentArrays& f, std::size
   const V height = hn::Sub(z1, lowest);
   const V coordinates =
       hn::Add(hn::LoadU(d, f.block_coordinates.data() + first), hn::Set(d, box.magnitude));
-  const V slack = hn::Add(hn::Mul(coordinates, hn::Set(d, 0x1p-18f)), hn::Set(d, 0x1p-120f));
-  const V reach = hn::Add(hn::Mul(height, hn::Set(d, f.reach_per_height)), slack);
+  const V reach = reach_lanes(d, height, coordinates, f.reach_per_height);
   const M beside = hn::Or(
       hn::Or(hn::Gt(hn::Sub(hn::LoadU(d, f.block_x0.data() + first), hn::Set(d, box.x1)), reach),
              hn::Gt(hn::Sub(hn::Set(d, box.x0), hn::LoadU(d, f.block_x1.data() + first)), reach)),
