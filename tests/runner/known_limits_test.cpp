@@ -53,8 +53,8 @@ TEST(KnownLimits, AGeneratorsLimitExplainsOnlyTheSamplesItCovers) {
 }
 
 // Embree leaks through the T-junction cracks of fuzz.watertight.1.37 (a limit the watertight
-// generator declares for it): the record Fails and names the limit in results.json, JUnit and the
-// terminal, and the other algorithms that run on the case are right there.
+// generator declares for it): the record Fails and names the limit in results.json, JUnit, the
+// report and the terminal, and the other algorithms that run on the case are right there.
 TEST(KnownLimits, TheRunnerNamesTheLimitOfAFailedRecord) {
   const fs::path out = fs::temp_directory_path() / "shadowcts_known_limits_test";
   fs::remove_all(out);
@@ -90,6 +90,11 @@ TEST(KnownLimits, TheRunnerNamesTheLimitOfAFailedRecord) {
   EXPECT_NE(xml.find("(a known limit: a float ray can slip through a T-junction&#39;s crack)"),
             std::string::npos)
       << xml;
+  std::ifstream html(out / "report.html");
+  const std::string report((std::istreambuf_iterator<char>(html)),
+                           std::istreambuf_iterator<char>());
+  EXPECT_NE(report.find("<div class=\"known-limit\">a known limit: a float ray can slip"),
+            std::string::npos);
   EXPECT_NE(log.str().find("    a known limit: a float ray can slip"), std::string::npos);
   EXPECT_NE(log.str().find("of the Fails, 1 is a known limit of its method"), std::string::npos)
       << log.str();
