@@ -64,13 +64,19 @@ void parse_shard(const std::string& text, RunOptions& options) {
   options.shard_count = count;
 }
 
+// The case that `command`'s --case FILE or --fixture NAME names (exactly one of them).
+NamedCase case_named_by(const std::string& command, const std::string& case_file,
+                        const std::string& fixture) {
+  if (case_file.empty() == fixture.empty())
+    throw UsageError(command + ": give exactly one of --case FILE or --fixture NAME");
+  if (!fixture.empty()) return make_named_case(fixture);
+  return {load_case_manifest(case_file), std::nullopt, {}};
+}
+
 int write_gbuffer(const std::string& case_file, const std::string& fixture,
                   const std::string& out) {
-  if (case_file.empty() == fixture.empty())
-    throw UsageError("gbuffer: give exactly one of --case FILE or --fixture NAME");
   ViewSamples samples;
-  NamedCase named = case_file.empty() ? make_named_case(fixture)
-                                      : NamedCase{load_case_manifest(case_file), std::nullopt, {}};
+  NamedCase named = case_named_by("gbuffer", case_file, fixture);
   if (named.samples) {
     samples = std::move(*named.samples);  // a fuzz case's own; the camera is only its frame's size
   } else {
@@ -317,12 +323,7 @@ int main(int argc, char** argv) {
                                     std::cout);
     if (*report) return write_report_command(report_dirs, report_out, std::cout);
     if (*export_command) {
-      if (export_case_file.empty() == export_fixture.empty())
-        throw UsageError("export: give exactly one of --case FILE or --fixture NAME");
-      const NamedCase named =
-          export_case_file.empty()
-              ? make_named_case(export_fixture)
-              : NamedCase{load_case_manifest(export_case_file), std::nullopt, {}};
+      const NamedCase named = case_named_by("export", export_case_file, export_fixture);
       export_case(named.c, named.samples, export_out, std::cout);
       return exit_pass;
     }
