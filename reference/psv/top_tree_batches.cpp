@@ -60,33 +60,64 @@ void set_subtree_depths(TopTree& tree, const std::vector<float>& own) {
 // then the innermost above that one's volume, ...), so each volume widens the wedges of its chain
 // with its own triangle read once. The reference folds with std::max from 0, which never takes a
 // NaN; a maximum does not depend on the order the volumes arrive in.
+//
+// Each link is a load from a volume anywhere in the tree that names the next one, so a chain
+// alone waits on memory at every step: each range of volumes walks several chains at once, a step
+// of each per round, every next node and triangle fetched a round before it is read.
 void set_wedges(TopTree& tree, const PlaneSide& planes, const std::vector<float>& own) {
+  const auto fetch_node = [&](std::uint32_t node) {
+    __builtin_prefetch(&tree.nodes[node]);                  // its plane and wedge
+    __builtin_prefetch(&tree.nodes[first_node(node) + 1]);  // its volume's ancestor link
+  };
   tbb::parallel_for(
-      tbb::blocked_range<std::size_t>(0, own.size(), 1024),
+      tbb::blocked_range<std::size_t>(0, own.size(), 4096),
       [&](const tbb::blocked_range<std::size_t>& range) {
-        for (std::size_t v = range.begin(); v != range.end(); ++v) {
-          // The ancestors and triangles lie anywhere: fetch ahead.
-          constexpr std::size_t ahead = 8;
-          if (v + ahead < range.end()) {
-            const std::uint32_t later = std::uint32_t((v + ahead) * nodes_per_volume);
-            const std::uint32_t node = ancestor_link(tree, later);
-            if (node != no_node) {
-              __builtin_prefetch(&tree.nodes[node]);
-              __builtin_prefetch(&tree.nodes[first_node(node) + 1]);
-              __builtin_prefetch(&planes.triangles()[volume_triangle(tree, later)]);
-            }
+        struct Chain {
+          std::uint32_t node;  // the next intersection node to widen
+          float depth;         // the volume's own
+          const Triangle* triangle;
+        };
+        constexpr std::size_t chains_in_flight = 16;
+        Chain chains[chains_in_flight];
+        std::size_t next = range.begin();
+        // The next volume of the range below an intersection node, into `chain`.
+        const auto start = [&](Chain& chain) {
+          for (; next != range.end(); ++next) {
+            const std::uint32_t first = std::uint32_t(next * nodes_per_volume);
+            const std::uint32_t node = ancestor_link(tree, first);
+            if (node == no_node) continue;
+            chain = {node, own[next], &planes.triangles()[volume_triangle(tree, first)]};
+            fetch_node(node);
+            __builtin_prefetch(chain.triangle);
+            __builtin_prefetch(reinterpret_cast<const char*>(chain.triangle + 1) - 1);
+            ++next;
+            return true;
           }
-          const std::uint32_t first = std::uint32_t(v * nodes_per_volume);
-          if (ancestor_link(tree, first) == no_node) continue;
-          const Triangle& t = planes.triangles()[volume_triangle(tree, first)];
-          for (std::uint32_t node = ancestor_link(tree, first); node != no_node;
-               node = ancestor_link(tree, node)) {
-            if (is_capping_node(node)) continue;
-            const float wedge = triangle_wedge(planes, tree.nodes[node], t, own[v]);
-            std::atomic_ref<float> widest(tree.nodes[node].wedge);
-            float current = widest.load(std::memory_order_relaxed);
-            while (wedge > current &&
-                   !widest.compare_exchange_weak(current, wedge, std::memory_order_relaxed)) {
+          return false;
+        };
+        std::size_t walking = 0;
+        while (walking < chains_in_flight && start(chains[walking])) ++walking;
+        while (walking > 0) {
+          for (std::size_t i = 0; i < walking;) {
+            Chain& chain = chains[i];
+            const std::uint32_t node = chain.node;
+            if (!is_capping_node(node)) {
+              const float wedge =
+                  triangle_wedge(planes, tree.nodes[node], *chain.triangle, chain.depth);
+              std::atomic_ref<float> widest(tree.nodes[node].wedge);
+              float current = widest.load(std::memory_order_relaxed);
+              while (wedge > current &&
+                     !widest.compare_exchange_weak(current, wedge, std::memory_order_relaxed)) {
+              }
+            }
+            chain.node = ancestor_link(tree, node);
+            if (chain.node != no_node) {
+              fetch_node(chain.node);
+              ++i;
+            } else if (!start(chain)) {
+              chain = chains[--walking];  // the last chain takes its place
+            } else {
+              ++i;
             }
           }
         }
