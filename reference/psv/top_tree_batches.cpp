@@ -26,30 +26,34 @@ std::uint32_t slot_of(const TopTree& tree, const Descent& d) {
 // from the last volume to the first finds, per volume, the smallest non-NaN depth of its subtree
 // and which volume holds it first.
 void set_subtree_depths(TopTree& tree, const std::vector<float>& own) {
-  const std::size_t volumes = own.size();
-  std::vector<float> best(volumes, INFINITY);
-  std::vector<std::uint32_t> holder(volumes, no_node);
-  const auto improves = [&](float value, std::uint32_t index, std::size_t v) {
-    if (holder[v] == no_node || value < best[v]) return true;
-    return !(best[v] < value) && index < holder[v];
+  // Per volume: the smallest depth of its subtree so far and the first volume holding it. One
+  // entry per child read: the children lie anywhere after the volume.
+  struct Smallest {
+    float depth = INFINITY;
+    std::uint32_t holder = no_node;
   };
-  for (std::size_t v = volumes; v-- > 0;) {
-    if (!std::isnan(own[v])) {
-      best[v] = own[v];
-      holder[v] = std::uint32_t(v);
-    }
+  const std::size_t volumes = own.size();
+  std::vector<Smallest> smallest(volumes);
+  const auto children = [&](std::size_t v, auto&& f) {
     for (std::uint32_t k = 0; k < nodes_per_volume; ++k) {
       const TopNode& n = tree.nodes[v * nodes_per_volume + k];
-      for (const std::uint32_t child : {n.positive, n.intersection}) {
-        if (child == no_node) continue;
-        const std::uint32_t w = volume_of(child);
-        if (holder[w] != no_node && improves(best[w], holder[w], v)) {
-          best[v] = best[w];
-          holder[v] = holder[w];
-        }
-      }
+      if (n.positive != no_node) f(volume_of(n.positive));
+      if (n.intersection != no_node) f(volume_of(n.intersection));
     }
-    const float depth = std::isnan(own[v]) ? own[v] : best[v];
+  };
+  constexpr std::size_t ahead = 16;  // volumes whose children's entries are fetched ahead
+  for (std::size_t v = volumes; v-- > 0;) {
+    if (v >= ahead) children(v - ahead, [&](std::uint32_t w) { __builtin_prefetch(&smallest[w]); });
+    Smallest& mine = smallest[v];
+    if (!std::isnan(own[v])) mine = {own[v], std::uint32_t(v)};
+    children(v, [&](std::uint32_t w) {
+      const Smallest& theirs = smallest[w];
+      if (theirs.holder == no_node) return;
+      if (mine.holder == no_node || theirs.depth < mine.depth ||
+          (!(mine.depth < theirs.depth) && theirs.holder < mine.holder))
+        mine = theirs;
+    });
+    const float depth = std::isnan(own[v]) ? own[v] : mine.depth;
     set_volume_depth(tree, std::uint32_t(v * nodes_per_volume), depth);
   }
 }
