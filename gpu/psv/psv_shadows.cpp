@@ -41,8 +41,7 @@ class DeviceDescents final : public psv::DescentEngine {
       : c_(c), planes_(planes), session_(std::move(session)), exact_tests_(exact_tests) {}
 
   void descend_batch(const psv::TopTree& tree, const std::vector<std::uint32_t>& triangles,
-                     std::vector<psv::Descent>& out,
-                     std::vector<psv::BatchVolume>& volumes) override {
+                     std::vector<psv::Descent>& out, psv::BatchVolumes& volumes) override {
     session_->descend(reinterpret_cast<const PsvDeviceNode*>(tree.nodes.data()),
                       reinterpret_cast<const PsvDeviceSource*>(tree.sources.data()),
                       tree.nodes.size(), tree.root, triangles, descents_);

@@ -47,9 +47,9 @@ struct VolumeSource {
 };
 
 struct TopTree {
-  HugePageVector<TopNode> nodes;      // volume v: nodes[4 v .. 4 v + 3]; 128 MB at 1M triangles
-  std::vector<VolumeSource> sources;  // per volume
-  std::uint32_t root = no_node;       // 0 once a volume exists
+  HugePageVector<TopNode> nodes;         // volume v: nodes[4 v .. 4 v + 3]; 128 MB at 1M triangles
+  HugePageVector<VolumeSource> sources;  // per volume
+  std::uint32_t root = no_node;          // 0 once a volume exists
 };
 
 inline std::uint32_t volume_of(std::uint32_t node) {

@@ -25,7 +25,7 @@ std::uint32_t slot_of(const TopTree& tree, const Descent& d) {
 // Volumes are numbered in insertion order and every volume below v comes after it, so one sweep
 // from the last volume to the first finds, per volume, the smallest non-NaN depth of its subtree
 // and which volume holds it first.
-void set_subtree_depths(TopTree& tree, const std::vector<float>& own) {
+void set_subtree_depths(TopTree& tree, const HugePageVector<float>& own) {
   // Per volume: the smallest depth of its subtree so far and the first volume holding it. One
   // entry per child read: the children lie anywhere after the volume.
   struct Smallest {
@@ -33,7 +33,7 @@ void set_subtree_depths(TopTree& tree, const std::vector<float>& own) {
     std::uint32_t holder = no_node;
   };
   const std::size_t volumes = own.size();
-  std::vector<Smallest> smallest(volumes);
+  HugePageVector<Smallest> smallest(volumes);
   const auto children = [&](std::size_t v, auto&& f) {
     for (std::uint32_t k = 0; k < nodes_per_volume; ++k) {
       const TopNode& n = tree.nodes[v * nodes_per_volume + k];
@@ -68,7 +68,7 @@ void set_subtree_depths(TopTree& tree, const std::vector<float>& own) {
 // Each link is a load from a volume anywhere in the tree that names the next one, so a chain
 // alone waits on memory at every step: each range of volumes walks several chains at once, a step
 // of each per round, every next node and triangle fetched a round before it is read.
-void set_wedges(TopTree& tree, const PlaneSide& planes, const std::vector<float>& own) {
+void set_wedges(TopTree& tree, const PlaneSide& planes, const HugePageVector<float>& own) {
   const auto fetch_node = [&](std::uint32_t node) {
     __builtin_prefetch(&tree.nodes[node]);                  // its plane and wedge
     __builtin_prefetch(&tree.nodes[first_node(node) + 1]);  // its volume's ancestor link
@@ -136,7 +136,7 @@ void make_batch_volume(const PlaneSide& planes, std::uint32_t triangle, BatchVol
 }
 
 void make_batch_volumes(const PlaneSide& planes, const std::vector<std::uint32_t>& triangles,
-                        const std::vector<Descent>& descents, std::vector<BatchVolume>& volumes) {
+                        const std::vector<Descent>& descents, BatchVolumes& volumes) {
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), 256),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       for (std::size_t j = range.begin(); j != range.end(); ++j)
@@ -151,16 +151,16 @@ TopTree build_top_tree_in_batches(const PlaneSide& planes, const std::vector<std
   TopTree tree;
   tree.nodes.reserve(order.size() * nodes_per_volume);
   tree.sources.reserve(order.size());
-  std::vector<float> own_depth;
+  HugePageVector<float> own_depth;
   own_depth.reserve(order.size());
-  std::vector<std::uint32_t> first_level;  // per volume: nodes from the root to its first node
+  HugePageVector<std::uint32_t> first_level;  // per volume: nodes from the root to its first node
   first_level.reserve(order.size());
   statistics.height = 0;
 
   constexpr std::size_t largest_batch = std::size_t(1) << 15;
   std::vector<std::uint32_t> triangles;
   std::vector<Descent> descents;
-  std::vector<BatchVolume> volumes;
+  BatchVolumes volumes;
   for (std::size_t begin = 0; begin < order.size();) {
     const std::size_t size = std::min(
         {order.size() - begin, largest_batch, std::max<std::size_t>(1, own_depth.size() / 2)});

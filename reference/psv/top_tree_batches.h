@@ -21,6 +21,7 @@
 #include "reference/psv/top_tree.h"
 #include "reference/psv/top_tree_build.h"
 #include "shadowcts/case.h"
+#include "shadowcts/huge_pages.h"
 
 namespace shadowcts::psv {
 
@@ -41,12 +42,16 @@ struct BatchVolume {
   VolumeSource source;
 };
 
+// A batch's volumes (4.6 MB at the largest batch), in huge pages: a fresh 4 KiB page costs a
+// fault (huge_pages.h).
+using BatchVolumes = HugePageVector<BatchVolume>;
+
 // The volume of `triangle` (an index into planes.triangles()), as the reference makes it.
 void make_batch_volume(const PlaneSide& planes, std::uint32_t triangle, BatchVolume& volume);
 
 // make_batch_volume for every triangle of a batch that was not dropped, on oneTBB threads.
 void make_batch_volumes(const PlaneSide& planes, const std::vector<std::uint32_t>& triangles,
-                        const std::vector<Descent>& descents, std::vector<BatchVolume>& volumes);
+                        const std::vector<Descent>& descents, BatchVolumes& volumes);
 
 // What descends: a port's plane tests and parallelism.
 class DescentEngine {
@@ -56,7 +61,7 @@ class DescentEngine {
   // `tree`, which does not change during the call, into out[i], and makes volumes[i] of each
   // triangle not dropped (make_batch_volume; after the descents, make_batch_volumes).
   virtual void descend_batch(const TopTree& tree, const std::vector<std::uint32_t>& triangles,
-                             std::vector<Descent>& out, std::vector<BatchVolume>& volumes) = 0;
+                             std::vector<Descent>& out, BatchVolumes& volumes) = 0;
   // Continues `d` from `node` on the tree as it stands now (the commit's resumed descents).
   virtual void resume(const TopTree& tree, std::uint32_t node, std::uint32_t triangle,
                       Descent& d) = 0;

@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "reference/psv/top_tree_depth.h"
+#include "shadowcts/huge_pages.h"
 #include "simd/psv/query_hybrid.h"
 #include "simd/psv/query_packet.h"
 #include "simd/psv/query_stack.h"
@@ -223,8 +224,12 @@ Packets tile_packets(const RegularSamples& samples, const std::vector<std::uint8
   width = std::max<std::uint32_t>(width, 1);
   const std::uint64_t tiles_across = (width + tile - 1) / tile;
   // The queried samples with their tile (band of 4 rows, then column): one division each.
+  // Reserved once and the tiles in huge pages: growing arrays take fresh pages, and each fresh
+  // 4 KiB page is a fault (huge_pages.h).
   std::vector<std::uint32_t> kept;
-  std::vector<std::uint64_t> tile_of;
+  kept.reserve(samples.size());
+  HugePageVector<std::uint64_t> tile_of;
+  tile_of.reserve(samples.size());
   for (std::size_t i = 0; i < samples.size(); ++i) {
     if (!queried[i]) continue;
     const std::uint32_t pixel = samples.index[i], y = pixel / width;
@@ -233,7 +238,7 @@ Packets tile_packets(const RegularSamples& samples, const std::vector<std::uint8
   }
   Packets packets;
   packets.sample.resize(kept.size());
-  std::vector<std::uint64_t> sorted_tile(kept.size());
+  HugePageVector<std::uint64_t> sorted_tile(kept.size());
   // The samples are in pixel order, so a band is a run of them: within it, a counting sort by
   // tile column keeps each tile's samples in pixel order.
   std::vector<std::uint32_t> count(tiles_across + 1);

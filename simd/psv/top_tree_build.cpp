@@ -53,7 +53,7 @@ class ParallelDescents final : public ref::DescentEngine {
       : c_(c), planes_(planes), corners_(corners) {}
 
   void descend_batch(const ref::TopTree& tree, const std::vector<std::uint32_t>& triangles,
-                     std::vector<Descent>& out, std::vector<ref::BatchVolume>& volumes) override {
+                     std::vector<Descent>& out, ref::BatchVolumes& volumes) override {
     add_corners(tree);  // the last batch's
     batch_triangles_ = triangles;
     batch_corners_.resize(triangles.size());
@@ -125,6 +125,7 @@ std::vector<std::uint32_t> insertion_order(const Case& c, const std::vector<std:
                       }
                     });
   std::vector<std::uint32_t> order;
+  order.reserve(c.triangles.size());  // one allocation: each fresh page is a fault
   for (std::size_t i = 0; i < c.triangles.size(); ++i) {
     if (light_side[i] == not_a_caster) continue;
     ++statistics.casters;
