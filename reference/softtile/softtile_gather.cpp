@@ -88,7 +88,7 @@ std::size_t cluster_end(const Case& c, std::size_t first) {
 }
 
 GatheredCluster gather_cluster(const Case& c, const GatherFrame& frame, std::size_t first,
-                               std::size_t stop, std::vector<GatheredTriangle>& triangles,
+                               std::size_t stop, GatheredTriangles& triangles,
                                GatherCounts& counts) {
   const glm::dvec3& direction = frame.sun.direction;
   glm::dvec3 cluster_lo(std::numeric_limits<double>::max()),

@@ -9,6 +9,7 @@
 
 #include "reference/softtile/shadow_cone.h"
 #include "shadowcts/case.h"
+#include "shadowcts/huge_pages.h"
 #include "shadowcts/view_samples.h"
 
 namespace shadowcts::softtile {
@@ -29,6 +30,10 @@ struct GatheredTriangle {
   std::array<glm::vec3, 3> light_space;
   ShadowCone cone;
 };
+
+// 72 bytes a triangle, 72 MB at a million: in huge pages (a fresh 4 KiB page costs a fault,
+// huge_pages.h).
+using GatheredTriangles = HugePageVector<GatheredTriangle>;
 
 struct GatheredCluster {
   ShadowCone cone;
@@ -51,7 +56,7 @@ struct GatherCounts {
 struct Gathered : GatherCounts {
   SunGeometry sun;
   LightSpace light_space;
-  std::vector<GatheredTriangle> triangles;
+  GatheredTriangles triangles;
   std::vector<GatheredCluster> clusters;
 };
 
@@ -86,7 +91,7 @@ std::size_t cluster_end(const Case& c, std::size_t first);
 // The cluster of triangles [first, stop): its survivors appended to `triangles` in order, its
 // counts added to `counts`; the returned cluster's range is in `triangles` (count 0: none kept).
 GatheredCluster gather_cluster(const Case& c, const GatherFrame& frame, std::size_t first,
-                               std::size_t stop, std::vector<GatheredTriangle>& triangles,
+                               std::size_t stop, GatheredTriangles& triangles,
                                GatherCounts& counts);
 
 }  // namespace shadowcts::softtile
