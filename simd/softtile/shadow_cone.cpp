@@ -7,6 +7,7 @@
 #include <hwy/contrib/sort/vqsort.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -14,7 +15,6 @@
 #include <vector>
 
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 #include <glm/geometric.hpp>
 
 #include "shadowcts/geometry/morton.h"
@@ -574,10 +574,16 @@ HWY_EXPORT(CullCandidates);
 
 namespace {
 
-void append(ConeArrays& arrays, const shadowcts::softtile::ShadowCone& cone) {
-  for (int k = 0; k < 3; ++k) arrays.tip[k].push_back(cone.tip[k]);
-  arrays.start_height.push_back(cone.start_height);
-  arrays.tip_length.push_back(glm::length(cone.tip));
+void resize(ConeArrays& arrays, std::size_t n) {
+  for (int k = 0; k < 3; ++k) arrays.tip[k].resize(n);
+  arrays.start_height.resize(n);
+  arrays.tip_length.resize(n);
+}
+
+void set_cone(ConeArrays& arrays, std::size_t i, const shadowcts::softtile::ShadowCone& cone) {
+  for (int k = 0; k < 3; ++k) arrays.tip[k][i] = cone.tip[k];
+  arrays.start_height[i] = cone.start_height;
+  arrays.tip_length[i] = glm::length(cone.tip);
 }
 
 // A ball that holds the tips of every triangle below a node (from the box around them), and
@@ -639,22 +645,35 @@ ConeTree cone_tree(const shadowcts::softtile::Gathered& gathered, const glm::dve
       lo = glm::min(lo, t.cone.tip);
       hi = glm::max(hi, t.cone.tip);
     }
-  // Keys: the Morton code of the tip in 21 bits per axis over the finite tips' box (non-finite
-  // tips after every finite one), then the index: unique, so the order is deterministic.
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> keys(n);
+  // Keys in one 64-bit word, sorted in lanes: whether the tip is not finite (those after every
+  // finite one), the Morton code of the tip over the finite tips' box in as many bits per axis as
+  // the index leaves (21 down to 14 at a million triangles: their top bits), then the index:
+  // unique, so the order is deterministic.
+  const auto index_bits = unsigned(std::bit_width(n));
+  const unsigned axis_bits = std::min(21u, (63u - index_bits) / 3u);
+  HugePageVector<std::uint64_t> keys(n);
   tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
     const glm::dvec3 tip = gathered.triangles[i].cone.tip;
-    keys[i] = {finite(tip) ? geometry::morton_code_in_box(tip, lo, hi - lo) : ~std::uint64_t(0),
-               std::uint32_t(i)};
+    const std::uint64_t code =
+        finite(tip) ? geometry::morton_code_in_box(tip, lo, hi - lo) >> (63u - 3u * axis_bits)
+                    : std::uint64_t(1) << (3u * axis_bits);
+    keys[i] = code << index_bits | i;
   });
-  tbb::parallel_sort(keys.begin(), keys.end());
+  const hwy::Sorter sorter;
+  sorter(keys.data(), n, hwy::SortAscending());
+  const std::uint64_t index_mask = (std::uint64_t(1) << index_bits) - 1;
   ConeTree tree;
-  for (const auto& [code, i] : keys) {
-    append(tree.triangles, gathered.triangles[i].cone);
-    tree.index.push_back(i);
-  }
+  resize(tree.triangles, n);
+  tree.index.resize(n);
+  tbb::parallel_for(std::size_t(0), n, [&](std::size_t k) {
+    const auto i = std::uint32_t(keys[k] & index_mask);
+    set_cone(tree.triangles, k, gathered.triangles[i].cone);
+    tree.index[k] = i;
+  });
   const ConeArrays& leaves = tree.triangles;
-  std::vector<TipBall> balls, above;  // of the nodes of the level below and of the new level
+  // Of the nodes of the level below and of the new level (88 bytes each: 11 MB over a million
+  // triangles).
+  HugePageVector<TipBall> balls, above;
   std::size_t count = n;
   while (count > 0 && (tree.levels.empty() || count > tree_arity)) {
     const std::size_t nodes = (count + tree_arity - 1) / tree_arity;
@@ -691,9 +710,10 @@ ConeTree cone_tree(const shadowcts::softtile::Gathered& gathered, const glm::dve
 GatheredCones gathered_cones(const shadowcts::softtile::Gathered& gathered) {
   GatheredCones cones;
   cones.cluster_of.resize(gathered.triangles.size());
+  resize(cones.clusters, gathered.clusters.size());
   for (std::size_t c = 0; c < gathered.clusters.size(); ++c) {
     const shadowcts::softtile::GatheredCluster& cluster = gathered.clusters[c];
-    append(cones.clusters, cluster.cone);
+    set_cone(cones.clusters, c, cluster.cone);
     std::fill_n(cones.cluster_of.begin() + cluster.first, cluster.count, std::uint32_t(c));
   }
   for (int k = 0; k < 3; ++k) cones.direction[k] = gathered.sun.direction[k];

@@ -9,12 +9,15 @@
 
 #include "reference/softtile/shadow_cone.h"
 #include "reference/softtile/softtile_gather.h"
+#include "shadowcts/huge_pages.h"
 
 namespace shadowcts::simd::softtile {
 
+// In huge pages where large (a million triangles: 40 MB; a fresh 4 KiB page costs a fault,
+// huge_pages.h).
 struct ConeArrays {
-  std::vector<double> tip[3], start_height;
-  std::vector<double> tip_length;  // glm::length(tip), as the reference's height slack takes it
+  HugePageVector<double> tip[3], start_height;
+  HugePageVector<double> tip_length;  // glm::length(tip), as the reference's height slack takes it
 };
 
 // Nodes of the cone tree hold this many triangles (leaves) or child nodes.
@@ -38,15 +41,15 @@ struct ConeGroups {
 // tree_arity nodes. A tile walks it from the top, so that it tests the cones of the triangles near
 // its bound, not those of every triangle of every cluster near it.
 struct ConeTree {
-  ConeArrays triangles;              // in tree order
-  std::vector<std::uint32_t> index;  // tree order -> index into Gathered::triangles
+  ConeArrays triangles;                 // in tree order
+  HugePageVector<std::uint32_t> index;  // tree order -> index into Gathered::triangles
   std::vector<ConeGroups> levels;
 };
 
 // The gathered cones as structure of arrays, and the sun.
 struct GatheredCones {
   ConeArrays clusters;
-  std::vector<std::uint32_t> cluster_of;  // per gathered triangle, its cluster
+  HugePageVector<std::uint32_t> cluster_of;  // per gathered triangle, its cluster
   ConeTree tree;
   double direction[3] = {0, 0, 1};
   double cos_radius = 1.0, sin_radius = 0.0;
