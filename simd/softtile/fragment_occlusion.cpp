@@ -51,19 +51,32 @@ HWY_INLINE V reach_lanes(D d, V height, V coordinates, float reach_per_height) {
   return hn::Add(hn::Mul(height, hn::Set(d, reach_per_height)), slack);
 }
 
-// The lanes where the triangle's box lies beside the fragment's disk: disk_reach.h's beside_disk,
-// its operations in its order.
+// The lanes whose x range [x0, x1] and y range [y0, y1] lie farther than `reach` from the
+// triangle's box on some side: disk_reach.h's beside_disk, its operations in its order.
+HWY_INLINE M beside_ranges(D d, V x0, V x1, V y0, V y1, V reach, const LightSpaceBox& box) {
+  return hn::Or(hn::Or(hn::Gt(hn::Sub(x0, hn::Set(d, box.x1)), reach),
+                       hn::Gt(hn::Sub(hn::Set(d, box.x0), x1), reach)),
+                hn::Or(hn::Gt(hn::Sub(y0, hn::Set(d, box.y1)), reach),
+                       hn::Gt(hn::Sub(hn::Set(d, box.y0), y1), reach)));
+}
+
+// The mask's lanes as bits, lane 0 lowest.
+HWY_INLINE std::uint64_t mask_bits(D d, M m) {
+  std::uint8_t bytes[8] = {};
+  hn::StoreMaskBits(d, m, bytes);
+  std::uint64_t bits = 0;
+  std::memcpy(&bits, bytes, sizeof bits);
+  return bits;
+}
+
+// The lanes where the triangle's box lies beside the fragment's disk.
 HWY_INLINE M beside_lanes(D d, const FragmentArrays& f, std::size_t j, const LightSpaceBox& box) {
   const V px = hn::LoadU(d, f.x.data() + j), py = hn::LoadU(d, f.y.data() + j),
           pz = hn::LoadU(d, f.z.data() + j);
   const V height = hn::Sub(hn::Set(d, box.z1), pz);
   const V coordinates = hn::Add(hn::Add(hn::Abs(px), hn::Abs(py)), hn::Set(d, box.magnitude));
   const V reach = reach_lanes(d, height, coordinates, f.reach_per_height);
-  const M beside = hn::Or(hn::Or(hn::Gt(hn::Sub(px, hn::Set(d, box.x1)), reach),
-                                 hn::Gt(hn::Sub(hn::Set(d, box.x0), px), reach)),
-                          hn::Or(hn::Gt(hn::Sub(py, hn::Set(d, box.y1)), reach),
-                                 hn::Gt(hn::Sub(hn::Set(d, box.y0), py), reach)));
-  return hn::And(hn::Gt(height, hn::Zero(d)), beside);
+  return hn::And(hn::Gt(height, hn::Zero(d)), beside_ranges(d, px, px, py, py, reach, box));
 }
 
 // The lanes of fragments j.. that exist and whose receiver is not the triangle: the reference's
@@ -176,16 +189,10 @@ HWY_INLINE std::uint64_t blocks_in_reach(D d, const FragmentArrays& f, std::size
   const V coordinates =
       hn::Add(hn::LoadU(d, f.block_coordinates.data() + first), hn::Set(d, box.magnitude));
   const V reach = reach_lanes(d, height, coordinates, f.reach_per_height);
-  const M beside = hn::Or(
-      hn::Or(hn::Gt(hn::Sub(hn::LoadU(d, f.block_x0.data() + first), hn::Set(d, box.x1)), reach),
-             hn::Gt(hn::Sub(hn::Set(d, box.x0), hn::LoadU(d, f.block_x1.data() + first)), reach)),
-      hn::Or(hn::Gt(hn::Sub(hn::LoadU(d, f.block_y0.data() + first), hn::Set(d, box.y1)), reach),
-             hn::Gt(hn::Sub(hn::Set(d, box.y0), hn::LoadU(d, f.block_y1.data() + first)), reach)));
-  std::uint8_t bytes[8] = {};
-  hn::StoreMaskBits(d, hn::AndNot(beside, hn::Gt(z1, lowest)), bytes);
-  std::uint64_t bits = 0;
-  std::memcpy(&bits, bytes, sizeof bits);
-  return bits;
+  const M beside = beside_ranges(
+      d, hn::LoadU(d, f.block_x0.data() + first), hn::LoadU(d, f.block_x1.data() + first),
+      hn::LoadU(d, f.block_y0.data() + first), hn::LoadU(d, f.block_y1.data() + first), reach, box);
+  return mask_bits(d, hn::AndNot(beside, hn::Gt(z1, lowest)));
 }
 
 template <bool kRotated>
@@ -202,11 +209,7 @@ HWY_INLINE void occlude_vector(D d, const FragmentArrays& f, std::size_t j,
     hn::Store(v.e[i].y, d, lane_edges[3 * i + 1]);
     hn::Store(v.e[i].z, d, lane_edges[3 * i + 2]);
   }
-  std::uint8_t bytes[8] = {};
-  hn::StoreMaskBits(d, v.accepted, bytes);
-  std::uint64_t bits = 0;
-  std::memcpy(&bits, bytes, sizeof bits);
-  for (; bits != 0; bits &= bits - 1) {
+  for (std::uint64_t bits = mask_bits(d, v.accepted); bits != 0; bits &= bits - 1) {
     const std::size_t lane = std::size_t(__builtin_ctzll(bits));
     glm::vec3 e[3];
     for (int i = 0; i < 3; ++i)
