@@ -16,6 +16,7 @@
 
 #include "shadowcts/geometry/camera_frame.h"
 #include "shadowcts/geometry/sphere_box.h"
+#include "simd/lane_bits-inl.h"
 #include "simd/lightassign/lightassign_kernels.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -24,16 +25,6 @@ namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
 constexpr std::size_t node_width = LightBvh::branching;  // 32
-
-// Bit i set for lane i of mask m (at most 64 lanes).
-template <class D, class M>
-HWY_INLINE std::uint64_t mask_bits(D d, M m) {
-  std::uint8_t bytes[16] = {};
-  hn::StoreMaskBits(d, m, bytes);
-  std::uint64_t bits = 0;
-  std::memcpy(&bits, bytes, sizeof(bits));
-  return bits;
-}
 
 // LightBvh::overlap(boxes[first + i], box) for the 32 boxes from `first`, as bits.
 HWY_INLINE std::uint32_t overlap_bits(const BoxArrays& boxes, std::size_t first, const Aabb& box) {
@@ -52,7 +43,7 @@ HWY_INLINE std::uint32_t overlap_bits(const BoxArrays& boxes, std::size_t first,
                            hn::Le(qmin_y, hn::LoadU(d, boxes.max[1].data() + at))));
     m = hn::And(m, hn::And(hn::Le(hn::LoadU(d, boxes.min[2].data() + at), qmax_z),
                            hn::Le(qmin_z, hn::LoadU(d, boxes.max[2].data() + at))));
-    bits |= mask_bits(d, m) << i;
+    bits |= lane_bits(d, m) << i;
   }
   return std::uint32_t(bits);
 }
@@ -75,8 +66,8 @@ HWY_INLINE void sphere_box_filter(D d, const V cx, const V cy, const V cz, const
   }
   const V error = hn::Add(hn::Mul(hn::Set(d, geometry::sphere_box_error_scale), magnitude2),
                           hn::Set(d, geometry::sphere_box_underflow_guard));
-  inside = mask_bits(d, hn::Lt(hn::Add(distance2, error), r2));
-  outside = mask_bits(d, hn::Gt(hn::Sub(distance2, error), r2));
+  inside = lane_bits(d, hn::Lt(hn::Add(distance2, error), r2));
+  outside = lane_bits(d, hn::Gt(hn::Sub(distance2, error), r2));
 }
 
 // LightBvh::overlap(leaf box, box) from the leaf's sphere, without its box: the leaf box is
@@ -139,7 +130,7 @@ HWY_INLINE void test_leaves(const LightBvhLanes& bvh, const LeafTest& leaf, cons
                                         hn::LoadU(dwide, bvh.sphere[1].data() + at),
                                         hn::LoadU(dwide, bvh.sphere[2].data() + at),
                                         hn::LoadU(dwide, bvh.sphere[3].data() + at));
-    candidates |= mask_bits(dwide, maybe) << i;
+    candidates |= lane_bits(dwide, maybe) << i;
   }
   if (candidates == 0) return;
   std::uint64_t overlapping = 0, inside = 0, outside = 0;
@@ -150,7 +141,7 @@ HWY_INLINE void test_leaves(const LightBvhLanes& bvh, const LeafTest& leaf, cons
     const auto cx = hn::PromoteTo(dd, hn::LoadU(df, bvh.sphere[0].data() + at));
     const auto cy = hn::PromoteTo(dd, hn::LoadU(df, bvh.sphere[1].data() + at));
     const auto cz = hn::PromoteTo(dd, hn::LoadU(df, bvh.sphere[2].data() + at));
-    const std::uint64_t hit = mask_bits(dd, leaf.overlaps(dd, cx, cy, cz, r));
+    const std::uint64_t hit = lane_bits(dd, leaf.overlaps(dd, cx, cy, cz, r));
     if (hit == 0) continue;
     overlapping |= hit << i;
     std::uint64_t in_bits = 0, out_bits = 0;
@@ -401,7 +392,7 @@ ListWork CullTileCandidates(const std::vector<RangedLight>& lights, const ViewFr
     }
     if (hn::AllTrue(d, rejected)) continue;
     const std::uint64_t lane_mask = n >= 64 ? ~0ull : (1ull << n) - 1;
-    std::uint64_t passing = ~mask_bits(d, rejected) & lane_mask;
+    std::uint64_t passing = ~lane_bits(d, rejected) & lane_mask;
     std::uint64_t inside = 0, outside = 0;
     sphere_box_filter(d, cx, cy, cz, hn::Mul(radius, radius), tile.box, inside, outside);
     for (; passing != 0; passing &= passing - 1) {
@@ -462,7 +453,7 @@ void RowClusterKeys(const ViewFrame& frame, const SliceTable& slices, int slice_
       const auto sure = hn::And(hn::Ge(depth_v, hn::GatherIndex(d, slices.low.data(), at)),
                                 hn::Lt(depth_v, hn::GatherIndex(d, slices.high.data(), at)));
       if (hn::AllTrue(d, sure)) continue;
-      unsure = ~mask_bits(d, sure);
+      unsure = ~lane_bits(d, sure);
     }
     hn::Store(depth_v, d, depth);
     hn::Store(tile, du, tile_key);

@@ -18,6 +18,7 @@
 #include <glm/geometric.hpp>
 
 #include "shadowcts/float_rounding.h"
+#include "simd/lane_bits-inl.h"
 #include "simd/metric/traversal.h"
 
 // Plain C++ used by every target and by the precomputations: defined once per translation unit.
@@ -48,6 +49,7 @@ struct PlaneBounds {
 HWY_BEFORE_NAMESPACE();
 namespace shadowcts::simd::metric::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
+using shadowcts::simd::HWY_NAMESPACE::lane_bits;
 
 using shadowcts::metric::LightFrame;
 using shadowcts::metric::LightSpaceQuery;
@@ -80,34 +82,6 @@ struct Packet {
   alignas(64) double from_x[P], from_y[P], from_z[P], to_x[P], to_y[P], to_z[P];
   std::optional<geometry::ReceiverHalfSpace> half_space[P];
 };
-
-// Lane bits of a mask of at most 8 lanes (doubles in vectors of at most 512 bits).
-template <class D, class M>
-HWY_INLINE std::uint32_t lane_bits(D d, M mask) {
-#if HWY_TARGET <= HWY_AVX3
-  (void)d;
-  return std::uint32_t(mask.raw);  // as float_lane_bits
-#else
-  std::uint8_t bytes[8] = {};
-  hn::StoreMaskBits(d, mask, bytes);
-  return bytes[0];
-#endif
-}
-
-// Lane bits of a mask of at most 16 lanes (floats in vectors of at most 512 bits).
-template <class D, class M>
-HWY_INLINE std::uint32_t float_lane_bits(D d, M mask) {
-#if HWY_TARGET <= HWY_AVX3
-  // An AVX-512 mask register holds the lane bits: no round trip through memory (a walk step
-  // reads some ten masks).
-  (void)d;
-  return std::uint32_t(mask.raw);
-#else
-  std::uint8_t bytes[8] = {};
-  hn::StoreMaskBits(d, mask, bytes);
-  return std::uint32_t(bytes[0]) | (std::uint32_t(bytes[1]) << 8);
-#endif
-}
 
 // Whether a threshold's lanes are read below it (inside, overlap_high, near_side) or above it.
 constexpr bool read_below(int k) {
@@ -297,15 +271,12 @@ NodeDecisions evaluate_node(const PacketTraversal& traversal, const PacketNode& 
 template <class D, class V>
 HWY_INLINE LaneMask reaching_lanes(D d, const FastNode& n, V qlo, V qhi, LaneMask here,
                                    std::size_t j, NodeDecisions& out, LaneMask& doubt) {
-  const LaneMask reached =
-      float_lane_bits(d, hn::Ge(qlo, hn::Set(d, n.light_distance_high))) & here;
-  const LaneMask not_reached =
-      float_lane_bits(d, hn::Lt(qhi, hn::Set(d, n.light_distance_low))) & here;
+  const LaneMask reached = lane_bits(d, hn::Ge(qlo, hn::Set(d, n.light_distance_high))) & here;
+  const LaneMask not_reached = lane_bits(d, hn::Lt(qhi, hn::Set(d, n.light_distance_low))) & here;
   doubt = here & ~(reached | not_reached);
   if (reached != 0) {
-    const LaneMask deep = float_lane_bits(d, hn::Ge(qlo, hn::Set(d, n.pivot_light_distance_high)));
-    const LaneMask shallow =
-        float_lane_bits(d, hn::Lt(qhi, hn::Set(d, n.pivot_light_distance_low)));
+    const LaneMask deep = lane_bits(d, hn::Ge(qlo, hn::Set(d, n.pivot_light_distance_high)));
+    const LaneMask shallow = lane_bits(d, hn::Lt(qhi, hn::Set(d, n.pivot_light_distance_low)));
     doubt |= reached & ~(deep | shallow);
     out.deep |= (deep & reached) << j;
   }
@@ -393,10 +364,10 @@ NodeDecisions evaluate_in_float(const FastNode& n, const Packet<P>& pk, LaneMask
             const auto b = hn::And(hn::Gt(low, zero), hn::Lt(lhs, hn::Mul(low, low)));
             const auto a = hn::Or(hn::Lt(high, zero), hn::Gt(lhs, hn::Mul(high, high)));
             sure = hn::And(sure, hn::Or(a, b));
-            (read_below(k) ? below : above)[k] |=
-                (float_lane_bits(d, read_below(k) ? b : a) & reached) << j;
+            (read_below(k) ? below : above)[k] |= (lane_bits(d, read_below(k) ? b : a) & reached)
+                                                  << j;
           }
-          doubt |= reached & ~float_lane_bits(d, sure);
+          doubt |= reached & ~lane_bits(d, sure);
           out.reached |= reached << j;
           unsure |= doubt << j;
           continue;
@@ -408,8 +379,8 @@ NodeDecisions evaluate_in_float(const FastNode& n, const Packet<P>& pk, LaneMask
           const auto b = hn::Lt(f, lo), a = hn::Gt(f, hi);
           // Sureness stays in mask registers; one side's bits are read per threshold.
           sure = hn::And(sure, hn::Or(a, b));
-          (read_below(k) ? below : above)[k] |=
-              (float_lane_bits(d, read_below(k) ? b : a) & reached) << j;
+          (read_below(k) ? below : above)[k] |= (lane_bits(d, read_below(k) ? b : a) & reached)
+                                                << j;
         }
       } else {
         const V bx = hn::Set(d, n.b[0]), by = hn::Set(d, n.b[1]), bz = hn::Set(d, n.b[2]);
@@ -444,11 +415,11 @@ NodeDecisions evaluate_in_float(const FastNode& n, const Packet<P>& pk, LaneMask
           const auto a = hn::Or(hn::And(spans, hn::Gt(fp, hi)),
                                 hn::And(misses, hn::And(hn::Gt(fa, hi), hn::Gt(fb, hi))));
           sure = hn::And(sure, hn::Or(a, b));
-          (read_below(k) ? below : above)[k] |=
-              (float_lane_bits(d, read_below(k) ? b : a) & reached) << j;
+          (read_below(k) ? below : above)[k] |= (lane_bits(d, read_below(k) ? b : a) & reached)
+                                                << j;
         }
       }
-      doubt |= reached & ~float_lane_bits(d, sure);
+      doubt |= reached & ~lane_bits(d, sure);
       out.reached |= reached << j;
     }
     unsure |= doubt << j;
@@ -506,10 +477,9 @@ NodeDecisions evaluate_planar_in_float(const FastNode& n, const Packet<P>& pk, L
         const auto b = hn::Lt(length2, hn::Set(d, n.cos_t[k]));
         const auto a = hn::Gt(length2, hn::Set(d, n.sin_t[k]));
         sure = hn::And(sure, hn::Or(a, b));
-        (read_below(k) ? below : above)[k] |= (float_lane_bits(d, read_below(k) ? b : a) & reached)
-                                              << j;
+        (read_below(k) ? below : above)[k] |= (lane_bits(d, read_below(k) ? b : a) & reached) << j;
       }
-      doubt |= reached & ~float_lane_bits(d, sure);
+      doubt |= reached & ~lane_bits(d, sure);
       out.reached |= reached << j;
     }
     unsure |= doubt << j;
@@ -579,7 +549,7 @@ std::uint64_t triangles_to_decide(const TriangleGroup* groups, std::uint32_t cou
       positive = hn::Or(positive, hn::Gt(edge, bound));
     }
     const auto skip = hn::And(in_range, hn::And(negative, positive));
-    decide |= std::uint64_t(float_lane_bits(df, hn::Not(skip))) << j;
+    decide |= std::uint64_t(lane_bits(df, hn::Not(skip))) << j;
   }
   return count >= 64 ? decide : decide & ((std::uint64_t(1) << count) - 1);
 }
@@ -620,7 +590,7 @@ LaneMask lanes_missing_cluster(const NodeCluster& cluster, const Packet<P>& pk, 
     auto outside = hn::Lt(along[0], low[0]);
     for (int k = 0; k < 4; ++k)
       outside = hn::Or(outside, hn::Or(hn::Lt(along[k], low[k]), hn::Gt(along[k], high[k])));
-    missing |= (float_lane_bits(d, outside) & here) << j;
+    missing |= (lane_bits(d, outside) & here) << j;
   }
   return missing & pk.within_scale;
 }
@@ -639,7 +609,7 @@ LaneMask lanes_in_plane(const NodeCluster& cluster, const Packet<P>& pk, LaneMas
   for (std::size_t j = 0; j < P; j += N) {
     const LaneMask here = (visit >> j) & chunk;
     if (here == 0) continue;
-    in_plane |= (float_lane_bits(d, hn::Eq(hn::Load(d, pk.receiver_plane + j), plane)) & here) << j;
+    in_plane |= (lane_bits(d, hn::Eq(hn::Load(d, pk.receiver_plane + j), plane)) & here) << j;
   }
   return in_plane;
 }

@@ -18,11 +18,13 @@
 #include <bit>
 
 #include "shadowcts/geometry/volume_location.h"
+#include "simd/lane_bits-inl.h"
 #include "simd/psv/descent_lanes.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace shadowcts::simd::psv::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
+using shadowcts::simd::HWY_NAMESPACE::lane_bits;
 
 // Walks in flight per call: as many as one thread's outstanding cache misses profit from (at
 // gate_house.1M the descents took 450 ms with 8 walks, 410 with 16, 380 with 32; later the whole
@@ -31,13 +33,6 @@ namespace hn = hwy::HWY_NAMESPACE;
 constexpr std::size_t walks = 64;
 using WalkBits = std::uint64_t;  // bit w: walk w
 static_assert(walks <= 64);
-
-template <class D, class M>
-HWY_INLINE WalkBits lane_bits(D d, M mask) {
-  std::uint8_t bytes[8] = {};
-  hn::StoreMaskBits(d, mask, bytes);
-  return bytes[0];
-}
 
 // b - a, and whether that difference is exact (geometry::two_sum's error is zero).
 template <class D, class V>

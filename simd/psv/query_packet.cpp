@@ -11,6 +11,7 @@
 
 #include "reference/psv/top_tree_depth.h"
 #include "shadowcts/huge_pages.h"
+#include "simd/lane_bits-inl.h"
 #include "simd/psv/query_hybrid.h"
 #include "simd/psv/query_packet.h"
 #include "simd/psv/query_stack.h"
@@ -19,13 +20,7 @@
 HWY_BEFORE_NAMESPACE();
 namespace shadowcts::simd::psv::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
-
-template <class D, class M>
-HWY_INLINE std::uint32_t lane_bits(D d, M mask) {
-  std::uint8_t bytes[8] = {};
-  hn::StoreMaskBits(d, mask, bytes);
-  return bytes[0];
-}
+using shadowcts::simd::HWY_NAMESPACE::lane_bits;
 
 // What the tests of a node need of the node.
 struct NodeConstants {

@@ -24,11 +24,13 @@
 #include "shadowcts/geometry/receiver_half_space.h"
 #include "shadowcts/huge_pages.h"
 #include "shadowcts/phase_progress.h"
+#include "simd/lane_bits-inl.h"
 #include "simd/ptsv/traversal.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace shadowcts::simd::ptsv::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
+using shadowcts::simd::HWY_NAMESPACE::lane_bits;
 
 // What the progress line counts the visits of (static strings: phase_progress keeps the pointer).
 inline const char* level_name(int level) {
@@ -48,19 +50,6 @@ using M = hn::Mask<D>;
 struct Verdicts {
   std::uint32_t accept, refine, reject, cull;
 };
-
-HWY_INLINE std::uint32_t bits_of(D d, M m) {
-#if HWY_TARGET <= HWY_AVX3
-  // An AVX-512 mask register holds the lane bits: no round trip through memory (a visit reads
-  // some ten masks).
-  (void)d;
-  return std::uint32_t(m.raw);
-#else
-  std::uint8_t bytes[8] = {};
-  hn::StoreMaskBits(d, m, bytes);
-  return std::uint32_t(bytes[0]) | (std::uint32_t(bytes[1]) << 8);
-#endif
-}
 
 // plane.at(x) as the reference evaluates it: ((nx (x - ax) + ny (y - ay)) + nz (z - az)) + shift,
 // separate multiplies and adds (no FMA).
@@ -139,8 +128,8 @@ class Engine {
     // return registers, a failed store forward on every visit (12 % of this function's samples).
     std::uint64_t reject = 0, accept = 0, cull = 0, refine = 0;
     for (std::uint32_t base = 0; base < count; base += lanes) {
-      const std::uint32_t lane_bits = lanes >= 32 ? ~0u : ((1u << lanes) - 1u);
-      const std::uint32_t wanted = (live >> base) & lane_bits;
+      const std::uint32_t lanes_mask = lanes >= 32 ? ~0u : ((1u << lanes) - 1u);
+      const std::uint32_t wanted = (live >> base) & lanes_mask;
       if (wanted == 0) continue;
       const std::size_t at = first + base;
       V high[4];  // the largest corner value, kept from the reject pass
@@ -161,7 +150,7 @@ class Engine {
         V low = hn::Zero(d);
         high[k] = hn::Zero(d);
         range(k, low, high[k]);
-        rej |= bits_of(d, hn::Gt(low, rounding)) & wanted;
+        rej |= lane_bits(d, hn::Gt(low, rounding)) & wanted;
       }
       reject |= rej << base;
       if (rej == wanted) continue;
@@ -171,11 +160,12 @@ class Engine {
       std::uint32_t acc = wanted & ~rej;
       for (int k = 0; k < 4 && acc != 0; ++k) {
         if (k < 3) {
-          acc &= bits_of(d, hn::Lt(high[k], hn::Set(d, -tol.rounding)));
+          acc &= lane_bits(d, hn::Lt(high[k], hn::Set(d, -tol.rounding)));
         } else {
           const V reach_inside = hn::Neg(hn::Add(rounding, hn::LoadU(d, L.reach.data() + at)));
-          acc &= bits_of(d, hn::And(hn::Lt(high[k], hn::Set(d, -(tol.rounding + tol.accept_bias))),
-                                    hn::Lt(high[k], reach_inside)));
+          acc &=
+              lane_bits(d, hn::And(hn::Lt(high[k], hn::Set(d, -(tol.rounding + tol.accept_bias))),
+                                   hn::Lt(high[k], reach_inside)));
         }
       }
       accept |= acc << base;
@@ -184,7 +174,7 @@ class Engine {
       for (std::uint32_t planes = culling; planes != 0 && cul != rest; planes &= planes - 1) {
         V low = hn::Zero(d), unused = hn::Zero(d);
         range(4 + std::countr_zero(planes), low, unused);
-        cul |= bits_of(d, hn::Gt(low, rounding)) & rest;
+        cul |= lane_bits(d, hn::Gt(low, rounding)) & rest;
       }
       cull |= cul << base;
       refine |= (rest & ~cul) << base;
@@ -223,22 +213,22 @@ class Engine {
     };
     std::uint64_t reject = 0, accept = 0, cull = 0, refine = 0;  // as in test_children_implicit
     for (std::uint32_t base = 0; base < count; base += lanes) {
-      const std::uint32_t lane_bits = lanes >= 32 ? ~0u : ((1u << lanes) - 1u);
-      const std::uint32_t wanted = (live >> base) & lane_bits;
+      const std::uint32_t lanes_mask = lanes >= 32 ? ~0u : ((1u << lanes) - 1u);
+      const std::uint32_t wanted = (live >> base) & lanes_mask;
       if (wanted == 0) continue;
       std::uint32_t rej = 0;
       for (int k = 0; k < 4 && rej != wanted; ++k)
-        rej |= bits_of(d, hn::Gt(value(p[k], corner[k][0], base), rounding)) & wanted;
+        rej |= lane_bits(d, hn::Gt(value(p[k], corner[k][0], base), rounding)) & wanted;
       reject |= rej << base;
       if (rej == wanted) continue;
       std::uint32_t acc = wanted & ~rej;
       for (int k = 0; k < 3 && acc != 0; ++k)
-        acc &= bits_of(d, hn::Lt(value(p[k], corner[k][1], base), inside_edge));
+        acc &= lane_bits(d, hn::Lt(value(p[k], corner[k][1], base), inside_edge));
       if (acc != 0) {
         const V high = value(p[3], corner[3][1], base);
         const V reach_inside =
             hn::Neg(hn::Add(rounding, hn::LoadU(d, L.reach.data() + first + base)));
-        acc &= bits_of(d, hn::And(hn::Lt(high, inside_triangle), hn::Lt(high, reach_inside)));
+        acc &= lane_bits(d, hn::And(hn::Lt(high, inside_triangle), hn::Lt(high, reach_inside)));
       }
       accept |= acc << base;
       const std::uint32_t rest = wanted & ~rej & ~acc;
@@ -249,7 +239,7 @@ class Engine {
         const double* at[3];
         for (std::size_t axis = 0; axis < 3; ++axis)
           at[axis] = (plane_normal(vol, k)[axis] >= 0.0 ? L.lo[axis] : L.hi[axis]).data() + first;
-        cul |= bits_of(d, hn::Gt(value(q, at, base), rounding)) & rest;
+        cul |= lane_bits(d, hn::Gt(value(q, at, base), rounding)) & rest;
       }
       cull |= cul << base;
       refine |= (rest & ~cul) << base;
@@ -287,8 +277,8 @@ class Engine {
         const V value = hn::Add(
             hn::Add(hn::Add(hn::Mul(p.nx, ox), hn::Mul(p.ny, oy)), hn::Mul(p.nz, oz)), p.shift);
         const V bound = hn::Mul(factor[k], hn::Add(hn::Add(hn::Abs(ox), hn::Abs(oy)), hn::Abs(oz)));
-        const std::uint32_t out_k = bits_of(d, hn::Gt(value, bound));
-        const std::uint32_t in_k = bits_of(d, hn::Lt(value, hn::Neg(bound)));
+        const std::uint32_t out_k = lane_bits(d, hn::Gt(value, bound));
+        const std::uint32_t in_k = lane_bits(d, hn::Lt(value, hn::Neg(bound)));
         outside |= out_k;
         unsure[k] = ~(out_k | in_k);
       }

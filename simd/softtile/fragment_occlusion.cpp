@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "shadowcts/geometry/disk_reach.h"
+#include "simd/lane_bits-inl.h"
 #include "simd/softtile/disk_bitmask-inl.h"
 #include "simd/softtile/fragment_occlusion.h"
 
@@ -16,6 +17,7 @@ HWY_BEFORE_NAMESPACE();
 namespace shadowcts::simd::softtile {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
+using shadowcts::simd::HWY_NAMESPACE::lane_bits;
 
 using D = hn::ScalableTag<float>;
 using V = hn::Vec<D>;
@@ -58,15 +60,6 @@ HWY_INLINE M beside_ranges(D d, V x0, V x1, V y0, V y1, V reach, const LightSpac
                        hn::Gt(hn::Sub(hn::Set(d, box.x0), x1), reach)),
                 hn::Or(hn::Gt(hn::Sub(y0, hn::Set(d, box.y1)), reach),
                        hn::Gt(hn::Sub(hn::Set(d, box.y0), y1), reach)));
-}
-
-// The mask's lanes as bits, lane 0 lowest.
-HWY_INLINE std::uint64_t mask_bits(D d, M m) {
-  std::uint8_t bytes[8] = {};
-  hn::StoreMaskBits(d, m, bytes);
-  std::uint64_t bits = 0;
-  std::memcpy(&bits, bytes, sizeof bits);
-  return bits;
 }
 
 // The lanes where the triangle's box lies beside the fragment's disk.
@@ -192,7 +185,7 @@ HWY_INLINE std::uint64_t blocks_in_reach(D d, const FragmentArrays& f, std::size
   const M beside = beside_ranges(
       d, hn::LoadU(d, f.block_x0.data() + first), hn::LoadU(d, f.block_x1.data() + first),
       hn::LoadU(d, f.block_y0.data() + first), hn::LoadU(d, f.block_y1.data() + first), reach, box);
-  return mask_bits(d, hn::AndNot(beside, hn::Gt(z1, lowest)));
+  return lane_bits(d, hn::AndNot(beside, hn::Gt(z1, lowest)));
 }
 
 template <bool kRotated>
@@ -209,7 +202,7 @@ HWY_INLINE void occlude_vector(D d, const FragmentArrays& f, std::size_t j,
     hn::Store(v.e[i].y, d, lane_edges[3 * i + 1]);
     hn::Store(v.e[i].z, d, lane_edges[3 * i + 2]);
   }
-  for (std::uint64_t bits = mask_bits(d, v.accepted); bits != 0; bits &= bits - 1) {
+  for (std::uint64_t bits = lane_bits(d, v.accepted); bits != 0; bits &= bits - 1) {
     const std::size_t lane = std::size_t(__builtin_ctzll(bits));
     glm::vec3 e[3];
     for (int i = 0; i < 3; ++i)

@@ -18,6 +18,7 @@
 #include <glm/geometric.hpp>
 
 #include "shadowcts/geometry/morton.h"
+#include "simd/lane_bits-inl.h"
 #include "simd/softtile/shadow_cone.h"
 
 #ifndef SHADOWCTS_SIMD_SOFTTILE_BOUND_TERMS
@@ -66,6 +67,7 @@ HWY_BEFORE_NAMESPACE();
 namespace shadowcts::simd::softtile {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
+using shadowcts::simd::HWY_NAMESPACE::lane_bits;
 
 using detail::BoundTerms;
 using detail::relative_margin;
@@ -306,14 +308,6 @@ HWY_INLINE CapsuleMinimum certify_capsule_minimum(D d, const ConeLanes& l, const
   return out;
 }
 
-HWY_INLINE std::uint64_t mask_bits(D d, M m) {
-  std::uint8_t bytes[8] = {};
-  hn::StoreMaskBits(d, m, bytes);
-  std::uint64_t bits = 0;
-  std::memcpy(&bits, bytes, sizeof bits);
-  return bits;
-}
-
 // Entries [begin, begin + count) of each of five arrays, count <= lanes; missing lanes repeat
 // entry `begin` (a full vector is one unaligned load per array).
 HWY_INLINE void load_five(D d, const double* const (&arrays)[5], std::size_t begin,
@@ -439,7 +433,7 @@ HWY_INLINE std::uint64_t may_shadow_lanes(D d, const ConeLanes& l, std::size_t c
       result = hn::Or(result, hn::And(alive, last));
     }
   }
-  return mask_bits(d, hn::And(result, hn::FirstN(d, count)));
+  return lane_bits(d, hn::And(result, hn::FirstN(d, count)));
 }
 
 // Bit i set where node begin + i of `level` (count <= lanes) may have a triangle below it whose
@@ -489,7 +483,7 @@ HWY_INLINE std::uint64_t open_nodes(D d, const ConeGroups& level, std::size_t be
                                                  above_limit, hn::Set(d, -HUGE_VAL))
                              .above);
   }
-  return mask_bits(d, hn::AndNot(closed, hn::FirstN(d, count)));
+  return lane_bits(d, hn::AndNot(closed, hn::FirstN(d, count)));
 }
 
 void CullCandidates(const GatheredCones& cones, const shadowcts::softtile::TileBound& bound,
