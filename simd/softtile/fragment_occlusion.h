@@ -28,7 +28,10 @@ inline constexpr std::size_t fragment_block = 16;
 struct FragmentArrays {
   std::vector<float> x, y, z, cos_rotation, sin_rotation;
   std::vector<std::uint32_t> receiver;
-  std::vector<std::uint32_t> sorted_receivers;  // receiver[0, size), ascending
+  // The distinct receivers, ascending, and how many fragments lie on each, padded to a multiple
+  // of 16 entries with count 0 (a triangle never shadows its own receiver: these are the tests
+  // the reference does not make).
+  std::vector<std::uint32_t> receiver_ids, receiver_counts;
   std::vector<float> block_lowest_z, block_x0, block_x1, block_y0, block_y1, block_coordinates;
   float inverse_scale = 1.0f;
   float reach_per_height = 1.0f;
@@ -39,8 +42,6 @@ struct FragmentArrays {
               const std::vector<std::uint32_t>& receivers);
   std::size_t words() const { return (size + 63) / 64; }
   std::size_t blocks() const { return (size + fragment_block - 1) / fragment_block; }
-  // How many fragments lie on `triangle` (a triangle never shadows its own receiver).
-  std::size_t on_receiver(std::uint32_t triangle) const;
 };
 
 // The edge functions of one triangle (light-space vertices, its id `triangle`) for every
