@@ -118,31 +118,44 @@ double angle_to_triangle(const glm::dvec3& d, const std::array<glm::dvec3, 3>& w
 }
 
 double distance_to_triangle(const glm::dvec3& p, const std::array<glm::dvec3, 3>& v) {
-  const glm::dvec3 &a = v[0], &b = v[1], &c = v[2];
-  const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
-  const auto lower = [&](const glm::dvec3& q) {
-    const double scale = glm::length(p) + glm::length(a) + glm::length(b) + glm::length(c);
-    return std::max(0.0, glm::length(p - q) * (1.0 - relative_slack) - relative_slack * scale);
+  const double scale = glm::length(p) + glm::length(v[0]) + glm::length(v[1]) + glm::length(v[2]);
+  const auto lower = [&](double distance) {
+    return std::max(0.0, distance * (1.0 - relative_slack) - relative_slack * scale);
   };
-  const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
-  if (d1 <= 0.0 && d2 <= 0.0) return lower(a);
-  const glm::dvec3 bp = p - b;
-  const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
-  if (d3 >= 0.0 && d4 <= d3) return lower(b);
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return lower(a + (d1 / (d1 - d3)) * ab);
-  const glm::dvec3 cp = p - c;
-  const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
-  if (d6 >= 0.0 && d5 <= d6) return lower(c);
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return lower(a + (d2 / (d2 - d6)) * ac);
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0)
-    return lower(b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b));
-  const double denominator = va + vb + vc;
-  if (denominator == 0.0) return 0.0;  // degenerate: conservative
-  const double vv = vb / denominator, ww = vc / denominator;
-  return lower(a + ab * vv + ac * ww);
+  // The edges: the point of each segment nearest p, from a clamped parameter (an error in it moves
+  // the point along the segment, which lengthens |p - q| by far less than the slack).
+  double edges = HUGE_VAL;
+  for (int i = 0; i < 3; ++i) {
+    const glm::dvec3 &a = v[i], e = v[(i + 1) % 3] - v[i];
+    const double length2 = glm::dot(e, e);
+    const double t = length2 > 0.0 ? std::clamp(glm::dot(p - a, e) / length2, 0.0, 1.0) : 0.0;
+    edges = std::min(edges, glm::length(p - (a + t * e)));
+  }
+  // Where p's projection onto the plane lies outside the triangle, the nearest point is on an
+  // edge. Decided only where certain: s_i = ((v_i+1 - v_i) x (p - v_i)) . n is negative for p
+  // beyond edge i, and its rounding error stays below 1e-12 |e_i| |p - v_i| |ab| |ac| (a few
+  // 1e-16 of those magnitudes). A needle or sliver makes n and the s_i ill-conditioned (the
+  // region tests of the closest-point method then picked a far vertex for a point 4 units from
+  // a needle's edge); there p may lie over the triangle, and the plane's distance, never more than
+  // the triangle's, is the bound.
+  const glm::dvec3 ab = v[1] - v[0], ac = v[2] - v[0];
+  const glm::dvec3 n = glm::cross(ab, ac);
+  const double n_length = glm::length(n);
+  const double magnitude = glm::length(ab) * glm::length(ac);
+  if (!(n_length > 0.0)) return lower(edges);  // no plane: the triangle is its edges
+  bool outside = false;
+  for (int i = 0; i < 3 && !outside; ++i) {
+    const glm::dvec3 e = v[(i + 1) % 3] - v[i], to_p = p - v[i];
+    const double side = glm::dot(glm::cross(e, to_p), n);
+    outside = side < -1e-12 * glm::length(e) * glm::length(to_p) * magnitude;
+  }
+  if (outside) return lower(edges);
+  // |n . (p - a)| / |n| with n exact: the numerator less, the denominator more than what an
+  // error of 1e-12 |ab| |ac| in n can change.
+  const glm::dvec3 to_p = p - v[0];
+  const double plane = (std::fabs(glm::dot(n, to_p)) - 1e-12 * magnitude * glm::length(to_p)) /
+                       (n_length + 1e-12 * magnitude);
+  return lower(std::min(edges, std::max(0.0, plane)));
 }
 
 }  // namespace shadowcts

@@ -40,8 +40,10 @@ DiskPolygon project_triangle(const SunDiskFrame& frame, const glm::dvec3& p,
 // lower bound); 0 when d points into the triangle's cone or p lies on the triangle.
 double angle_to_triangle(const glm::dvec3& d, const std::array<glm::dvec3, 3>& w);
 
-// The distance from p to the closed triangle (Ericson, "Real-Time Collision Detection" 5.1.5),
-// rounded down by far more than its rounding error.
+// A lower bound on the distance from p to the closed triangle: the nearest edge's distance where
+// p's projection onto the plane lies certainly outside the triangle, else the smaller of that and
+// the plane's distance; rounded down by far more than its rounding error, needles and slivers
+// included.
 double distance_to_triangle(const glm::dvec3& p, const std::array<glm::dvec3, 3>& v);
 
 }  // namespace shadowcts

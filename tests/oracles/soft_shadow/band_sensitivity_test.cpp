@@ -1,11 +1,14 @@
 // The band sensitivity is a true bound: moving a sample by the 14 band moves (at j = 0) changes its
 // exact visible fraction by no more than the sensitivity the oracle reports for it.
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
+#include "oracles/soft_shadow/sun_disk_projection.h"
 #include "shadowcts/soft_shadow_oracle.h"
 #include "tests/oracles/soft_shadow/soft_case.h"
 
@@ -60,6 +63,105 @@ TEST(BandSensitivity, BoundsTheChangeUnderBandMoves) {
   }
   EXPECT_GT(changed, 50);  // the moves do matter at this band
   EXPECT_GT(robust, 20);   // and the bound is not so loose that nothing is robust
+}
+
+// fuzz_degenerate (seed 408, generated input 2): a sample 2e-8 from a needle that duplicates its
+// receiver, under a 3.2-degree sun. By the definition its fraction is 0: the duplicate is not its
+// receiver, and from just beneath its plane it hides the whole sky beyond. A move across the plane
+// makes it 1, so the sample is ambiguous. The band's distance to the needle once came from a far
+// vertex (the closest-point method's region tests lose all precision on a needle), the sample was
+// called robust, and every rasterizer and ray caster failed on it.
+TEST(BandSensitivity, ASampleOnADuplicatedNeedleIsAmbiguous) {
+  const ShadowLight light = testing::sun_disk({0.0f, 0.5547002f, 0.83205032f}, 3.2291606140993494);
+  testing::HandBuiltCase h = testing::make_hand_built_case(light);
+  const glm::vec3 a(-0x1p-2f, 0x1.58p+1f, -0x1.ep-1f), b(-0x1.cp-1f, -0x1p-2f, 0x1.58p+1f),
+      c(-0x1.cp-1f, -0x1.fffffep-3f, 0x1.57fffep+1f);
+  const std::uint32_t receiver = h.add_triangle(a, b, c);
+  h.add_triangle(a, b, c);
+  const std::size_t sample = h.add_sample({-0x1.48p-1f, 0x1.b4p-1f, 0x1.53fffep+0f}, receiver);
+  h.samples.samples[sample].normal = {0.0f, 0.0f, 1.0f};
+  const SoftShadowTruth truth = exact_soft_shadow_oracle(h.c, h.samples);
+  ASSERT_EQ(truth.compared[sample], 1);
+  EXPECT_EQ(truth.visible_fraction[sample], 0.0);
+  EXPECT_EQ(truth.band_sensitivity[sample], 1.0);
+  EXPECT_EQ(truth.robust[sample], 0);
+}
+
+// distance_to_triangle is a lower bound on the distance to every point of the triangle, for
+// needles and slivers at scales 2^-40 to 2^40 with the point near an edge, a vertex, over the
+// triangle or in its plane; and it is tight where the triangle is well shaped.
+TEST(BandSensitivity, TheDistanceToATriangleIsALowerBoundForNeedlesAndSlivers) {
+  std::mt19937_64 random(408);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const auto point = [&](double s) {
+    return glm::vec3(float(s * unit(random)), float(s * unit(random)), float(s * unit(random)));
+  };
+  int checked = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    const double s = std::ldexp(1.0, int(random() % 81) - 40);
+    const glm::vec3 a = point(s), b = point(s);
+    // The third vertex a relative 2^-k off the edge (needle, k large) or off a vertex (sliver).
+    const double off = std::ldexp(s, -int(random() % 30));
+    const float t = float((unit(random) + 1.0) / 2.0);
+    const glm::vec3 base = random() % 2 == 0 ? a + t * (b - a) : b;
+    const glm::vec3 c = base + point(off);
+    const std::array<glm::dvec3, 3> v{glm::dvec3(a), glm::dvec3(b), glm::dvec3(c)};
+    // Points of the triangle: a barycentric grid, edges included (long double).
+    const auto at = [&](long double u, long double w, int k) {
+      return static_cast<long double>(v[0][k]) + u * (static_cast<long double>(v[1][k]) - v[0][k]) +
+             w * (static_cast<long double>(v[2][k]) - v[0][k]);
+    };
+    // The query near an edge point, a vertex, or anywhere around.
+    const float u0 = float((unit(random) + 1.0) / 2.0);
+    const glm::vec3 near = random() % 3 == 0 ? a : a + u0 * (b - a);
+    const glm::vec3 p = near + point(std::ldexp(off, int(random() % 8) - 4));
+    const double bound = distance_to_triangle(glm::dvec3(p), v);
+    long double nearest = HUGE_VALL;
+    constexpr int n = 48;
+    for (int i = 0; i <= n; ++i)
+      for (int j = 0; i + j <= n; ++j) {
+        long double d2 = 0;
+        for (int k = 0; k < 3; ++k) {
+          const long double e = static_cast<long double>(p[k]) - at(i / 48.0L, j / 48.0L, k);
+          d2 += e * e;
+        }
+        nearest = std::min(nearest, std::sqrt(d2));
+      }
+    // Also the point of edge ab nearest p (long double), where most queries lie.
+    {
+      long double ab2 = 0, dot = 0;
+      for (int k = 0; k < 3; ++k) {
+        const long double e = static_cast<long double>(v[1][k]) - v[0][k];
+        ab2 += e * e;
+        dot += (static_cast<long double>(p[k]) - v[0][k]) * e;
+      }
+      const long double t_ab = ab2 > 0 ? std::clamp(dot / ab2, 0.0L, 1.0L) : 0.0L;
+      long double d2 = 0;
+      for (int k = 0; k < 3; ++k) {
+        const long double e = static_cast<long double>(p[k]) - at(t_ab, 0.0L, k);
+        d2 += e * e;
+      }
+      nearest = std::min(nearest, std::sqrt(d2));
+    }
+    ASSERT_LE(bound, double(nearest) * (1.0 + 1e-15) + 1e-15 * s)
+        << "trial " << trial << ": p (" << p.x << ", " << p.y << ", " << p.z << ")";
+    ++checked;
+  }
+  EXPECT_EQ(checked, 4000);
+  // Well shaped: the unit right triangle in z = 0; over it, beside an edge, beyond a vertex.
+  const std::array<glm::dvec3, 3> v{glm::dvec3(0, 0, 0), glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0)};
+  const struct {
+    glm::dvec3 p;
+    double distance;
+  } known[] = {
+      {{0.25, 0.25, 0.5}, 0.5}, {{0.25, 0.25, -2.0}, 2.0},          {{0.5, -0.75, 0.0}, 0.75},
+      {{-3.0, -4.0, 0.0}, 5.0}, {{0.5, -0.5, 0.5}, std::sqrt(0.5)}, {{0.25, 0.25, 0.0}, 0.0},
+      {{2.0, 0.0, 0.0}, 1.0}};
+  for (const auto& k : known) {
+    const double bound = distance_to_triangle(k.p, v);
+    EXPECT_LE(bound, k.distance);
+    EXPECT_GE(bound, k.distance * (1.0 - 1e-9) - 1e-9);
+  }
 }
 
 }  // namespace
