@@ -65,9 +65,10 @@ TEST(BandSensitivity, BoundsTheChangeUnderBandMoves) {
   EXPECT_GT(robust, 20);   // and the bound is not so loose that nothing is robust
 }
 
-// fuzz_degenerate (seed 408, generated input 2): a sample 2e-8 from a needle that duplicates its
-// receiver, under a 3.2-degree sun. By the definition its fraction is 0: the duplicate is not its
-// receiver, and from just beneath its plane it hides the whole sky beyond. A move across the plane
+// fuzz_degenerate (seed 408, generated input 2): a sample 1.7e-9 from the plane of a needle (and
+// under 1e-7 from its edge) that duplicates its receiver, under a 3.2-degree sun. By the
+// definition its fraction is 0: the duplicate is not its receiver, and from just beneath its plane
+// it hides the whole sky beyond. A move across the plane
 // makes it 1, so the sample is ambiguous. The band's distance to the needle once came from a far
 // vertex (the closest-point method's region tests lose all precision on a needle), the sample was
 // called robust, and every rasterizer and ray caster failed on it.
