@@ -122,39 +122,37 @@ double distance_to_triangle(const glm::dvec3& p, const std::array<glm::dvec3, 3>
   const auto lower = [&](double distance) {
     return std::max(0.0, distance * (1.0 - relative_slack) - relative_slack * scale);
   };
+  // Edge i runs from v_i along e_i; to_p_i = p - v_i.
+  const std::array<glm::dvec3, 3> e{v[1] - v[0], v[2] - v[1], v[0] - v[2]};
+  const std::array<glm::dvec3, 3> to_p{p - v[0], p - v[1], p - v[2]};
   // The edges: the point of each segment nearest p, from a clamped parameter (an error in it moves
   // the point along the segment, which lengthens |p - q| by far less than the slack).
   double edges = HUGE_VAL;
   for (int i = 0; i < 3; ++i) {
-    const glm::dvec3 &a = v[i], e = v[(i + 1) % 3] - v[i];
-    const double length2 = glm::dot(e, e);
-    const double t = length2 > 0.0 ? std::clamp(glm::dot(p - a, e) / length2, 0.0, 1.0) : 0.0;
-    edges = std::min(edges, glm::length(p - (a + t * e)));
+    const double length2 = glm::dot(e[i], e[i]);
+    const double t = length2 > 0.0 ? std::clamp(glm::dot(to_p[i], e[i]) / length2, 0.0, 1.0) : 0.0;
+    edges = std::min(edges, glm::length(p - (v[i] + t * e[i])));
   }
   // Where p's projection onto the plane lies outside the triangle, the nearest point is on an
-  // edge. Decided only where certain: s_i = ((v_i+1 - v_i) x (p - v_i)) . n is negative for p
-  // beyond edge i, and its rounding error stays below 1e-12 |e_i| |p - v_i| |ab| |ac| (a few
-  // 1e-16 of those magnitudes). A needle or sliver makes n and the s_i ill-conditioned (the
-  // region tests of the closest-point method then picked a far vertex for a point 4 units from
-  // a needle's edge); there p may lie over the triangle, and the plane's distance, never more than
-  // the triangle's, is the bound.
-  const glm::dvec3 ab = v[1] - v[0], ac = v[2] - v[0];
-  const glm::dvec3 n = glm::cross(ab, ac);
+  // edge. Decided only where certain: s_i = (e_i x to_p_i) . n is negative for p beyond edge i,
+  // and its rounding error stays below 1e-12 |e_i| |to_p_i| |ab| |ac| (a few 1e-16 of those
+  // magnitudes). A needle or sliver makes n and the s_i ill-conditioned (the region tests of the
+  // closest-point method then picked a far vertex for a point 4 units from a needle's edge);
+  // there p may lie over the triangle, and the plane's distance, never more than the triangle's,
+  // is the bound. (ac = -e_2 exactly: a rounded difference changes sign with its operands.)
+  const glm::dvec3 n = glm::cross(e[0], -e[2]);
   const double n_length = glm::length(n);
-  const double magnitude = glm::length(ab) * glm::length(ac);
+  const double magnitude = glm::length(e[0]) * glm::length(e[2]);
   if (!(n_length > 0.0)) return lower(edges);  // no plane: the triangle is its edges
-  bool outside = false;
-  for (int i = 0; i < 3 && !outside; ++i) {
-    const glm::dvec3 e = v[(i + 1) % 3] - v[i], to_p = p - v[i];
-    const double side = glm::dot(glm::cross(e, to_p), n);
-    outside = side < -1e-12 * glm::length(e) * glm::length(to_p) * magnitude;
-  }
-  if (outside) return lower(edges);
+  for (int i = 0; i < 3; ++i)
+    if (glm::dot(glm::cross(e[i], to_p[i]), n) <
+        -1e-12 * glm::length(e[i]) * glm::length(to_p[i]) * magnitude)
+      return lower(edges);
   // |n . (p - a)| / |n| with n exact: the numerator less, the denominator more than what an
   // error of 1e-12 |ab| |ac| in n can change.
-  const glm::dvec3 to_p = p - v[0];
-  const double plane = (std::fabs(glm::dot(n, to_p)) - 1e-12 * magnitude * glm::length(to_p)) /
-                       (n_length + 1e-12 * magnitude);
+  const double plane =
+      (std::fabs(glm::dot(n, to_p[0])) - 1e-12 * magnitude * glm::length(to_p[0])) /
+      (n_length + 1e-12 * magnitude);
   return lower(std::min(edges, std::max(0.0, plane)));
 }
 

@@ -5,7 +5,6 @@
 #include <hwy/highway.h>
 
 #include <algorithm>
-#include <cstring>
 #include <limits>
 
 #include "shadowcts/geometry/disk_reach.h"
@@ -285,18 +284,19 @@ void FragmentArrays::assign(const std::vector<shadowcts::softtile::FragmentSetup
   rotated = false;
   for (std::size_t j = 0; j < size; ++j)
     rotated = rotated || cos_rotation[j] != 1.0f || sin_rotation[j] != 0.0f;
-  std::vector<std::uint32_t> sorted(receiver.begin(), receiver.begin() + std::ptrdiff_t(size));
-  std::sort(sorted.begin(), sorted.end());
-  receiver_ids.clear();
+  // Sorted in place, then each run of equal receivers kept once with its length.
+  receiver_ids.assign(receiver.begin(), receiver.begin() + std::ptrdiff_t(size));
+  std::sort(receiver_ids.begin(), receiver_ids.end());
   receiver_counts.clear();
-  for (const std::uint32_t r : sorted) {
-    if (receiver_ids.empty() || receiver_ids.back() != r) {
-      receiver_ids.push_back(r);
+  std::size_t distinct = 0;
+  for (std::size_t k = 0; k < size; ++k) {
+    if (distinct == 0 || receiver_ids[distinct - 1] != receiver_ids[k]) {
+      receiver_ids[distinct++] = receiver_ids[k];
       receiver_counts.push_back(0);
     }
     ++receiver_counts.back();
   }
-  const std::size_t padded_ids = (receiver_ids.size() + 15) / 16 * 16;
+  const std::size_t padded_ids = (distinct + 15) / 16 * 16;
   receiver_ids.resize(padded_ids, 0u);
   receiver_counts.resize(padded_ids, 0u);
   // Padded for whole vectors of blocks (16 lanes at most) with blocks below every triangle.
