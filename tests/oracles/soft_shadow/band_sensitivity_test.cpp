@@ -165,5 +165,69 @@ TEST(BandSensitivity, TheDistanceToATriangleIsALowerBoundForNeedlesAndSlivers) {
   }
 }
 
+// The band's other bound: a caster is skipped when its angle from the sun direction exceeds the
+// disk's radius by more than a move can turn it, so an angle too large would call a sample robust
+// beside a caster that a move brings into the disk.
+TEST(BandSensitivity, TheAngleToATriangleIsALowerBoundForNeedlesAndSlivers) {
+  std::mt19937_64 random(2026);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::uniform_real_distribution<long double> fraction(0.0L, 1.0L);
+  const auto point = [&](double s) {
+    return glm::vec3(float(s * unit(random)), float(s * unit(random)), float(s * unit(random)));
+  };
+  using Point = std::array<long double, 3>;
+  const auto angle = [](const glm::dvec3& d, const Point& q) {  // between d and q (long double)
+    const long double x[3] = {d.x, d.y, d.z};
+    long double dot = 0, cross2 = 0;
+    for (int k = 0; k < 3; ++k) {
+      dot += x[k] * q[k];
+      const long double c = x[(k + 1) % 3] * q[(k + 2) % 3] - x[(k + 2) % 3] * q[(k + 1) % 3];
+      cross2 += c * c;
+    }
+    return std::atan2(std::sqrt(cross2), dot);
+  };
+  for (int trial = 0; trial < 4000; ++trial) {
+    const double s = std::ldexp(1.0, int(random() % 81) - 40);
+    const glm::vec3 a = point(s), b = point(s);
+    const double off = std::ldexp(s, -int(random() % 30));
+    const float t = float((unit(random) + 1.0) / 2.0);
+    const glm::vec3 c = (random() % 2 == 0 ? a + t * (b - a) : b) + point(off);
+    // p at the triangle's size or far from it (the triangle then a few degrees or less wide).
+    const glm::vec3 p = a + point(std::ldexp(s, int(random() % 12) - 2));
+    const std::array<glm::dvec3, 3> w{glm::dvec3(a) - glm::dvec3(p), glm::dvec3(b) - glm::dvec3(p),
+                                      glm::dvec3(c) - glm::dvec3(p)};
+    // Relative to p, in long double: the triangle's points q(u, v) = w0 + u (w1 - w0) + v (w2 -
+    // w0).
+    const auto at = [&](long double u, long double v) {
+      Point q;
+      for (int k = 0; k < 3; ++k)
+        q[k] = static_cast<long double>(w[0][k]) +
+               u * (static_cast<long double>(w[1][k]) - w[0][k]) +
+               v * (static_cast<long double>(w[2][k]) - w[0][k]);
+      return q;
+    };
+    // d towards a point of the triangle (inside, or on an edge), then turned by up to 2^-k rad.
+    long double u = fraction(random), v = fraction(random);
+    if (u + v > 1) u = 1 - u, v = 1 - v;
+    if (random() % 4 == 0) v = 0;
+    const Point target = at(u, v);
+    glm::dvec3 d =
+        glm::normalize(glm::dvec3(double(target[0]), double(target[1]), double(target[2])));
+    if (random() % 2 == 0) {
+      const glm::dvec3 turn(unit(random), unit(random), unit(random));
+      d = glm::normalize(d + std::ldexp(1.0, -int(random() % 40)) * turn);
+    }
+    const double bound = angle_to_triangle(d, w);
+    long double nearest = angle(d, target);
+    constexpr int n = 32;
+    for (int i = 0; i <= n; ++i)
+      for (int j = 0; i + j <= n; ++j)
+        nearest = std::min(nearest, angle(d, at(i / 32.0L, j / 32.0L)));
+    // d rounded to double is within about 1e-16 rad of its target.
+    ASSERT_LE(bound, double(nearest) + 1e-14)
+        << "trial " << trial << ": p (" << p.x << ", " << p.y << ", " << p.z << ")";
+  }
+}
+
 }  // namespace
 }  // namespace shadowcts
