@@ -67,12 +67,14 @@ const RecordLimit* stiff_record_limit(const std::string& record_name) {
 }
 
 std::string known_limit(const std::string& record_name, const std::string& algorithm_id,
+                        const std::string& variant,
                         const std::vector<fuzzing::KnownLimit>& case_limits,
                         const std::vector<std::size_t>& wrong_samples) {
   if (const RecordLimit* entry = stiff_record_limit(record_name)) return entry->why;
   if (wrong_samples.empty()) return "";  // failed otherwise (a budget, a rerun): no limit says why
   for (const fuzzing::KnownLimit& limit : case_limits) {
     if (limit.algorithm_id != algorithm_id) continue;
+    if (!limit.variant.empty() && limit.variant != variant) continue;
     const bool covers_all =
         limit.samples.empty() ||
         std::all_of(wrong_samples.begin(), wrong_samples.end(), [&](std::size_t i) {

@@ -24,9 +24,11 @@ const std::vector<RecordLimit>& stiff_record_limits();
 const RecordLimit* stiff_record_limit(const std::string& record_name);
 
 // Why a failed record is a known limit, or "" when none explains it: the table's entry for its
-// name, or a limit the case's generator declared for its algorithm that covers every sample it
-// got wrong (`wrong_samples`: the robust mismatches; a limit without samples covers them all).
+// name, or a limit the case's generator declared for its algorithm (and variant, where the limit
+// names one) that covers every sample it got wrong (`wrong_samples`: the robust mismatches; a
+// limit without samples covers them all).
 std::string known_limit(const std::string& record_name, const std::string& algorithm_id,
+                        const std::string& variant,
                         const std::vector<fuzzing::KnownLimit>& case_limits,
                         const std::vector<std::size_t>& wrong_samples);
 

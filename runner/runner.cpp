@@ -782,8 +782,8 @@ int run_suite(const RunOptions& options, const Registry& registry, std::ostream&
         evaluation.judge(*first, record);
         if (record.verdict == Verdict::fail && !nondeterministic)
           record.known_limit =
-              known_limit(record.test_name, record.algorithm, case_limits[case_index],
-                          evaluation.robust_mismatches(*first));
+              known_limit(record.test_name, record.algorithm, record.variant,
+                          case_limits[case_index], evaluation.robust_mismatches(*first));
         if (images.enabled)
           for (const auto& [name, per_sample] : first->per_sample_counters)
             record.images.push_back(

@@ -31,7 +31,8 @@ TEST(KnownLimits, TheStiffTableMatchesRecordNamesByGlob) {
   EXPECT_EQ(stiff_record_limit("hard.embree.robust.embree.stiff.light_on_caster_edge"), nullptr);
   EXPECT_EQ(stiff_record_limit("hard.embree.robust.embree.fuzz.watertight.1.37"), nullptr);
   // A table entry explains the record whatever the samples.
-  EXPECT_EQ(known_limit("hard.embree.robust.embree.stiff.light_at_caster_vertex", "embree", {}, {}),
+  EXPECT_EQ(known_limit("hard.embree.robust.embree.stiff.light_at_caster_vertex", "embree",
+                        "robust", {}, {}),
             stiff_record_limit("hard.embree.robust.embree.stiff.light_at_caster_vertex")->why);
 }
 
@@ -39,17 +40,24 @@ TEST(KnownLimits, AGeneratorsLimitExplainsOnlyTheSamplesItCovers) {
   const std::string record = "hard.embree.robust.embree.fuzz.watertight.1.0";
   const std::vector<fuzzing::KnownLimit> whole_case = {{"embree", "crack", {}}};
   const std::vector<fuzzing::KnownLimit> some_samples = {{"embree", "vertex", {2, 5, 9}}};
-  EXPECT_EQ(known_limit(record, "embree", whole_case, {0, 7}), "crack");
-  EXPECT_EQ(known_limit(record, "embree", some_samples, {5}), "vertex");
-  EXPECT_EQ(known_limit(record, "embree", some_samples, {2, 9}), "vertex");
+  EXPECT_EQ(known_limit(record, "embree", "robust", whole_case, {0, 7}), "crack");
+  EXPECT_EQ(known_limit(record, "embree", "robust", some_samples, {5}), "vertex");
+  EXPECT_EQ(known_limit(record, "embree", "robust", some_samples, {2, 9}), "vertex");
   // A wrong sample outside the limit is a finding, not the limit.
-  EXPECT_EQ(known_limit(record, "embree", some_samples, {2, 3}), "");
+  EXPECT_EQ(known_limit(record, "embree", "robust", some_samples, {2, 3}), "");
   // The limit is the peer's: another algorithm answering the same wrongly is not excused.
-  EXPECT_EQ(known_limit("hard.ptsv.twopass.reference.fuzz.watertight.1.0", "ptsv", whole_case, {0}),
+  EXPECT_EQ(known_limit("hard.ptsv.twopass.reference.fuzz.watertight.1.0", "ptsv", "twopass",
+                        whole_case, {0}),
             "");
   // A failure with no wrong sample (a budget, a rerun that differed) is not the limit's.
-  EXPECT_EQ(known_limit(record, "embree", whole_case, {}), "");
-  EXPECT_EQ(known_limit(record, "embree", {}, {0}), "");
+  EXPECT_EQ(known_limit(record, "embree", "robust", whole_case, {}), "");
+  EXPECT_EQ(known_limit(record, "embree", "robust", {}, {0}), "");
+  // A limit that names a variant excuses that variant alone.
+  const std::string zpass = "hard.stencil.zpass.reference.fuzz.differential.1.0";
+  const std::string zfail = "hard.stencil.zfail.reference.fuzz.differential.1.0";
+  const std::vector<fuzzing::KnownLimit> one_variant = {{"stencil", "eye", {}, "zpass"}};
+  EXPECT_EQ(known_limit(zpass, "stencil", "zpass", one_variant, {0, 3}), "eye");
+  EXPECT_EQ(known_limit(zfail, "stencil", "zfail", one_variant, {0, 3}), "");
 }
 
 // Embree leaks through the T-junction cracks of fuzz.watertight.1.37 (a limit the watertight
