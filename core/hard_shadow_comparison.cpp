@@ -2,7 +2,19 @@
 
 #include <stdexcept>
 
+#include <boost/math/distributions/binomial.hpp>
+
 namespace shadowcts {
+namespace {
+
+// P(X >= k) for X ~ Binomial(n, 1/2): how likely k of n ambiguous disagreements are by chance.
+double chance_of_at_least(std::uint64_t k, std::uint64_t n) {
+  if (k == 0) return 1.0;
+  const boost::math::binomial_distribution<double> coin(double(n), 0.5);
+  return boost::math::cdf(boost::math::complement(coin, double(k - 1)));
+}
+
+}  // namespace
 
 HardShadowComparison compare_hard_shadows(const std::vector<std::uint8_t>& shadowed,
                                           const HardShadowTruth& truth) {
@@ -60,8 +72,8 @@ HardShadowComparison compare_hard_shadows(const std::vector<std::uint8_t>& shado
     r.reason = std::to_string(mismatches) + " robust mismatches (" + std::to_string(r.leaks) +
                " leaks, " + std::to_string(r.false_shadows) + " false shadows) of " +
                std::to_string(r.robust) + " robust samples";
-  } else if (r.ambiguous_disagreements >= quality_warning_min_count &&
-             double(r.ambiguous_disagreements) > quality_warning_fraction * double(r.ambiguous)) {
+  } else if (chance_of_at_least(r.ambiguous_disagreements, r.ambiguous) <=
+             quality_warning_probability) {
     r.verdict = Verdict::quality_warning;
     r.reason = "right on every robust sample, but " + std::to_string(r.ambiguous_disagreements) +
                " of " + std::to_string(r.ambiguous) +

@@ -25,12 +25,13 @@ struct HardShadowComparison {
   std::string reason;  // one line explaining the verdict
 };
 
-// QualityWarning: every robust sample is right, but more than this fraction of the ambiguous
-// samples (and at least quality_warning_min_count of them) disagree with the exact answer. An
-// implementation whose rounding is unbiased gets about half of them right or better; doing worse
-// means a systematic bias at shadow boundaries (e.g. half-open edges), worth a look.
-inline constexpr double quality_warning_fraction = 0.5;
-inline constexpr std::uint64_t quality_warning_min_count = 8;
+// QualityWarning: every robust sample is right, but more of the ambiguous samples disagree with
+// the exact answer than chance explains. An implementation whose rounding is unbiased gets about
+// half of them right or better; doing worse means a systematic bias at shadow boundaries (e.g.
+// half-open edges), worth a look. "Worse" is a binomial test: the warning is given when k of n
+// disagreements are at most quality_warning_probability likely for a coin (P(X >= k) with
+// X ~ Binomial(n, 1/2)), so 41 of 58 is no warning and 42 of 58 is one.
+inline constexpr double quality_warning_probability = 1e-3;
 
 // `shadowed` has one entry per sample (1 = shadowed); samples the truth does not compare are
 // ignored.

@@ -7,6 +7,11 @@ namespace shadowcts {
 // timeout: a run killed past its time limit (`certify`'s workers); like a crash, a failure.
 enum class Verdict { pass, fail, quality_warning, not_supported, crash, timeout };
 
+// The most a statistical verdict may fail a faithful algorithm by chance, per record: a mean
+// error over few samples judged against its budget (docs/soft-shadow-budgets.md), an approximate
+// map's mismatch rate against its ceiling (docs/specification.md).
+inline constexpr double statistical_verdict_failure_probability = 1e-9;
+
 // The run did not finish: no output, no timings.
 constexpr bool did_not_finish(Verdict v) {
   return v == Verdict::crash || v == Verdict::timeout;

@@ -1,5 +1,6 @@
 // The comparator must catch real bugs: two deliberately broken hard-shadow algorithms run through
 // the runner and must get Fail, with the right kind of mismatch.
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -12,6 +13,7 @@
 #include "shadowcts/hard_shadow_oracle.h"
 #include "shadowcts/registry.h"
 #include "shadowcts/runner.h"
+#include "shadowcts/verdict.h"
 
 namespace shadowcts {
 namespace {
@@ -247,6 +249,19 @@ TEST(ApproximateCeiling, AShadowMapWrongOnNinetySevenPercentFails) {
   }
 }
 
+// P(X >= k) for X ~ Binomial(n, p), summed in log space (independent of the runner's bound).
+double binomial_upper_tail(std::size_t n, std::size_t k, double p) {
+  double tail = 0.0;
+  for (std::size_t j = k; j <= n; ++j)
+    tail += std::exp(std::lgamma(double(n) + 1) - std::lgamma(double(j) + 1) -
+                     std::lgamma(double(n - j) + 1) + double(j) * std::log(p) +
+                     double(n - j) * std::log1p(-p));
+  return tail;
+}
+
+// The ceiling is judged on the rate's lower confidence bound: the most mismatches a map at the
+// ceiling shows with probability at least 1e-9 are a QualityWarning although their rate lies above
+// the ceiling; one more fails.
 TEST(ApproximateCeiling, AtTheCeilingQualityWarningOneMoreMismatchFail) {
   const Case c = make_fixture(approximate_fixture);
   const HardShadowTruth truth = exact_hard_shadow_oracle(c, generate_view_samples(c));
@@ -254,13 +269,11 @@ TEST(ApproximateCeiling, AtTheCeilingQualityWarningOneMoreMismatchFail) {
   for (const BandClass b : truth.band)
     robust += b == BandClass::robust_lit || b == BandClass::robust_shadowed;
   ASSERT_GT(robust, 1000u);
-  // The shadow map's own ceiling, and the most mismatches within it (the runner's rate is the
-  // double quotient, compared with >).
   const double ceiling = registered_shadowmap().robust_mismatch_ceiling("2k");
   std::size_t at = std::size_t(ceiling * double(robust));
-  while (at > 0 && double(at) / double(robust) > ceiling) --at;
-  while (double(at + 1) / double(robust) <= ceiling) ++at;
-  ASSERT_GT(at, 0u);
+  while (binomial_upper_tail(robust, at + 1, ceiling) >= statistical_verdict_failure_probability)
+    ++at;
+  ASSERT_GT(double(at) / double(robust), ceiling);
   Registry registry;
   registry.add(std::make_unique<WrongOnSomeRobustSamples>("at_ceiling", at, ceiling));
   registry.add(std::make_unique<WrongOnSomeRobustSamples>("above_ceiling", at + 1, ceiling));
@@ -271,11 +284,16 @@ TEST(ApproximateCeiling, AtTheCeilingQualityWarningOneMoreMismatchFail) {
   EXPECT_EQ(within["error"]["leaks"].get<std::size_t>() +
                 within["error"]["false_shadows"].get<std::size_t>(),
             at);
+  EXPECT_LE(within["error"]["robust_mismatch_rate_lower_bound"].get<double>(), ceiling);
   const auto& beyond = record(results, "above_ceiling");
   EXPECT_EQ(beyond["verdict"], "Fail") << beyond["reason"];
   EXPECT_EQ(beyond["error"]["leaks"].get<std::size_t>() +
                 beyond["error"]["false_shadows"].get<std::size_t>(),
             at + 1);
+  EXPECT_GT(beyond["error"]["robust_mismatch_rate_lower_bound"].get<double>(), ceiling);
+  EXPECT_NE(beyond["reason"].get<std::string>().find("above the declared ceiling"),
+            std::string::npos)
+      << beyond["reason"];
 }
 
 }  // namespace
