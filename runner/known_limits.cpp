@@ -31,8 +31,6 @@ const std::vector<RecordLimit>& stiff_record_limits() {
        "tan(a); "
        "its budget covers a <= ~5.7 degrees (docs/soft-shadow-budgets.md), and at 45 degrees the "
        "missing annulus is half the disk"},
-      {"soft.softtile.post.*.stiff.sun_radius_80_degrees",
-       "as at 45 degrees: the disk of tangent radius sin(a) = 0.98 stands for one of tan(a) = 5.7"},
       // Shadow maps beyond their declared ceiling on the robust mismatch rate (measured
       // 2026-12-02; the ceilings are in reference/shadowmap/shadowmap_algorithm.cpp). The biased
       // maps only: the unbiased map's ceiling (0.6) covers these.

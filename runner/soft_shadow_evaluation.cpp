@@ -128,7 +128,7 @@ class SoftShadowEvaluation : public CaseEvaluation {
     if (record.verdict != Verdict::fail) {
       record.verdict = s.verdict;
       record.reason = s.reason;
-      // Invalid outputs stay failures even without robust samples.
+      // Invalid outputs and a mean over budget stay failures even without robust samples.
       if (s.robust == 0 && s.verdict == Verdict::pass) {
         record.verdict = Verdict::not_supported;
         record.reason = nothing_to_judge(samples_, s.ambiguous);
@@ -139,7 +139,7 @@ class SoftShadowEvaluation : public CaseEvaluation {
         {"robust", s.robust},
         {"ambiguous", s.ambiguous},
         {"mean_abs_error", s.mean_abs_error},
-        {"robust_mean_abs_error", s.robust_mean_abs_error},
+        {"unexplained_mean_error", s.unexplained_mean_error},
         {"mean_allowance", s.mean_allowance},
         {"rms_error", s.rms_error},
         {"p99_abs_error", s.p99_abs_error},
