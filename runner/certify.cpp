@@ -598,12 +598,7 @@ void write_run_outputs(const fs::path& dir, const std::vector<Entry>& entries,
     RunRecord r;
     r.case_name = e.case_name;
     r.test_name = record.at("name").get<std::string>();
-    r.verdict = verdict == "Pass"             ? Verdict::pass
-                : verdict == "Fail"           ? Verdict::fail
-                : verdict == "QualityWarning" ? Verdict::quality_warning
-                : verdict == "NotSupported"   ? Verdict::not_supported
-                : verdict == "Timeout"        ? Verdict::timeout
-                                              : Verdict::crash;
+    r.verdict = verdict_from_name(verdict).value_or(Verdict::crash);
     r.reason = record.at("reason").get<std::string>();
     r.known_limit = record.value("known_limit", "");
     r.reproduce = reproduce;

@@ -1,5 +1,6 @@
 #pragma once
 // The verdict vocabulary of the Vulkan CTS / dEQP, so CI dashboards read it the same way.
+#include <optional>
 #include <string_view>
 
 namespace shadowcts {
@@ -33,6 +34,14 @@ constexpr std::string_view verdict_name(Verdict v) {
       return "Timeout";
   }
   return "Crash";
+}
+
+// The verdict a name stands for (results.json, JUnit); nullopt for anything else.
+constexpr std::optional<Verdict> verdict_from_name(std::string_view name) {
+  for (Verdict v : {Verdict::pass, Verdict::fail, Verdict::quality_warning, Verdict::not_supported,
+                    Verdict::crash, Verdict::timeout})
+    if (verdict_name(v) == name) return v;
+  return std::nullopt;
 }
 
 }  // namespace shadowcts

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "shadowcts/errors.h"
+#include "shadowcts/verdict.h"
 
 namespace shadowcts {
 namespace {
@@ -31,7 +32,8 @@ ordered_json read_results(const fs::path& file) {
   text << in.rdbuf();
   try {
     return ordered_json::parse(text.str());
-  } catch (const ordered_json::parse_error& e) {
+  } catch (const ordered_json::exception& e) {
+    // parse_error, and out_of_range for a number beyond double's range ("1e999").
     throw InputError(file.string(), "JSON", e.what());
   }
 }
@@ -42,6 +44,27 @@ std::string required_string(const ordered_json& object, const char* key, const s
   if (it == object.end() || !it->is_string())
     throw InputError(source, where, std::string("\"") + key + "\" is missing or not a string");
   return it->get<std::string>();
+}
+
+// The times a comparison judges: medians, minima and maxima, where given, are numbers >= 0.
+void require_times(const ordered_json& record, const std::string& source,
+                   const std::string& where) {
+  const auto check = [&](const ordered_json& timing, const std::string& field) {
+    if (!timing.is_object()) throw InputError(source, where, field + ": not an object");
+    for (const char* key : {"median", "min", "max"}) {
+      const auto it = timing.find(key);
+      if (it != timing.end() && !(it->is_number() && it->get<double>() >= 0.0))
+        throw InputError(source, where, field + "." + key + ": not a number >= 0");
+    }
+  };
+  const auto t = record.find("time_ms");
+  if (t == record.end()) return;
+  check(*t, "time_ms");
+  const auto phases = t->find("phases");
+  if (phases == t->end()) return;
+  if (!phases->is_object()) throw InputError(source, where, "time_ms.phases: not an object");
+  for (auto it = phases->begin(); it != phases->end(); ++it)
+    check(it.value(), "time_ms.phases." + it.key());
 }
 
 const ordered_json& required_array(const ordered_json& object, const char* key,
@@ -126,6 +149,9 @@ ReportData load_report_data(const std::vector<fs::path>& result_dirs, const fs::
         ReportRecord record;
         record.name = name;
         record.output = required_string(r, "output", source, where);
+        if (record.output != "hard" && record.output != "soft" && record.output != "lights")
+          throw InputError(source, where,
+                           "\"output\" is '" + record.output + "', not one of hard, soft, lights");
         record.algorithm = required_string(r, "algorithm", source, where);
         record.variant = required_string(r, "variant", source, where);
         record.backend = required_string(r, "backend", source, where);
@@ -136,7 +162,14 @@ ReportData load_report_data(const std::vector<fs::path>& result_dirs, const fs::
       ReportRecord& target = data.cases[it->second.first].records[it->second.second];
       if (!target.versions.empty() && target.versions.back().dir == d)
         throw InputError(source, where, "appears twice");
-      required_string(r, "verdict", source, where);
+      const std::string verdict = required_string(r, "verdict", source, where);
+      // An unknown verdict would go unranked, and a regression to it unnoticed.
+      if (!verdict_from_name(verdict))
+        throw InputError(source, where,
+                         "\"verdict\" is '" + verdict +
+                             "', not one of Pass, Fail, QualityWarning, NotSupported, Crash, "
+                             "Timeout");
+      require_times(r, source, where);
       target.versions.push_back(Version{d, r});
     }
     root.erase("cases");

@@ -102,5 +102,54 @@ TEST(ReportData, RefusesWhatIsNotAResultDirectory) {
   EXPECT_THROW(load_report_data({root / "nameless"}, root), InputError);
 }
 
+// The message of the InputError that loading `dir` throws ("" when it loads).
+std::string refusal(const fs::path& dir, const fs::path& root) {
+  try {
+    load_report_data({dir}, root);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ReportData, RefusesRecordsTheComparisonCouldNotJudge) {
+  const fs::path root = fresh_dir("refuse_fields");
+  // An unknown verdict would go unranked: a Pass that became one would be no regression.
+  ordered_json typo = hand_hard_record("a", "x", 1, 0);
+  typo["verdict"] = "Fial";
+  write_results(root / "typo", {hand_case("a")}, {typo});
+  EXPECT_NE(refusal(root / "typo", root).find("\"verdict\" is 'Fial', not one of Pass"),
+            std::string::npos)
+      << refusal(root / "typo", root);
+
+  ordered_json kind = hand_hard_record("a", "x", 1, 0);
+  kind["output"] = "shadow";
+  write_results(root / "kind", {hand_case("a")}, {kind});
+  EXPECT_NE(refusal(root / "kind", root).find("\"output\" is 'shadow'"), std::string::npos);
+
+  for (const char* field : {"median", "min", "max"}) {
+    ordered_json time = hand_hard_record("a", "x", 1, 0);
+    time["time_ms"][field] = -1.0;
+    write_results(root / field, {hand_case("a")}, {time});
+    EXPECT_NE(refusal(root / field, root).find(std::string("time_ms.") + field + ": not a number"),
+              std::string::npos)
+        << field << ": " << refusal(root / field, root);
+  }
+  ordered_json phase = hand_hard_record("a", "x", 1, 0);
+  phase["time_ms"]["phases"] = {{"build", {{"median", "fast"}}}};
+  write_results(root / "phase", {hand_case("a")}, {phase});
+  EXPECT_NE(refusal(root / "phase", root).find("time_ms.phases.build.median"), std::string::npos);
+
+  // A number beyond double's range is a JSON error of the file, not an internal error.
+  fs::create_directories(root / "huge");
+  std::ofstream(root / "huge" / "results.json")
+      << R"({"schema": "shadowcts.results/2", "threads": 1e999, "cases": [], "results": []})";
+  EXPECT_NE(refusal(root / "huge", root).find("results.json: JSON:"), std::string::npos)
+      << refusal(root / "huge", root);
+
+  write_results(root / "fine", {hand_case("a")}, {hand_hard_record("a", "x", 1, 0)});
+  EXPECT_EQ(refusal(root / "fine", root), "");
+}
+
 }  // namespace
 }  // namespace shadowcts
