@@ -110,7 +110,8 @@ TEST(SoftShadowComparison, TheMeanOfAFewSamplesIsJudgedWithItsSamplingSpread) {
                                 make_truth(std::vector<double>(m, 0.5)), grid16);
   };
   const SoftShadowComparison few = judge(20);
-  const double spread = 0.1538 * std::sqrt(std::log(1.0 / statistical_verdict_failure_probability) / 40.0);
+  const double spread =
+      0.1538 * std::sqrt(std::log(1.0 / statistical_verdict_failure_probability) / 40.0);
   EXPECT_NEAR(few.mean_allowance, 0.0157 / 2 + spread, 1e-12);
   EXPECT_EQ(few.verdict, Verdict::pass) << few.reason;
   const SoftShadowComparison many = judge(5000);
