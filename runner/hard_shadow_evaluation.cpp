@@ -92,6 +92,10 @@ class HardShadowEvaluation : public CaseEvaluation {
     const bool approximate = record.approximate;
     const HardShadowComparison h = compare_hard_shadows(output.shadowed, truth_);
     const bool judged_by_itself = !truth_.exact && record.algorithm == "embree";
+    const std::uint64_t mismatches = h.leaks + h.false_shadows;
+    const double rate = h.robust ? double(mismatches) / double(h.robust) : 0.0;
+    const double lowest =
+        approximate && h.robust ? mismatch_rate_lower_bound(mismatches, h.robust) : 0.0;
     if (record.verdict != Verdict::fail) {
       record.verdict = h.verdict;
       record.reason = h.reason;
@@ -100,9 +104,6 @@ class HardShadowEvaluation : public CaseEvaluation {
       // few samples the rate is a noisy estimate: the map is broken only where even the rate's
       // lower confidence bound lies above the ceiling.
       if (approximate && h.verdict == Verdict::fail) {
-        const std::uint64_t mismatches = h.leaks + h.false_shadows;
-        const double rate = double(mismatches) / double(h.robust);
-        const double lowest = mismatch_rate_lower_bound(mismatches, h.robust);
         const bool above = lowest > record.mismatch_ceiling;
         std::ostringstream figures;
         figures << "robust mismatch rate " << std::setprecision(4) << rate << " (" << mismatches
@@ -123,20 +124,15 @@ class HardShadowEvaluation : public CaseEvaluation {
       }
     }
     nlohmann::ordered_json curve = nlohmann::ordered_json::array();
-    for (const auto& [exponent, mismatches] : h.mismatch_curve)
-      curve.push_back({{"eps_rel_log2", exponent}, {"robust_mismatches", mismatches}});
-    record.error = {{"compared", h.compared},
-                    {"robust", h.robust},
-                    {"ambiguous", h.ambiguous},
-                    {"leaks", h.leaks},
-                    {"false_shadows", h.false_shadows},
-                    {"ambiguous_disagreements", h.ambiguous_disagreements},
-                    {"robust_mismatch_rate",
-                     h.robust ? double(h.leaks + h.false_shadows) / double(h.robust) : 0.0},
-                    {"mismatch_curve", curve}};
+    for (const auto& [exponent, at_exponent] : h.mismatch_curve)
+      curve.push_back({{"eps_rel_log2", exponent}, {"robust_mismatches", at_exponent}});
+    record.error = {
+        {"compared", h.compared},           {"robust", h.robust},
+        {"ambiguous", h.ambiguous},         {"leaks", h.leaks},
+        {"false_shadows", h.false_shadows}, {"ambiguous_disagreements", h.ambiguous_disagreements},
+        {"robust_mismatch_rate", rate},     {"mismatch_curve", curve}};
     if (approximate) {
-      record.error["robust_mismatch_rate_lower_bound"] =
-          h.robust ? mismatch_rate_lower_bound(h.leaks + h.false_shadows, h.robust) : 0.0;
+      record.error["robust_mismatch_rate_lower_bound"] = lowest;
       record.error["mismatch_ceiling"] = record.mismatch_ceiling;
     }
     if (judged_by_itself) spot_check_with_exact_oracle(output, record);

@@ -4,6 +4,7 @@
 #include <map>
 #include <sstream>
 
+#include "run_record.h"
 #include "shadowcts/errors.h"
 #include "shadowcts/verdict.h"
 
@@ -149,7 +150,9 @@ ReportData load_report_data(const std::vector<fs::path>& result_dirs, const fs::
         ReportRecord record;
         record.name = name;
         record.output = required_string(r, "output", source, where);
-        if (record.output != "hard" && record.output != "soft" && record.output != "lights")
+        if (record.output != output_kind_name(OutputKind::hard_shadow) &&
+            record.output != output_kind_name(OutputKind::soft_shadow) &&
+            record.output != output_kind_name(OutputKind::light_lists))
           throw InputError(source, where,
                            "\"output\" is '" + record.output + "', not one of hard, soft, lights");
         record.algorithm = required_string(r, "algorithm", source, where);
