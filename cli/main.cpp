@@ -11,6 +11,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "core/interrupt_cleanup.h"
 #include "list_command.h"
 #include "report_command.h"
 #include "runner/certify.h"
@@ -93,6 +94,7 @@ int write_gbuffer(const std::string& case_file, const std::string& fixture,
 }  // namespace
 
 int main(int argc, char** argv) {
+  handle_interruptions();  // before any thread starts, so that every thread inherits it
   CLI::App app{
       "shadowcts: conformance tests with exact reference oracles for pixel-accurate shadow and "
       "light-assignment algorithms"};

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <system_error>
 
+#include "interrupt_cleanup.h"
 #include "shadowcts/errors.h"
 
 namespace shadowcts {
@@ -23,6 +24,7 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
   temporary += ".partial";
   // POSIX calls rather than a stream: their errno says why (ENOSPC, EFBIG, EIO) and close() is
   // checked, where a delayed write error may be the only sign.
+  const InterruptCleanup temporary_on_interrupt = InterruptCleanup::remove_path(temporary);
   const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) throw OutputError(path.string(), "cannot create: " + system_reason(errno));
   auto fail = [&](const std::string& what, int error) {

@@ -15,6 +15,7 @@
 #include <fstream>
 #include <iomanip>
 #include <map>
+#include <optional>
 #include <ostream>
 #include <set>
 #include <sstream>
@@ -25,6 +26,7 @@
 #include "case_shrinking.h"
 #include "conformance_violation.h"
 #include "fixtures/fuzz/fuzz_fixtures.h"
+#include "interrupt_cleanup.h"
 #include "junit_xml.h"
 #include "machine_info.h"
 #include "plugin_backend.h"
@@ -141,7 +143,12 @@ WorkerRun run_worker(const std::vector<std::string>& args, const fs::path& log, 
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
                                    O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
+  // The worker starts with no signal blocked: this process blocks the interruption signals in
+  // every thread for the one that handles them (interrupt_cleanup.h).
+  sigset_t no_signals;
+  sigemptyset(&no_signals);
+  posix_spawnattr_setsigmask(&attributes, &no_signals);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGMASK);
   posix_spawnattr_setpgroup(&attributes, 0);
   std::vector<char*> argv;
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
@@ -154,6 +161,8 @@ WorkerRun run_worker(const std::vector<std::string>& args, const fs::path& log, 
   if (error != 0)
     throw std::runtime_error("cannot start a worker process (" + args[0] +
                              "): " + std::strerror(error));
+  // An interrupted certification takes its workers with it: nothing else would end a hung one.
+  const InterruptCleanup worker_group = InterruptCleanup::kill_group(pid);
   const auto deadline = start + std::chrono::duration<double>(timeout_s);
   int status = 0;
   for (;;) {
@@ -275,6 +284,7 @@ void probe_library(const std::string& exe, const std::string& library) {
   if (fd < 0) throw std::runtime_error("cannot create a temporary file for the probe: " + log_name);
   ::close(fd);
   const fs::path log(log_name);
+  const InterruptCleanup log_on_interrupt = InterruptCleanup::remove_path(log);
   const double timeout_s = 60;
   const WorkerRun run =
       run_worker({exe, "certify", "--worker", "--probe", "--backend", library}, log, timeout_s);
@@ -475,6 +485,7 @@ class Staging {
     fs::remove_all(dir_, ec);
     fs::create_directories(dir_ / "cases", ec);
     if (ec) throw OutputError(dir_.string(), "cannot create folder: " + ec.message());
+    unfinished_ = InterruptCleanup::remove_path(dir_);
   }
   Staging(const Staging&) = delete;
   Staging& operator=(const Staging&) = delete;
@@ -504,6 +515,7 @@ class Staging {
  private:
   fs::path target_, dir_;
   bool committed_ = false;
+  std::optional<InterruptCleanup> unfinished_;
 };
 
 // Image paths in a run's case summary (keys ending in "image" or "images", as the report reads

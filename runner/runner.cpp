@@ -29,6 +29,7 @@
 #include "hard_shadow_evaluation.h"
 #include "heat_map.h"
 #include "image_paths.h"
+#include "interrupt_cleanup.h"
 #include "junit_xml.h"
 #include "known_limits.h"
 #include "light_assignment_evaluation.h"
@@ -242,8 +243,8 @@ std::filesystem::path checked_out_dir(const std::string& text) {
 
 // The run is written into <out>.partial-<pid> beside <out> and swapped in when complete, so <out>
 // always holds one whole run (the new one or the previous one), and a killed run leaves a folder
-// whose name says it is unfinished. A run that fails with an exception removes its partial
-// folder.
+// whose name says it is unfinished. A run that fails with an exception, or is interrupted
+// (interrupt_cleanup.h), removes its partial folder.
 class StagedOutput {
  public:
   explicit StagedOutput(std::filesystem::path target) : target_(std::move(target)) {
@@ -255,6 +256,7 @@ class StagedOutput {
     fs::remove_all(staging_, ec);  // a leftover of a killed run whose pid this one reuses
     fs::create_directories(staging_ / "images", ec);
     if (ec) throw OutputError(staging_.string(), "cannot create folder: " + ec.message());
+    unfinished_ = InterruptCleanup::remove_path(staging_);
   }
   StagedOutput(const StagedOutput&) = delete;
   StagedOutput& operator=(const StagedOutput&) = delete;
@@ -305,6 +307,7 @@ class StagedOutput {
  private:
   std::filesystem::path target_, staging_, old_;
   bool committed_ = false;
+  std::optional<InterruptCleanup> unfinished_;
 };
 
 // The current step and how far its phase is (phase_progress.h): on a terminal a line redrawn

@@ -4,9 +4,11 @@
 // the field and write nothing; verify rejects edited, incomplete and duplicated certificates.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -196,6 +198,55 @@ TEST(Certify, BrokenPortGivesFailCrashTimeoutFailCrashAndTheRunCompletes) {
   EXPECT_NE(junit.find("type=\"Timeout\""), std::string::npos);
   EXPECT_TRUE(fs::exists(dir / "out" / "report.html"));
   EXPECT_EQ(run_tool("certify verify out", dir), 1);
+}
+
+// A certification interrupted while a worker hangs in the library (workers run in process groups
+// of their own, so a terminal's Ctrl-C reaches only the certifying process) kills the worker and
+// removes its unfinished folder: nothing keeps running once it is gone.
+TEST(Certify, AnInterruptedCertificationTakesItsHungWorkerAndUnfinishedFolderWithIt) {
+  const fs::path dir = fresh_dir("certify_interrupted");
+  const int code = testing::run_shell(
+      "'" SHADOWCTS_TOOL "' certify --backend '" EXAMPLE_BROKEN
+      "' --fixture closed_shapes.100 --timeout 600 --threads 1 --out out > stdout.txt "
+      "2> stderr.txt &\n"
+      "pid=$!\n"
+      "worker=\n"
+      "for i in $(seq 1 600); do\n"
+      "  for p in /proc/[0-9]*; do\n"
+      "    if tr '\\0' ' ' < $p/cmdline 2>/dev/null | grep -q -- '[c]ertify --worker "
+      ".*closed_shapes.100'; "
+      "then worker=${p#/proc/}; fi\n"
+      "  done\n"
+      "  if [ -n \"$worker\" ]; then break; fi\n"
+      "  sleep 0.05\n"
+      "done\n"
+      "sleep 0.5\n"
+      "kill -TERM $pid\n"
+      "wait $pid\n"
+      "echo $? > status.txt\n"
+      "echo \"$worker\" > worker.txt\n",
+      dir);
+  const std::string log = read_file(dir / "stdout.txt") + read_file(dir / "stderr.txt");
+  ASSERT_EQ(code, 0) << log;
+  ASSERT_EQ(read_file(dir / "status.txt"), "143\n") << log;
+  std::string worker = read_file(dir / "worker.txt");
+  while (!worker.empty() && worker.back() == '\n') worker.pop_back();
+  ASSERT_FALSE(worker.empty()) << "no worker was seen running\n" << log;
+  // Killed, it is at most a zombie left to the process that adopted it.
+  std::string state;
+  for (int i = 0; i < 500; ++i) {
+    std::ifstream stat("/proc/" + worker + "/stat");
+    std::string fields;
+    std::getline(stat, fields);
+    const auto close = fields.rfind(')');
+    state = close == std::string::npos ? "" : fields.substr(close + 2, 1);
+    if (state.empty() || state == "Z") break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  EXPECT_TRUE(state.empty() || state == "Z") << "worker " << worker << " still runs: " << state;
+  for (const auto& entry : fs::directory_iterator(dir))
+    EXPECT_EQ(entry.path().filename().string().rfind("out", 0), std::string::npos) << entry.path();
+  EXPECT_NE(log.find("interrupted (SIGTERM); removed the unfinished"), std::string::npos) << log;
 }
 
 TEST(Certify, NothingJudgedCertifiesNothing) {

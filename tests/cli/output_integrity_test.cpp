@@ -123,6 +123,34 @@ TEST(OutputIntegrity, AKilledRunLeavesThePreviousRunAndAVisiblyUnfinishedFolder)
   EXPECT_FALSE(fs::exists(dir / ("out.partial-" + pid) / "results.json"));
 }
 
+// Interrupted (SIGTERM: a CI job's timeout; SIGINT and SIGHUP alike) while its images are being
+// written, the run removes its unfinished folder, says so, and ends with the signal's status; the
+// previous run stays whole.
+TEST(OutputIntegrity, AnInterruptedRunRemovesItsUnfinishedFolderAndKeepsThePreviousRun) {
+  const fs::path dir = fresh_dir("interrupted");
+  const auto before = previous_run(dir);
+  const int code = run_shell(
+      "'" + tool +
+          "' run --fixture ground_blockers.2k --fixture shared_edges.1k --fixture "
+          "closed_shapes.1k --algorithm ptsv --algorithm psv --algorithm bruteforce --repeat 3 "
+          "--out out > run.txt 2> stderr.txt &\n"
+          "pid=$!\n"
+          "for i in $(seq 1 3000); do\n"
+          "  if [ -n \"$(ls out.partial-$pid/images 2>/dev/null)\" ]; then break; fi\n"
+          "  sleep 0.01\n"
+          "done\n"
+          "kill -TERM $pid\n"
+          "wait $pid\n"
+          "echo $? > status.txt\n",
+      dir);
+  ASSERT_EQ(code, 0) << err_of(dir);
+  ASSERT_EQ(read_file(dir / "status.txt"), "143\n") << "the run ended before it was interrupted";
+  EXPECT_EQ(snapshot(dir / "out"), before) << "the previous run was changed";
+  EXPECT_EQ(entries_starting(dir, "out."), std::vector<std::string>{});
+  EXPECT_NE(err_of(dir).find("interrupted (SIGTERM); removed the unfinished"), std::string::npos)
+      << err_of(dir);
+}
+
 // Item 4: a full disk (a real ENOSPC, on a small tmpfs in a user namespace) while an algorithm's
 // images are written: exit 3 naming the PNG, no Crash verdict, the previous run untouched and no
 // partial folder left.
