@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "case_round_trip.h"
+#include "interrupt_cleanup.h"
 #include "manifest_lights.h"
 #include "shadowcts/case_manifest.h"
 #include "shadowcts/errors.h"
@@ -162,6 +163,7 @@ void export_case(const Case& original, const std::optional<ViewSamples>& given_s
     throw UsageError("--out " + dir_text + ": exists and is not an empty folder");
   fs::create_directories(dir, ec);
   if (ec) throw OutputError(dir_text, "cannot create folder: " + ec.message());
+  const InterruptCleanup unfinished = InterruptCleanup::remove_path(dir);
   try {
     // The case as case.json gives it back: the loader normalizes directions, so they are written
     // as directions that normalizing leaves alone (an ulp from the fixture's at most).

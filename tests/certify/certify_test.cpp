@@ -207,8 +207,8 @@ TEST(Certify, AnInterruptedCertificationTakesItsHungWorkerAndUnfinishedFolderWit
   const fs::path dir = fresh_dir("certify_interrupted");
   const int code = testing::run_shell(
       "'" SHADOWCTS_TOOL "' certify --backend '" EXAMPLE_BROKEN
-      "' --fixture closed_shapes.100 --timeout 600 --threads 1 --out out > stdout.txt "
-      "2> stderr.txt &\n"
+      "' --fixture closed_shapes.100 --timeout 600 --threads 1 --out out > tool_stdout.txt "
+      "2> tool_stderr.txt &\n"
       "pid=$!\n"
       "worker=\n"
       "for i in $(seq 1 600); do\n"
@@ -226,7 +226,7 @@ TEST(Certify, AnInterruptedCertificationTakesItsHungWorkerAndUnfinishedFolderWit
       "echo $? > status.txt\n"
       "echo \"$worker\" > worker.txt\n",
       dir);
-  const std::string log = read_file(dir / "stdout.txt") + read_file(dir / "stderr.txt");
+  const std::string log = read_file(dir / "tool_stdout.txt") + read_file(dir / "tool_stderr.txt");
   ASSERT_EQ(code, 0) << log;
   ASSERT_EQ(read_file(dir / "status.txt"), "143\n") << log;
   std::string worker = read_file(dir / "worker.txt");
