@@ -18,6 +18,7 @@
 #include <type_traits>
 
 #include "atomic_file.h"
+#include "interrupt_cleanup.h"
 #include "shadowcts/errors.h"
 
 namespace shadowcts {
@@ -292,6 +293,7 @@ Truth cached_truth(const std::filesystem::path& dir, std::string_view oracle, co
   // write a complete entry and the last rename wins.
   std::filesystem::path temporary = path;
   temporary += "." + std::to_string(::getpid());
+  const InterruptCleanup temporary_on_interrupt = InterruptCleanup::remove_path(temporary);
   try {
     write_file_atomically(temporary, w.bytes());
     std::filesystem::rename(temporary, path);
