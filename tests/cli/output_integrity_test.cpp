@@ -92,35 +92,53 @@ TEST(OutputIntegrity, ARunReplacesThePreviousRunAsAWhole) {
   EXPECT_EQ(read_file(dir / "out" / "report.html").find(".partial-"), std::string::npos);
 }
 
+// How the tool ended when sent `signal` (a kill option: -9, -TERM) once the shell test `ready`
+// held ($pid is the tool's); stdout goes to run.txt, stderr to tool_stderr.txt.
+struct Signalled {
+  std::string status, pid;
+};
+Signalled signal_tool_once_ready(const fs::path& dir, const std::string& arguments,
+                                 const std::string& ready, const std::string& signal) {
+  const int code = run_shell("'" + tool + "' " + arguments +
+                                 " > run.txt 2> tool_stderr.txt &\n"
+                                 "pid=$!\n"
+                                 "for i in $(seq 1 6000); do\n"
+                                 "  if " +
+                                 ready +
+                                 "; then break; fi\n"
+                                 "  sleep 0.005\n"
+                                 "done\n"
+                                 "kill " +
+                                 signal +
+                                 " $pid\n"
+                                 "wait $pid\n"
+                                 "echo $? > status.txt\n"
+                                 "echo $pid > pid.txt\n",
+                             dir);
+  EXPECT_EQ(code, 0) << err_of(dir);
+  Signalled ended{read_file(dir / "status.txt"), read_file(dir / "pid.txt")};
+  for (std::string* text : {&ended.status, &ended.pid})
+    while (!text->empty() && text->back() == '\n') text->pop_back();
+  return ended;
+}
+
+// Several cases and algorithms: seconds of work, signalled once its first case's images are
+// being written.
+const std::string long_run =
+    "run --fixture ground_blockers.2k --fixture shared_edges.1k --fixture closed_shapes.1k "
+    "--algorithm ptsv --algorithm psv --algorithm bruteforce --repeat 3 --out out";
+const std::string writing_images = "[ -n \"$(ls out.partial-$pid/images 2>/dev/null)\" ]";
+
 // Item 4: killed in the middle, the folder still holds the previous complete run, and the new
 // run's folder says it is unfinished.
 TEST(OutputIntegrity, AKilledRunLeavesThePreviousRunAndAVisiblyUnfinishedFolder) {
   const fs::path dir = fresh_dir("killed");
   const auto before = previous_run(dir);
-  // Several cases and algorithms: seconds of work; it is killed once its first case's images are
-  // being written.
-  const int code = run_shell(
-      "'" + tool +
-          "' run --fixture ground_blockers.2k --fixture shared_edges.1k --fixture "
-          "closed_shapes.1k --algorithm ptsv --algorithm psv --algorithm bruteforce --repeat 3 "
-          "--out out > run.txt 2>&1 &\n"
-          "pid=$!\n"
-          "for i in $(seq 1 3000); do\n"
-          "  if [ -n \"$(ls out.partial-$pid/images 2>/dev/null)\" ]; then break; fi\n"
-          "  sleep 0.01\n"
-          "done\n"
-          "kill -9 $pid\n"
-          "wait $pid\n"
-          "echo $? > status.txt\n"
-          "echo $pid > pid.txt\n",
-      dir);
-  ASSERT_EQ(code, 0) << err_of(dir);
-  ASSERT_EQ(read_file(dir / "status.txt"), "137\n") << "the run ended before it was killed";
+  const Signalled ended = signal_tool_once_ready(dir, long_run, writing_images, "-9");
+  ASSERT_EQ(ended.status, "137") << "the run ended before it was killed";
   EXPECT_EQ(snapshot(dir / "out"), before) << "the previous run was changed";
-  std::string pid = read_file(dir / "pid.txt");
-  pid.pop_back();
-  EXPECT_TRUE(fs::is_directory(dir / ("out.partial-" + pid)));
-  EXPECT_FALSE(fs::exists(dir / ("out.partial-" + pid) / "results.json"));
+  EXPECT_TRUE(fs::is_directory(dir / ("out.partial-" + ended.pid)));
+  EXPECT_FALSE(fs::exists(dir / ("out.partial-" + ended.pid) / "results.json"));
 }
 
 // Interrupted (SIGTERM: a CI job's timeout; SIGINT and SIGHUP alike) while its images are being
@@ -129,22 +147,8 @@ TEST(OutputIntegrity, AKilledRunLeavesThePreviousRunAndAVisiblyUnfinishedFolder)
 TEST(OutputIntegrity, AnInterruptedRunRemovesItsUnfinishedFolderAndKeepsThePreviousRun) {
   const fs::path dir = fresh_dir("interrupted");
   const auto before = previous_run(dir);
-  const int code = run_shell(
-      "'" + tool +
-          "' run --fixture ground_blockers.2k --fixture shared_edges.1k --fixture "
-          "closed_shapes.1k --algorithm ptsv --algorithm psv --algorithm bruteforce --repeat 3 "
-          "--out out > run.txt 2> tool_stderr.txt &\n"
-          "pid=$!\n"
-          "for i in $(seq 1 3000); do\n"
-          "  if [ -n \"$(ls out.partial-$pid/images 2>/dev/null)\" ]; then break; fi\n"
-          "  sleep 0.01\n"
-          "done\n"
-          "kill -TERM $pid\n"
-          "wait $pid\n"
-          "echo $? > status.txt\n",
-      dir);
-  ASSERT_EQ(code, 0) << err_of(dir);
-  ASSERT_EQ(read_file(dir / "status.txt"), "143\n") << "the run ended before it was interrupted";
+  const Signalled ended = signal_tool_once_ready(dir, long_run, writing_images, "-TERM");
+  ASSERT_EQ(ended.status, "143") << "the run ended before it was interrupted";
   EXPECT_EQ(snapshot(dir / "out"), before) << "the previous run was changed";
   EXPECT_EQ(entries_starting(dir, "out."), std::vector<std::string>{});
   const std::string said = read_file(dir / "tool_stderr.txt");
@@ -155,20 +159,9 @@ TEST(OutputIntegrity, AnInterruptedRunRemovesItsUnfinishedFolderAndKeepsThePrevi
 // check that case.json loads back, about 0.7 s, still to come), it removes the folder.
 TEST(OutputIntegrity, AnInterruptedExportLeavesNoFolder) {
   const fs::path dir = fresh_dir("interrupted_export");
-  const int code = run_shell("'" + tool +
-                                 "' export --fixture foliage.100k --out exported > run.txt 2> "
-                                 "tool_stderr.txt &\n"
-                                 "pid=$!\n"
-                                 "for i in $(seq 1 3000); do\n"
-                                 "  if [ -e exported/scene.glb ]; then break; fi\n"
-                                 "  sleep 0.005\n"
-                                 "done\n"
-                                 "kill -HUP $pid\n"
-                                 "wait $pid\n"
-                                 "echo $? > status.txt\n",
-                             dir);
-  ASSERT_EQ(code, 0) << err_of(dir);
-  ASSERT_EQ(read_file(dir / "status.txt"), "129\n") << "the export ended before it was interrupted";
+  const Signalled ended = signal_tool_once_ready(
+      dir, "export --fixture foliage.100k --out exported", "[ -e exported/scene.glb ]", "-HUP");
+  ASSERT_EQ(ended.status, "129") << "the export ended before it was interrupted";
   EXPECT_FALSE(fs::exists(dir / "exported"));
   const std::string said = read_file(dir / "tool_stderr.txt");
   EXPECT_NE(said.find("interrupted (SIGHUP); removed the unfinished"), std::string::npos) << said;
