@@ -43,8 +43,15 @@ cmake --build "${build}" --target shadowcts_fuzz -j "${jobs}"
 mkdir -p "${OUT}"
 targets=(fuzz_gltf_loader fuzz_obj_loader fuzz_off_loader fuzz_ply_loader fuzz_stl_loader
   fuzz_case_manifest fuzz_gbuffer_exr fuzz_watertight fuzz_degenerate fuzz_differential)
+# OSS-Fuzz and ClusterFuzzLite (their containers set FUZZING_ENGINE) run every program in $OUT
+# that holds LLVMFuzzerTestOneInput as a libFuzzer target, with libFuzzer's flags, which the
+# CI-mode programs (<target>_ci, support/ci_driver.cpp) refuse. They and reproducer_round_trip
+# serve run_ci.sh only, so they stay out of that $OUT.
+ci_programs=1
+if [ -n "${FUZZING_ENGINE:-}" ]; then ci_programs=0; fi
 for target in "${targets[@]}"; do
-  cp "${build}/fuzz/${target}" "${build}/fuzz/${target}_ci" "${OUT}/"
+  cp "${build}/fuzz/${target}" "${OUT}/"
+  if [ "${ci_programs}" = 1 ]; then cp "${build}/fuzz/${target}_ci" "${OUT}/"; fi
   seeds="${OUT}/${target}_seed_corpus"
   rm -rf "${seeds}"
   mkdir -p "${seeds}"
@@ -54,7 +61,7 @@ for target in "${targets[@]}"; do
     cp "${root}/fuzz/options/${target}.options" "${OUT}/"
   fi
 done
-cp "${build}/fuzz/reproducer_round_trip" "${OUT}/"
+if [ "${ci_programs}" = 1 ]; then cp "${build}/fuzz/reproducer_round_trip" "${OUT}/"; fi
 # OpenImageIO is loaded on first use from this module, looked for beside the program first.
 cp "${build}/libshadowcts_oiio.so" "${OUT}/"
 # EXR files are git-ignored: the G-buffer seeds are written by the project's own writer.
