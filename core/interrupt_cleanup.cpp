@@ -24,8 +24,9 @@ struct Registry {
   std::uint64_t next_id = 1;
 };
 
+// Never destroyed: the signal thread may still take it while the process exits.
 Registry& registry() {
-  static Registry instance;
+  static Registry& instance = *new Registry;
   return instance;
 }
 
