@@ -9,6 +9,7 @@
 #include <map>
 #include <mutex>
 #include <string>
+#include <system_error>
 #include <thread>
 #include <utility>
 #include <variant>
@@ -45,8 +46,8 @@ sigset_t interruption_signals() {
   return set;
 }
 
-// Runs on the thread that took the signal; holds the registry's lock to the end, so no output is
-// committed or registered while its folder is being removed.
+// Runs on the thread that took the signal; holds the registry's lock to the end, so nothing is
+// registered or withdrawn meanwhile.
 [[noreturn]] void end_interrupted(int signal) {
   Registry& r = registry();
   r.mutex.lock();
@@ -85,12 +86,17 @@ void handle_interruptions() {
   std::call_once(once, [] {
     const sigset_t set = interruption_signals();
     ::pthread_sigmask(SIG_BLOCK, &set, nullptr);
-    std::thread([set] {
-      int signal = 0;
-      while (::sigwait(&set, &signal) != 0) {
-      }
-      end_interrupted(signal);
-    }).detach();
+    try {
+      std::thread([set] {
+        int signal = 0;
+        while (::sigwait(&set, &signal) != 0) {
+        }
+        end_interrupted(signal);
+      }).detach();
+    } catch (const std::system_error&) {
+      // No thread to take them: the signals keep their default action, without the cleanup.
+      ::pthread_sigmask(SIG_UNBLOCK, &set, nullptr);
+    }
   });
 }
 

@@ -481,11 +481,11 @@ class Staging {
   explicit Staging(fs::path target) : target_(std::move(target)) {
     const std::string pid = std::to_string(::getpid());
     dir_ = target_.parent_path() / (target_.filename().string() + ".partial-" + pid);
+    unfinished_ = InterruptCleanup::remove_path(dir_);
     std::error_code ec;
     fs::remove_all(dir_, ec);
     fs::create_directories(dir_ / "cases", ec);
     if (ec) throw OutputError(dir_.string(), "cannot create folder: " + ec.message());
-    unfinished_ = InterruptCleanup::remove_path(dir_);
   }
   Staging(const Staging&) = delete;
   Staging& operator=(const Staging&) = delete;

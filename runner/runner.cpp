@@ -252,11 +252,11 @@ class StagedOutput {
     const std::string pid = std::to_string(::getpid());
     staging_ = target_.parent_path() / (target_.filename().string() + ".partial-" + pid);
     old_ = target_.parent_path() / (target_.filename().string() + ".old-" + pid);
+    unfinished_ = InterruptCleanup::remove_path(staging_);
     std::error_code ec;
     fs::remove_all(staging_, ec);  // a leftover of a killed run whose pid this one reuses
     fs::create_directories(staging_ / "images", ec);
     if (ec) throw OutputError(staging_.string(), "cannot create folder: " + ec.message());
-    unfinished_ = InterruptCleanup::remove_path(staging_);
   }
   StagedOutput(const StagedOutput&) = delete;
   StagedOutput& operator=(const StagedOutput&) = delete;

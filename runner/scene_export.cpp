@@ -161,9 +161,9 @@ void export_case(const Case& original, const std::optional<ViewSamples>& given_s
   std::error_code ec;
   if (fs::exists(dir, ec) && !(fs::is_directory(dir, ec) && fs::is_empty(dir, ec)))
     throw UsageError("--out " + dir_text + ": exists and is not an empty folder");
+  const InterruptCleanup unfinished = InterruptCleanup::remove_path(dir);
   fs::create_directories(dir, ec);
   if (ec) throw OutputError(dir_text, "cannot create folder: " + ec.message());
-  const InterruptCleanup unfinished = InterruptCleanup::remove_path(dir);
   try {
     // The case as case.json gives it back: the loader normalizes directions, so they are written
     // as directions that normalizing leaves alone (an ulp from the fixture's at most).
