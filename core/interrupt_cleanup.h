@@ -1,8 +1,8 @@
 #pragma once
 // What an interrupted process (SIGINT, SIGTERM, SIGHUP: Ctrl-C, a CI job's timeout, a closed
 // terminal) takes with it: its unfinished output folders and temporaries, and its worker processes'
-// groups. Without this an interrupted run left <out>.partial-<pid> behind, and an interrupted
-// certification left its workers running, with nobody left to enforce their time limit.
+// groups. Without this an interrupted run, export or certification left its unfinished folder
+// behind.
 #include <sys/types.h>
 
 #include <cstdint>

@@ -161,7 +161,8 @@ WorkerRun run_worker(const std::vector<std::string>& args, const fs::path& log, 
   if (error != 0)
     throw std::runtime_error("cannot start a worker process (" + args[0] +
                              "): " + std::strerror(error));
-  // An interrupted certification takes its workers with it: nothing else would end a hung one.
+  // Killed first when this process is interrupted, before the folders they write into are removed:
+  // PR_SET_PDEATHSIG ends a worker only once this process is gone, and not what it started.
   const InterruptCleanup worker_group = InterruptCleanup::kill_group(pid);
   const auto deadline = start + std::chrono::duration<double>(timeout_s);
   int status = 0;

@@ -202,7 +202,7 @@ TEST(Certify, BrokenPortGivesFailCrashTimeoutFailCrashAndTheRunCompletes) {
 
 // A certification interrupted while a worker hangs in the library (workers run in process groups
 // of their own, so a terminal's Ctrl-C reaches only the certifying process) kills the worker and
-// removes its unfinished folder: nothing keeps running once it is gone.
+// removes its unfinished folder, which the worker's run lies in: nothing is left behind.
 TEST(Certify, AnInterruptedCertificationTakesItsHungWorkerAndUnfinishedFolderWithIt) {
   const fs::path dir = fresh_dir("certify_interrupted");
   const int code = testing::run_shell(
