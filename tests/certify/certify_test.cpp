@@ -213,9 +213,10 @@ TEST(Certify, AnInterruptedCertificationTakesItsHungWorkerAndUnfinishedFolderWit
       "worker=\n"
       "for i in $(seq 1 600); do\n"
       "  for p in /proc/[0-9]*; do\n"
-      "    if tr '\\0' ' ' < $p/cmdline 2>/dev/null | grep -q -- '[c]ertify --worker "
-      ".*closed_shapes.100'; "
-      "then worker=${p#/proc/}; fi\n"
+      // This certification's own worker (its run lies in out.partial-<pid>), not one of a test
+      // running beside it.
+      "    if tr '\\0' ' ' < $p/cmdline 2>/dev/null | grep -q -- \"[c]ertify --worker "
+      ".*/out.partial-$pid/\"; then worker=${p#/proc/}; fi\n"
       "  done\n"
       "  if [ -n \"$worker\" ]; then break; fi\n"
       "  sleep 0.05\n"
